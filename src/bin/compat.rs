@@ -1,0 +1,111 @@
+//! `compat`: the ryade command line (YADE comparison harness and scene runner).
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand};
+use ryade::harness::micro;
+use ryade::io::{golden::Recorder, scene_json};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "compat", version, about = "ryade: YADE's DEM core in Rust, and the tools to prove it matches YADE")]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Compare ryade with YADE's golden records. Targets: `micro` (bit for bit, every step).
+    Diff {
+        /// What to compare: micro
+        target: String,
+        /// Golden directory (default: golden/<target>)
+        #[arg(long)]
+        golden: Option<PathBuf>,
+        /// Only scenes whose name contains this text
+        #[arg(long)]
+        only: Option<String>,
+        /// Also write the report as JSON here
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// Run a scene file (*.scene.json) and record every step in the golden format.
+    Scene {
+        file: PathBuf,
+        /// Number of steps (default: the scene file's recorded count)
+        #[arg(long)]
+        steps: Option<u64>,
+        /// Output directory for <name>.bodies.csv and <name>.intrs.csv
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {:#}", e);
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.cmd {
+        Cmd::Diff { target, golden, only, json } => {
+            if target != "micro" {
+                bail!("unknown diff target '{}': available targets are: micro", target);
+            }
+            let dir = golden.unwrap_or_else(|| PathBuf::from("golden").join(&target));
+            let mut reps = Vec::new();
+            for p in micro::scene_files(&dir)? {
+                let name = p.file_name().unwrap().to_string_lossy().to_string();
+                if let Some(o) = &only {
+                    if !name.contains(o.as_str()) {
+                        continue;
+                    }
+                }
+                let sf = scene_json::load(&p)?;
+                reps.push(micro::diff_scene(sf, &p)?);
+            }
+            if reps.is_empty() {
+                bail!("no *.scene.json found in {} (run yade_ref/regen.sh to create goldens)", dir.display());
+            }
+            print!("{}", micro::format_table(&reps));
+            let total: u64 = reps.iter().map(|r| r.mismatches).sum();
+            let values: u64 = reps.iter().map(|r| r.values).sum();
+            println!("{} scenes, {} values compared, {} mismatches", reps.len(), values, total);
+            if let Some(j) = json {
+                std::fs::write(&j, serde_json::to_string_pretty(&reps)?).with_context(|| format!("writing {}", j.display()))?;
+            }
+            Ok(if total == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Cmd::Scene { file, steps, out } => {
+            let sf = scene_json::load(&file)?;
+            let steps = steps.unwrap_or(sf.steps);
+            let name = sf.name.clone();
+            let mut scene = sf.scene;
+            ryade::utils::check_time_step(&scene).map_err(anyhow::Error::msg)?;
+            let mut rec = Recorder::create(&out, &name)?;
+            rec.record(&scene)?;
+            let bar = indicatif::ProgressBar::new(steps);
+            bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps {elapsed}<{eta}").unwrap());
+            for _ in 0..steps {
+                if let Err(e) = scene.step() {
+                    bar.abandon();
+                    eprintln!("stopped: {}", e);
+                    eprintln!("records up to step {} are kept in {}", scene.iter, out.display());
+                    return Ok(ExitCode::from(1));
+                }
+                rec.record(&scene)?;
+                bar.inc(1);
+            }
+            bar.finish();
+            println!("{} steps of {} recorded in {}", steps, name, out.display());
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

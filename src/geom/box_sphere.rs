@@ -1,0 +1,90 @@
+//! `Ig2_Box_Sphere_ScGeom` (pkg/dem/Ig2_Box_Sphere_ScGeom.cpp). Note the YADE asymmetry kept on
+//! purpose: the centre-inside branch uses the ratcheting-free relative velocity, the outside branch
+//! uses real lever arms.
+
+use super::{GeomCtx, Kin, ScGeom};
+use crate::math::{mat_t_vec, mat_vec, norm, normalized, Vec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub interaction_detection_factor: f64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            interaction_detection_factor: 1.0,
+        }
+    }
+}
+
+/// Body 1 is the box (half sizes `ext`), body 2 the sphere of radius `r`.
+#[allow(clippy::too_many_arguments)]
+pub fn go(
+    p: &Params,
+    ext: &Vec3,
+    r: f64,
+    bx: &Kin,
+    sph: &Kin,
+    shift2: &Vec3,
+    is_real: bool,
+    geom: &mut Option<ScGeom>,
+    ctx: &GeomCtx,
+) -> bool {
+    let axis_t = bx.ori.to_rotation_matrix();
+    let rel = sph.pos + shift2 - bx.pos;
+    let mut c = mat_t_vec(&axis_t, &rel);
+    let mut inside = true;
+    for i in 0..3 {
+        if c[i] < -ext[i] {
+            c[i] = -ext[i];
+            inside = false;
+        }
+        if c[i] > ext[i] {
+            c[i] = ext[i];
+            inside = false;
+        }
+    }
+    if inside {
+        let mut min_d = ext[0] - c[0].abs();
+        let mut idx = 0;
+        for i in 1..3 {
+            let t = ext[i] - c[i].abs();
+            if t < min_d {
+                min_d = t;
+                idx = i;
+            }
+        }
+        let mut nl = Vec3::zeros();
+        nl[idx] = if c[idx] > 0.0 { 1.0 } else { -1.0 };
+        let normal = normalized(&mat_vec(&axis_t, &nl));
+        let pt1 = sph.pos + normal * min_d;
+        let pt2 = sph.pos - normal * r;
+        let normal2 = normalized(&(pt1 - pt2));
+        let is_new = geom.is_none();
+        let g = geom.get_or_insert_with(ScGeom::default);
+        g.contact_point = (pt1 + pt2) * 0.5;
+        g.pen = norm(&(pt1 - pt2));
+        g.radius1 = r;
+        g.radius2 = r;
+        g.precompute(bx, sph, ctx, &normal2, is_new, shift2, true);
+    } else {
+        let c_box = mat_vec(&axis_t, &c);
+        let c_sph = c_box - rel;
+        let depth = r - norm(&c_sph);
+        if -depth > r * (p.interaction_detection_factor - 1.0) && !is_real {
+            return false;
+        }
+        let pt1 = c_box + bx.pos;
+        let dir = normalized(&c_sph);
+        let pt2 = sph.pos + shift2 + dir * r;
+        let is_new = geom.is_none();
+        let g = geom.get_or_insert_with(ScGeom::default);
+        g.contact_point = (pt1 + pt2) * 0.5;
+        g.pen = depth;
+        g.radius1 = r;
+        g.radius2 = r;
+        g.precompute(bx, sph, ctx, &(-dir), is_new, shift2, false);
+    }
+    true
+}

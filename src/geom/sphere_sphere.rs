@@ -1,0 +1,54 @@
+//! `Ig2_Sphere_Sphere_ScGeom` (pkg/dem/Ig2_Sphere_Sphere_ScGeom.cpp).
+
+use super::{GeomCtx, Kin, ScGeom};
+use crate::math::{norm, norm2, Vec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub interaction_detection_factor: f64,
+    pub avoid_granular_ratcheting: bool,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            interaction_detection_factor: 1.0,
+            avoid_granular_ratcheting: true,
+        }
+    }
+}
+
+/// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
+/// interaction always gets its geometry updated, even when the spheres have separated.
+#[allow(clippy::too_many_arguments)]
+pub fn go(
+    p: &Params,
+    r1: f64,
+    r2: f64,
+    s1: &Kin,
+    s2: &Kin,
+    shift2: &Vec3,
+    is_real: bool,
+    geom: &mut Option<ScGeom>,
+    ctx: &GeomCtx,
+) -> bool {
+    let d = (s2.pos + shift2) - s1.pos;
+    if !is_real {
+        let f = p.interaction_detection_factor * (r1 + r2);
+        // pow(x, 2) is x*x in glibc for every finite x
+        if f * f - norm2(&d) < 0.0 {
+            return false;
+        }
+    }
+    let is_new = geom.is_none();
+    let g = geom.get_or_insert_with(ScGeom::default);
+    let dist = norm(&d);
+    let n = Vec3::new(d[0] / dist, d[1] / dist, d[2] / dist);
+    let pen = r1 + r2 - dist;
+    g.contact_point = s1.pos + n * (r1 - 0.5 * pen);
+    g.pen = pen;
+    g.radius1 = r1;
+    g.radius2 = r2;
+    g.precompute(s1, s2, ctx, &n, is_new, shift2, p.avoid_granular_ratcheting);
+    true
+}

@@ -1,0 +1,240 @@
+//! `compat diff micro`: run each golden scene in ryade and compare every recorded double, every step.
+
+use crate::io::golden::{self, BODY_COLS, INTR_COLS};
+use crate::io::scene_json::{self, SceneFile};
+use crate::scene::Scene;
+use anyhow::{Context, Result};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Distance in units in the last place between two doubles (0 when bit-identical; NaN vs number
+/// counts as u64::MAX).
+pub fn ulp_distance(a: f64, b: f64) -> u64 {
+    if a.to_bits() == b.to_bits() {
+        return 0;
+    }
+    if a.is_nan() || b.is_nan() {
+        return u64::MAX;
+    }
+    let key = |x: f64| -> i128 {
+        let bits = x.to_bits() as i64;
+        (if bits < 0 { i64::MIN - bits } else { bits }) as i128
+    };
+    (key(a) - key(b)).unsigned_abs().min(u64::MAX as u128) as u64
+}
+
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct FirstDiff {
+    pub step: u64,
+    pub what: String,
+    pub ryade: f64,
+    pub yade: f64,
+}
+
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct DiffReport {
+    pub scene: String,
+    pub steps: u64,
+    pub values: u64,
+    pub mismatches: u64,
+    pub max_ulp: u64,
+    /// Real interactions present in one engine and not the other (counted in `mismatches` too).
+    pub missing_contacts: u64,
+    /// Steps where the container order of real interactions differs (informative).
+    pub order_differs_steps: u64,
+    pub first: Option<FirstDiff>,
+    pub error: Option<String>,
+}
+
+impl DiffReport {
+    fn note(&mut self, step: u64, what: impl FnOnce() -> String, ours: f64, theirs: f64) {
+        self.values += 1;
+        let d = ulp_distance(ours, theirs);
+        if d != 0 {
+            self.mismatches += 1;
+            self.max_ulp = self.max_ulp.max(d);
+            if self.first.is_none() {
+                self.first = Some(FirstDiff { step, what: what(), ryade: ours, yade: theirs });
+            }
+        }
+    }
+}
+
+/// Golden file paths of a scene `<dir>/<name>.scene.json`.
+pub fn golden_paths(scene_json: &Path) -> (PathBuf, PathBuf) {
+    let s = scene_json.to_string_lossy();
+    let base = s.trim_end_matches(".scene.json");
+    (PathBuf::from(format!("{}.bodies.csv.gz", base)), PathBuf::from(format!("{}.intrs.csv.gz", base)))
+}
+
+/// Compare a ryade run of `sf` with the golden records next to `scene_json`.
+pub fn diff_scene(sf: SceneFile, scene_json: &Path) -> Result<DiffReport> {
+    let (bp, ip) = golden_paths(scene_json);
+    let bodies = golden::read_bodies(&bp)?;
+    let intrs = golden::read_intrs(&ip)?;
+    Ok(diff_against(sf, &bodies, &intrs))
+}
+
+pub fn diff_against(sf: SceneFile, bodies: &[golden::BodyRow], intrs: &[golden::IntrRow]) -> DiffReport {
+    let SceneFile { mut scene, steps, name } = sf;
+    let mut rep = DiffReport { scene: name, steps, ..Default::default() };
+    let mut by_step_b: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
+    for r in bodies {
+        by_step_b.entry(r.step).or_default().push(r);
+    }
+    let mut by_step_i: HashMap<u64, Vec<&golden::IntrRow>> = HashMap::new();
+    for r in intrs {
+        by_step_i.entry(r.step).or_default().push(r);
+    }
+    for step in 0..=steps {
+        if step > 0 {
+            if let Err(e) = scene.step() {
+                rep.error = Some(e.to_string());
+                rep.mismatches += 1;
+                break;
+            }
+        }
+        compare_step(&scene, step, by_step_b.get(&step), by_step_i.get(&step), &mut rep);
+    }
+    rep
+}
+
+fn compare_step(
+    scene: &Scene,
+    step: u64,
+    gb: Option<&Vec<&golden::BodyRow>>,
+    gi: Option<&Vec<&golden::IntrRow>>,
+    rep: &mut DiffReport,
+) {
+    let empty_b = Vec::new();
+    let gb = gb.unwrap_or(&empty_b);
+    if gb.len() != scene.bodies.len() {
+        rep.mismatches += 1;
+        if rep.first.is_none() {
+            rep.first = Some(FirstDiff {
+                step,
+                what: format!("body count: golden has {} rows, ryade {} bodies", gb.len(), scene.bodies.len()),
+                ..Default::default()
+            });
+        }
+    }
+    for row in gb {
+        let id = row.id as usize;
+        if id >= scene.bodies.len() {
+            continue;
+        }
+        let ours = golden::body_values(scene, id);
+        for (k, (o, t)) in ours.iter().zip(row.v.iter()).enumerate() {
+            rep.note(step, || format!("body {} {}", id, BODY_COLS[k]), *o, *t);
+        }
+    }
+    let ours = golden::intr_values(scene);
+    let empty_i = Vec::new();
+    let gi = gi.unwrap_or(&empty_i);
+    let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
+    let mut ours_map: HashMap<(u32, u32), (usize, u32, u32, &[f64; 18])> = HashMap::new();
+    for (ord, (a, b, v)) in ours.iter().enumerate() {
+        ours_map.insert(key(*a, *b), (ord, *a, *b, v));
+    }
+    let mut order_same = ours.len() == gi.len();
+    for row in gi {
+        match ours_map.remove(&key(row.id1, row.id2)) {
+            None => {
+                rep.values += 1;
+                rep.mismatches += 1;
+                rep.missing_contacts += 1;
+                if rep.first.is_none() {
+                    rep.first = Some(FirstDiff {
+                        step,
+                        what: format!("contact {}-{} exists in YADE only", row.id1, row.id2),
+                        ..Default::default()
+                    });
+                }
+            }
+            Some((ord, a, b, v)) => {
+                if ord as u32 != row.ord {
+                    order_same = false;
+                }
+                if (a, b) != (row.id1, row.id2) {
+                    rep.values += 1;
+                    rep.mismatches += 1;
+                    if rep.first.is_none() {
+                        rep.first = Some(FirstDiff {
+                            step,
+                            what: format!("contact {}-{} has ids in order {}-{} in ryade", row.id1, row.id2, a, b),
+                            ..Default::default()
+                        });
+                    }
+                }
+                for (k, (o, t)) in v.iter().zip(row.v.iter()).enumerate() {
+                    rep.note(step, || format!("contact {}-{} {}", row.id1, row.id2, INTR_COLS[k]), *o, *t);
+                }
+            }
+        }
+    }
+    for (_, (_, a, b, _)) in ours_map {
+        rep.values += 1;
+        rep.mismatches += 1;
+        rep.missing_contacts += 1;
+        if rep.first.is_none() {
+            rep.first = Some(FirstDiff { step, what: format!("contact {}-{} exists in ryade only", a, b), ..Default::default() });
+        }
+    }
+    if !order_same {
+        rep.order_differs_steps += 1;
+    }
+}
+
+/// All `*.scene.json` files of a golden directory, sorted by name.
+pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("reading golden directory {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.to_string_lossy().ends_with(".scene.json"))
+        .collect();
+    v.sort();
+    Ok(v)
+}
+
+/// Diff every scene of `dir`.
+pub fn diff_dir(dir: &Path) -> Result<Vec<DiffReport>> {
+    let mut out = Vec::new();
+    for p in scene_files(dir)? {
+        let sf = scene_json::load(&p)?;
+        out.push(diff_scene(sf, &p)?);
+    }
+    Ok(out)
+}
+
+/// The table `compat diff micro` prints.
+pub fn format_table(reps: &[DiffReport]) -> String {
+    let mut s = format!(
+        "{:<14} {:>6} {:>10} {:>10} {:>8} {:>7}  {}\n",
+        "scene", "steps", "values", "mismatch", "maxULP", "order≠", "first divergence"
+    );
+    for r in reps {
+        let first = match (&r.error, &r.first) {
+            (Some(e), _) => format!("ERROR: {}", e),
+            (None, Some(f)) => format!("step {}: {} (ryade {:e}, yade {:e})", f.step, f.what, f.ryade, f.yade),
+            (None, None) => "-".into(),
+        };
+        let ulp = if r.max_ulp == u64::MAX { "NaN".to_string() } else { r.max_ulp.to_string() };
+        s.push_str(&format!(
+            "{:<14} {:>6} {:>10} {:>10} {:>8} {:>7}  {}\n",
+            r.scene, r.steps, r.values, r.mismatches, ulp, r.order_differs_steps, first
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ulp_distance;
+    #[test]
+    fn ulp() {
+        assert_eq!(ulp_distance(1.0, 1.0), 0);
+        assert_eq!(ulp_distance(1.0, f64::from_bits(1.0f64.to_bits() + 3)), 3);
+        assert_eq!(ulp_distance(0.0, -0.0), 1);
+        assert_eq!(ulp_distance(-1.0, f64::from_bits((-1.0f64).to_bits() + 2)), 2);
+    }
+}

@@ -1,0 +1,3 @@
+//! Comparison of ryade against YADE's golden records.
+
+pub mod micro;

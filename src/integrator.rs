@@ -1,0 +1,216 @@
+//! `NewtonIntegrator` (pkg/dem/NewtonIntegrator.cpp): leap-frog with Cundall's non-viscous damping.
+//!
+//! Forces were computed from x_n and v_{n-1/2}; this computes v_{n+1/2} then x_{n+1}. Fixed bodies
+//! (all DOFs blocked) skip the acceleration but still move with their velocity.
+
+use crate::body::{Bodies, DOF_ALL};
+use crate::cell::Cell;
+use crate::forces::Forces;
+use crate::math::{mat_vec, norm2, sign, Mat3, Quat, Vec3};
+
+#[derive(Clone, Debug)]
+pub struct Newton {
+    pub damping: f64,
+    pub gravity: Vec3,
+    pub damp_gravity: bool,
+    /// -1: every body; otherwise only bodies whose groupMask shares a bit.
+    pub mask: i32,
+    /// YADE's `maxVelocitySq`, reused by the collider as a displacement indicator:
+    /// 0 before any step, 0.5 when every body is still inside its swept bound, 2 otherwise.
+    pub max_velocity_sq: f64,
+    pub prev_vel_grad: Mat3,
+    pub prev_cell_size: Option<Vec3>,
+}
+
+impl Default for Newton {
+    fn default() -> Self {
+        Newton {
+            damping: 0.2,
+            gravity: Vec3::zeros(),
+            damp_gravity: true,
+            mask: -1,
+            max_velocity_sq: 0.0,
+            prev_vel_grad: Mat3::zeros(),
+            prev_cell_size: None,
+        }
+    }
+}
+
+/// Problems the integrator refuses to integrate through.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NewtonError {
+    NonFinite {
+        id: usize,
+        what: &'static str,
+    },
+    BadMass {
+        id: usize,
+    },
+}
+
+impl Newton {
+    /// `NewtonIntegrator::cundallDamp2nd`: damp each acceleration component by the sign of its
+    /// product with the mid-step velocity estimate `v + dt/2 a`.
+    #[inline(always)]
+    fn damp(&self, dt: f64, v: &Vec3, a: &mut Vec3) {
+        for i in 0..3 {
+            a[i] *= 1.0 - self.damping * sign(a[i] * (v[i] + 0.5 * dt * a[i]));
+        }
+    }
+
+    /// One `NewtonIntegrator::action` over all bodies (YADE order: forces already synced).
+    pub fn step(
+        &mut self,
+        bodies: &mut Bodies,
+        forces: &Forces,
+        cell: Option<&mut Cell>,
+        dt: f64,
+    ) -> Result<(), NewtonError> {
+        let periodic = cell.is_some();
+        let (homo_deform, dvel_grad, dspin) = if let Some(c) = cell.as_deref() {
+            // velGrad update and the homothetic terms (zero for a static cell, still evaluated
+            // because YADE adds them and the additions turn -0.0 into +0.0)
+            let dvg = c.vel_grad - self.prev_vel_grad;
+            let r = (dvg - dvg.transpose()) * 0.5;
+            (c.homo_deform, dvg, Vec3::new(-r[(1, 2)], r[(0, 2)], -r[(0, 1)]))
+        } else {
+            (0, Mat3::zeros(), Vec3::zeros())
+        };
+        self.max_velocity_sq = 0.0;
+        if let Some(c) = cell.as_deref() {
+            if let Some(prev) = self.prev_cell_size {
+                if prev != c.size() {
+                    self.max_velocity_sq = norm2(&(prev - c.size())) / (dt * dt);
+                }
+            }
+        }
+        let g = self.gravity;
+        for id in 0..bodies.len() {
+            if self.mask > 0 && (bodies.mask[id] & self.mask) == 0 {
+                continue;
+            }
+            let f = forces.force[id];
+            let m = forces.torque[id];
+            let blocked = bodies.blocked[id];
+            let fluct = if periodic {
+                bodies.vel[id] - mat_vec(&self.prev_vel_grad, &bodies.pos[id])
+            } else {
+                bodies.vel[id]
+            };
+            if blocked != DOF_ALL {
+                let mass = bodies.mass[id];
+                let mut a = Vec3::zeros();
+                if self.damp_gravity {
+                    if blocked == 0 {
+                        a = Vec3::new(f[0] / mass + g[0], f[1] / mass + g[1], f[2] / mass + g[2]);
+                    } else {
+                        for i in 0..3 {
+                            if blocked & (1 << i) == 0 {
+                                a[i] += f[i] / mass + g[i];
+                            }
+                        }
+                    }
+                    if bodies.is_damped[id] {
+                        self.damp(dt, &fluct, &mut a);
+                    }
+                } else {
+                    if blocked == 0 {
+                        a = Vec3::new(f[0] / mass, f[1] / mass, f[2] / mass);
+                    } else {
+                        for i in 0..3 {
+                            if blocked & (1 << i) == 0 {
+                                a[i] += f[i] / mass;
+                            }
+                        }
+                    }
+                    if bodies.is_damped[id] {
+                        self.damp(dt, &fluct, &mut a);
+                    }
+                    let mut ga = Vec3::zeros();
+                    if blocked == 0 {
+                        ga = g;
+                    } else {
+                        for i in 0..3 {
+                            if blocked & (1 << i) == 0 {
+                                ga[i] = g[i];
+                            }
+                        }
+                    }
+                    a += ga;
+                }
+                if periodic && homo_deform > 1 {
+                    a += mat_vec(&self.prev_vel_grad, &bodies.vel[id]);
+                }
+                bodies.vel[id] += a * dt;
+                let inertia = bodies.inertia[id];
+                let mut aa = Vec3::zeros();
+                if blocked == 0 {
+                    aa = Vec3::new(m[0] / inertia[0], m[1] / inertia[1], m[2] / inertia[2]);
+                } else {
+                    for i in 0..3 {
+                        if blocked & (8 << i) == 0 {
+                            aa[i] += m[i] / inertia[i];
+                        }
+                    }
+                }
+                if bodies.is_damped[id] {
+                    let w = bodies.ang_vel[id];
+                    self.damp(dt, &w, &mut aa);
+                }
+                bodies.ang_vel[id] += aa * dt;
+            } else if periodic && homo_deform > 1 {
+                let v = bodies.vel[id];
+                bodies.vel[id] += mat_vec(&(self.prev_vel_grad * dt), &v);
+            }
+            // leapfrogTranslate
+            if periodic && homo_deform != 0 {
+                let dv = mat_vec(&dvel_grad, &bodies.pos[id]);
+                bodies.vel[id] += dv;
+            }
+            let v = bodies.vel[id];
+            bodies.pos[id] += v * dt;
+            // leapfrogSphericalRotate
+            if periodic && homo_deform != 0 {
+                bodies.ang_vel[id] += dspin;
+            }
+            let w = bodies.ang_vel[id];
+            let w2 = norm2(&w);
+            if w2 != 0.0 {
+                let wn = w2.sqrt();
+                let axis = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
+                let q = Quat::from_angle_axis(wn * dt, &axis);
+                bodies.ori[id] = q.mul(&bodies.ori[id]);
+            }
+            bodies.ori[id].normalize();
+            // saveMaximaDisplacement
+            if let Some(b) = &bodies.bound[id] {
+                let d = bodies.pos[id] - b.ref_pos;
+                let md = d[0].abs().max(d[1].abs().max(d[2].abs()));
+                let ind = if md == 0.0 || md < b.sweep_length {
+                    0.5
+                } else {
+                    2.0
+                };
+                self.max_velocity_sq = self.max_velocity_sq.max(ind);
+            }
+            if !(bodies.pos[id].iter().all(|x| x.is_finite())
+                && bodies.vel[id].iter().all(|x| x.is_finite()))
+            {
+                return Err(NewtonError::NonFinite {
+                    id,
+                    what: if f.iter().all(|x| x.is_finite()) {
+                        "position/velocity"
+                    } else {
+                        "force"
+                    },
+                });
+            }
+        }
+        if let Some(c) = cell {
+            self.prev_cell_size = Some(c.size());
+            self.prev_vel_grad = c.vel_grad;
+            c.prev_vel_grad = c.vel_grad;
+        }
+        Ok(())
+    }
+}

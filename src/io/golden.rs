@@ -1,0 +1,215 @@
+//! Golden per-step records (`*.bodies.csv.gz`, `*.intrs.csv.gz`, FORMAT.md): reading, and writing
+//! the same format from ryade so both engines' outputs can be compared with one tool.
+
+use crate::math::Vec3;
+use crate::scene::Scene;
+use anyhow::{anyhow, bail, Context, Result};
+use flate2::read::GzDecoder;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
+
+pub const BODY_COLS: [&str; 19] = [
+    "pos_x", "pos_y", "pos_z", "vel_x", "vel_y", "vel_z", "angVel_x", "angVel_y", "angVel_z", "ori_w",
+    "ori_x", "ori_y", "ori_z", "f_x", "f_y", "f_z", "t_x", "t_y", "t_z",
+];
+pub const INTR_COLS: [&str; 18] = [
+    "normal_x", "normal_y", "normal_z", "pen", "cp_x", "cp_y", "cp_z", "shearInc_x", "shearInc_y",
+    "shearInc_z", "fn_x", "fn_y", "fn_z", "fs_x", "fs_y", "fs_z", "kn", "ks",
+];
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyRow {
+    pub step: u64,
+    pub id: u32,
+    pub v: [f64; 19],
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IntrRow {
+    pub step: u64,
+    pub ord: u32,
+    pub id1: u32,
+    pub id2: u32,
+    pub v: [f64; 18],
+}
+
+fn open_text(path: &Path) -> Result<Box<dyn BufRead>> {
+    let file = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let r: Box<dyn Read> = if path.extension().is_some_and(|e| e == "gz") {
+        Box::new(GzDecoder::new(file))
+    } else {
+        Box::new(file)
+    };
+    Ok(Box::new(BufReader::new(r)))
+}
+
+fn parse_rows<const N: usize>(path: &Path, key_cols: &[&str], cols: &[&str; N]) -> Result<Vec<(Vec<u64>, [f64; N])>> {
+    let mut rdr = csv::ReaderBuilder::new().has_headers(true).from_reader(open_text(path)?);
+    let header = rdr.headers().with_context(|| format!("reading header of {}", path.display()))?.clone();
+    let expect: Vec<&str> = key_cols.iter().chain(cols.iter()).copied().collect();
+    let got: Vec<&str> = header.iter().collect();
+    if got != expect {
+        bail!("{}: unexpected columns {:?}; expected {:?} (see golden/FORMAT.md)", path.display(), got, expect);
+    }
+    let mut out = Vec::new();
+    for (line, rec) in rdr.records().enumerate() {
+        let rec = rec.with_context(|| format!("{}: malformed CSV at data line {}", path.display(), line + 1))?;
+        if rec.len() != expect.len() {
+            bail!("{}: line {} has {} fields, expected {}", path.display(), line + 2, rec.len(), expect.len());
+        }
+        let mut keys = Vec::with_capacity(key_cols.len());
+        for (k, name) in key_cols.iter().enumerate() {
+            keys.push(rec[k].parse::<u64>().map_err(|_| {
+                anyhow!("{}: line {}: '{}' is not an integer in column {}", path.display(), line + 2, &rec[k], name)
+            })?);
+        }
+        let mut v = [0.0; N];
+        for (i, x) in v.iter_mut().enumerate() {
+            let s = &rec[key_cols.len() + i];
+            *x = s.parse::<f64>().map_err(|_| {
+                anyhow!("{}: line {}: '{}' is not a number in column {}", path.display(), line + 2, s, cols[i])
+            })?;
+        }
+        out.push((keys, v));
+    }
+    Ok(out)
+}
+
+pub fn read_bodies(path: &Path) -> Result<Vec<BodyRow>> {
+    Ok(parse_rows(path, &["step", "id"], &BODY_COLS)?
+        .into_iter()
+        .map(|(k, v)| BodyRow { step: k[0], id: k[1] as u32, v })
+        .collect())
+}
+
+pub fn read_intrs(path: &Path) -> Result<Vec<IntrRow>> {
+    Ok(parse_rows(path, &["step", "ord", "id1", "id2"], &INTR_COLS)?
+        .into_iter()
+        .map(|(k, v)| IntrRow { step: k[0], ord: k[1] as u32, id1: k[2] as u32, id2: k[3] as u32, v })
+        .collect())
+}
+
+fn push3(out: &mut Vec<f64>, v: &Vec3) {
+    out.extend_from_slice(&[v[0], v[1], v[2]]);
+}
+
+/// The 19 recorded values of one body, in BODY_COLS order.
+pub fn body_values(scene: &Scene, id: usize) -> [f64; 19] {
+    let b = &scene.bodies;
+    let mut v = Vec::with_capacity(19);
+    push3(&mut v, &b.pos[id]);
+    push3(&mut v, &b.vel[id]);
+    push3(&mut v, &b.ang_vel[id]);
+    let q = b.ori[id];
+    v.extend_from_slice(&[q.w, q.x, q.y, q.z]);
+    push3(&mut v, &scene.forces.force.get(id).copied().unwrap_or_else(Vec3::zeros));
+    push3(&mut v, &scene.forces.torque.get(id).copied().unwrap_or_else(Vec3::zeros));
+    v.try_into().unwrap()
+}
+
+/// Real interactions in container order: (id1, id2, values in INTR_COLS order).
+pub fn intr_values(scene: &Scene) -> Vec<(u32, u32, [f64; 18])> {
+    let mut out = Vec::new();
+    for it in &scene.interactions.list {
+        if let (Some(g), Some(p)) = (&it.geom, &it.phys) {
+            let mut v = Vec::with_capacity(18);
+            push3(&mut v, &g.normal);
+            v.push(g.pen);
+            push3(&mut v, &g.contact_point);
+            push3(&mut v, &g.shear_inc);
+            push3(&mut v, &p.normal_force);
+            push3(&mut v, &p.shear_force);
+            v.push(p.kn);
+            v.push(p.ks);
+            out.push((it.id1, it.id2, v.try_into().unwrap()));
+        }
+    }
+    out
+}
+
+/// Format a double as C's `%.17g` (what the YADE recorder writes).
+pub fn g17(x: f64) -> String {
+    if x == 0.0 {
+        return if x.is_sign_negative() { "-0".into() } else { "0".into() };
+    }
+    if !x.is_finite() {
+        return if x.is_nan() { "nan".into() } else if x > 0.0 { "inf".into() } else { "-inf".into() };
+    }
+    let e = format!("{:.16e}", x);
+    let (mant, exp) = e.split_once('e').unwrap();
+    let exp: i32 = exp.parse().unwrap();
+    if (-4..17).contains(&exp) {
+        let decimals = (16 - exp).max(0) as usize;
+        let s = format!("{:.*}", decimals, x);
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        let m = if mant.contains('.') { mant.trim_end_matches('0').trim_end_matches('.') } else { mant };
+        format!("{}e{}{:02}", m, if exp < 0 { '-' } else { '+' }, exp.abs())
+    }
+}
+
+/// Writes the per-step records of a ryade run in the golden format, flushing every step so that a
+/// run stopped by an error keeps everything recorded before it.
+pub struct Recorder {
+    bodies: Box<dyn Write>,
+    intrs: Box<dyn Write>,
+}
+
+impl Recorder {
+    pub fn create(dir: &Path, name: &str) -> Result<Recorder> {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let open = |suffix: &str| -> Result<Box<dyn Write>> {
+            let p = dir.join(format!("{}.{}", name, suffix));
+            Ok(Box::new(std::io::BufWriter::new(
+                std::fs::File::create(&p).with_context(|| format!("creating {}", p.display()))?,
+            )))
+        };
+        let mut r = Recorder { bodies: open("bodies.csv")?, intrs: open("intrs.csv")? };
+        writeln!(r.bodies, "step,id,{}", BODY_COLS.join(","))?;
+        writeln!(r.intrs, "step,ord,id1,id2,{}", INTR_COLS.join(","))?;
+        Ok(r)
+    }
+
+    pub fn record(&mut self, scene: &Scene) -> Result<()> {
+        let step = scene.iter;
+        for id in 0..scene.bodies.len() {
+            let v = body_values(scene, id);
+            let cells: Vec<String> = v.iter().map(|x| g17(*x)).collect();
+            writeln!(self.bodies, "{},{},{}", step, id, cells.join(","))?;
+        }
+        for (ord, (a, b, v)) in intr_values(scene).into_iter().enumerate() {
+            let cells: Vec<String> = v.iter().map(|x| g17(*x)).collect();
+            writeln!(self.intrs, "{},{},{},{},{}", step, ord, a, b, cells.join(","))?;
+        }
+        self.bodies.flush()?;
+        self.intrs.flush()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::g17;
+    #[test]
+    fn g17_matches_c_printf() {
+        // values and their C printf("%.17g") renderings
+        for (x, s) in [
+            (1e-5, "1.0000000000000001e-05"),
+            (0.1, "0.10000000000000001"),
+            (100000.0, "100000"),
+            (-9.9999999999999396, "-9.9999999999999396"),
+            (133333.33333333334, "133333.33333333334"),
+            (1e17, "1e+17"),
+            (123456789012345678.0, "1.2345678901234568e+17"),
+            (0.0001, "0.0001"),
+            (2.5, "2.5"),
+        ] {
+            assert_eq!(g17(x), s, "for {:e}", x);
+            assert_eq!(g17(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! `Law2_ScGeom_FrictPhys_CundallStrack` (pkg/dem/ElasticContactLaw.cpp): linear normal spring,
+//! incremental shear spring with a Coulomb cap.
+
+use crate::forces::Forces;
+use crate::geom::ScGeom;
+use crate::math::{cross, norm, norm2, Vec3};
+use crate::phys::FrictPhys;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub never_erase: bool,
+    pub spherical_bodies: bool,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            never_erase: false,
+            spherical_bodies: true,
+        }
+    }
+}
+
+/// Energy terms a law may add (YADE `O.energy` names).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LawEnergy {
+    pub plast_dissip: f64,
+    pub elast_potential: f64,
+}
+
+/// Body data the law needs for the torque arm in the general (non-spherical) branch.
+pub struct LawBodies<'a> {
+    pub pos1: &'a Vec3,
+    pub pos2_shifted: Vec3,
+}
+
+/// Returns false when the contact must be erased (separated and `never_erase` off).
+#[allow(clippy::too_many_arguments)]
+pub fn go(
+    p: &Params,
+    g: &ScGeom,
+    ph: &mut FrictPhys,
+    id1: usize,
+    id2: usize,
+    bodies: &LawBodies,
+    forces: &mut Forces,
+    energy: Option<&mut LawEnergy>,
+) -> bool {
+    if g.pen < 0.0 {
+        if p.never_erase {
+            ph.shear_force = Vec3::zeros();
+            ph.normal_force = Vec3::zeros();
+        } else {
+            return false;
+        }
+    }
+    ph.normal_force = g.normal * (ph.kn * g.pen.max(0.0));
+    let mut fs = ph.shear_force;
+    g.rotate(&mut fs);
+    fs -= g.shear_inc * ph.ks;
+    let max_fs = norm2(&ph.normal_force) * (ph.tan_phi * ph.tan_phi);
+    match energy {
+        None => {
+            if norm2(&fs) > max_fs {
+                let ratio = max_fs.sqrt() / norm(&fs);
+                fs *= ratio;
+            }
+        }
+        Some(e) => {
+            if norm2(&fs) > max_fs {
+                let ratio = max_fs.sqrt() / norm(&fs);
+                let trial = fs;
+                fs *= ratio;
+                let dissip = crate::math::dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
+                if dissip > 0.0 {
+                    e.plast_dissip += dissip;
+                }
+            }
+            e.elast_potential +=
+                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&fs) / ph.ks);
+        }
+    }
+    ph.shear_force = fs;
+    let force = -ph.normal_force - fs;
+    if p.spherical_bodies {
+        forces.add_force(id1, &force);
+        forces.add_force(id2, &(-force));
+        let nf = cross(&g.normal, &force);
+        forces.add_torque(id1, &(nf * (g.radius1 - 0.5 * g.pen)));
+        forces.add_torque(id2, &(nf * (g.radius2 - 0.5 * g.pen)));
+    } else {
+        // Law2::applyForceAtContactPoint (pkg/common/Dispatching.cpp): real lever arms
+        forces.add_force(id1, &force);
+        forces.add_force(id2, &(-force));
+        forces.add_torque(id1, &cross(&(g.contact_point - bodies.pos1), &force));
+        forces.add_torque(
+            id2,
+            &(-cross(&(g.contact_point - bodies.pos2_shifted), &force)),
+        );
+    }
+    true
+}

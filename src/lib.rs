@@ -1,0 +1,26 @@
+//! ryade: YADE's discrete element core in Rust, matched to YADE 2023.02a bit for bit on small scenes.
+//!
+//! Data flow of a step (see `scene::Scene::step`): scene -> collider (`bound`, `collider`) ->
+//! contact geometry (`geom`) -> contact physics (`phys`) -> law (`law`) -> integrator (`integrator`).
+//! Floating-point reductions follow Eigen's order (`math`).
+
+pub mod body;
+pub mod bound;
+pub mod cell;
+pub mod collider;
+pub mod forces;
+pub mod geom;
+pub mod harness;
+pub mod integrator;
+pub mod interaction;
+pub mod io;
+pub mod law;
+pub mod material;
+pub mod math;
+pub mod pack;
+pub mod phys;
+pub mod porosity;
+pub mod scene;
+pub mod shape;
+pub mod stdsort;
+pub mod utils;

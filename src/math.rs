@@ -1,0 +1,239 @@
+//! Vector algebra evaluated in YADE's floating-point order.
+//!
+//! YADE 2023.02a builds Eigen with `EIGEN_DONT_VECTORIZE`; Eigen's unrolled reductions then evaluate a
+//! three-term sum as `a0 + (a1 + a2)` and a four-term one as `(a0 + a1) + (a2 + a3)` (core.md §12).
+//! Element-wise operations (add, sub, scale) are exact per component and need no care; every
+//! *reduction* in the engine goes through this module. No FMA, no fast-math: Rust never contracts
+//! `a*b + c` on its own, and we never call `mul_add`.
+
+use nalgebra::{Matrix3, Vector3};
+
+pub type Vec3 = Vector3<f64>;
+pub type Mat3 = Matrix3<f64>;
+
+/// `a·b` as Eigen evaluates it: `a0*b0 + (a1*b1 + a2*b2)`.
+#[inline(always)]
+pub fn dot(a: &Vec3, b: &Vec3) -> f64 {
+    a[0] * b[0] + (a[1] * b[1] + a[2] * b[2])
+}
+
+/// `|a|²` as Eigen evaluates it: `a0² + (a1² + a2²)`.
+#[inline(always)]
+pub fn norm2(a: &Vec3) -> f64 {
+    a[0] * a[0] + (a[1] * a[1] + a[2] * a[2])
+}
+
+/// `|a|` = `sqrt(squaredNorm)`.
+#[inline(always)]
+pub fn norm(a: &Vec3) -> f64 {
+    norm2(a).sqrt()
+}
+
+/// Eigen's `cross`: `(a1b2 − a2b1, a2b0 − a0b2, a0b1 − a1b0)`.
+#[inline(always)]
+pub fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
+    Vec3::new(
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    )
+}
+
+/// Eigen's `normalize()` on a 3-vector: divide each component by `sqrt(squaredNorm)` (a true
+/// division, no reciprocal), and leave a zero vector untouched.
+#[inline(always)]
+pub fn normalized(a: &Vec3) -> Vec3 {
+    let z = norm2(a);
+    if z > 0.0 {
+        let n = z.sqrt();
+        Vec3::new(a[0] / n, a[1] / n, a[2] / n)
+    } else {
+        *a
+    }
+}
+
+/// `M * v`, row i evaluated `m_i0*v0 + (m_i1*v1 + m_i2*v2)`.
+#[inline(always)]
+pub fn mat_vec(m: &Mat3, v: &Vec3) -> Vec3 {
+    Vec3::new(
+        m[(0, 0)] * v[0] + (m[(0, 1)] * v[1] + m[(0, 2)] * v[2]),
+        m[(1, 0)] * v[0] + (m[(1, 1)] * v[1] + m[(1, 2)] * v[2]),
+        m[(2, 0)] * v[0] + (m[(2, 1)] * v[1] + m[(2, 2)] * v[2]),
+    )
+}
+
+/// `Mᵀ * v` with the same per-row evaluation order.
+#[inline(always)]
+pub fn mat_t_vec(m: &Mat3, v: &Vec3) -> Vec3 {
+    Vec3::new(
+        m[(0, 0)] * v[0] + (m[(1, 0)] * v[1] + m[(2, 0)] * v[2]),
+        m[(0, 1)] * v[0] + (m[(1, 1)] * v[1] + m[(2, 1)] * v[2]),
+        m[(0, 2)] * v[0] + (m[(1, 2)] * v[1] + m[(2, 2)] * v[2]),
+    )
+}
+
+/// `M * (integer vector)`, as YADE's `hSize * cellDist.cast<Real>()`.
+#[inline(always)]
+pub fn mat_vec_i(m: &Mat3, v: &[i32; 3]) -> Vec3 {
+    mat_vec(m, &Vec3::new(v[0] as f64, v[1] as f64, v[2] as f64))
+}
+
+/// `A * B` for 3x3 matrices, each entry `a_i0*b_0j + (a_i1*b_1j + a_i2*b_2j)`.
+pub fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    Mat3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + (a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)]))
+}
+
+/// YADE's `math::sign`: `(0 < x) - (x < 0)`; 0 for 0 and for NaN.
+#[inline(always)]
+pub fn sign(x: f64) -> f64 {
+    ((0.0 < x) as i32 - (x < 0.0) as i32) as f64
+}
+
+/// A unit quaternion stored as Eigen does (x, y, z, w), with Eigen's conventions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quat {
+    pub w: f64,
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+impl Default for Quat {
+    fn default() -> Self {
+        Quat::IDENTITY
+    }
+}
+
+impl Quat {
+    pub const IDENTITY: Quat = Quat {
+        w: 1.0,
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    };
+
+    pub fn new(w: f64, x: f64, y: f64, z: f64) -> Quat {
+        Quat { w, x, y, z }
+    }
+
+    /// Eigen `Quaternion(AngleAxis(angle, axis))`: `w = cos(angle/2)`, `xyz = sin(angle/2)·axis`,
+    /// the half angle computed as `0.5*angle`.
+    pub fn from_angle_axis(angle: f64, axis: &Vec3) -> Quat {
+        let ha = 0.5 * angle;
+        let s = ha.sin();
+        Quat {
+            w: ha.cos(),
+            x: s * axis[0],
+            y: s * axis[1],
+            z: s * axis[2],
+        }
+    }
+
+    /// Hamilton product `self * b`, each component summed left to right as Eigen's scalar path does.
+    #[inline(always)]
+    pub fn mul(&self, b: &Quat) -> Quat {
+        let a = self;
+        Quat {
+            w: a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+            x: a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            y: a.w * b.y + a.y * b.w + a.z * b.x - a.x * b.z,
+            z: a.w * b.z + a.z * b.w + a.x * b.y - a.y * b.x,
+        }
+    }
+
+    /// Eigen's squaredNorm over the coefficient order (x, y, z, w): `(x²+y²) + (z²+w²)`.
+    #[inline(always)]
+    pub fn norm2(&self) -> f64 {
+        (self.x * self.x + self.y * self.y) + (self.z * self.z + self.w * self.w)
+    }
+
+    /// Eigen's `normalize()`: divide by `sqrt(squaredNorm)` when it is positive.
+    #[inline(always)]
+    pub fn normalize(&mut self) {
+        let z = self.norm2();
+        if z > 0.0 {
+            let n = z.sqrt();
+            self.x /= n;
+            self.y /= n;
+            self.z /= n;
+            self.w /= n;
+        }
+    }
+
+    pub fn conjugate(&self) -> Quat {
+        Quat {
+            w: self.w,
+            x: -self.x,
+            y: -self.y,
+            z: -self.z,
+        }
+    }
+
+    /// Eigen `toRotationMatrix()` (Quaternion.h): `tx = 2x`, `twx = tx*w`, ..., `R00 = 1-(tyy+tzz)`.
+    pub fn to_rotation_matrix(&self) -> Mat3 {
+        let (x, y, z, w) = (self.x, self.y, self.z, self.w);
+        let tx = 2.0 * x;
+        let ty = 2.0 * y;
+        let tz = 2.0 * z;
+        let twx = tx * w;
+        let twy = ty * w;
+        let twz = tz * w;
+        let txx = tx * x;
+        let txy = ty * x;
+        let txz = tz * x;
+        let tyy = ty * y;
+        let tyz = tz * y;
+        let tzz = tz * z;
+        Mat3::new(
+            1.0 - (tyy + tzz),
+            txy - twz,
+            txz + twy,
+            txy + twz,
+            1.0 - (txx + tzz),
+            tyz - twx,
+            txz - twy,
+            tyz + twx,
+            1.0 - (txx + tyy),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The three-term order matters: these inputs give different doubles left-to-right.
+    #[test]
+    fn dot_uses_eigen_pairing() {
+        let a = Vec3::new(1e16, 1.0, -1e16);
+        let b = Vec3::new(1.0, 1.0, 1.0);
+        // Eigen: 1e16 + (1 + -1e16) = 1e16 + -1e16 (1 is absorbed) = 0
+        assert_eq!(dot(&a, &b), 0.0);
+        // left to right would give (1e16 + 1) - 1e16 = 0 too; use a case that differs:
+        let c = Vec3::new(1.0, 1e16, -1e16);
+        assert_eq!(dot(&c, &b), 1.0);
+        assert_eq!((c[0] + c[1]) + c[2], 0.0);
+    }
+
+    #[test]
+    fn sign_of_nan_and_zero_is_zero() {
+        assert_eq!(sign(f64::NAN), 0.0);
+        assert_eq!(sign(0.0), 0.0);
+        assert_eq!(sign(-0.0), 0.0);
+        assert_eq!(sign(-3.0), -1.0);
+        assert_eq!(sign(2.0), 1.0);
+    }
+
+    #[test]
+    fn rotation_of_identity_is_identity() {
+        assert_eq!(Quat::IDENTITY.to_rotation_matrix(), Mat3::identity());
+    }
+
+    #[test]
+    fn quarter_turn_about_z_maps_x_to_y() {
+        let q = Quat::from_angle_axis(std::f64::consts::FRAC_PI_2, &Vec3::new(0.0, 0.0, 1.0));
+        let r = q.to_rotation_matrix();
+        let v = mat_vec(&r, &Vec3::new(1.0, 0.0, 0.0));
+        assert!((v - Vec3::new(0.0, 1.0, 0.0)).norm() < 1e-15);
+    }
+}

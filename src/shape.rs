@@ -1,0 +1,94 @@
+//! Body shapes: Sphere, Facet, Wall, Box (YADE `pkg/common/{Sphere,Facet,Wall,Box}.hpp`).
+
+use crate::math::{cross, norm, normalized, Vec3};
+
+/// A triangle with the data YADE precomputes in `Facet::postLoad` (`pkg/common/Facet.cpp`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Facet {
+    /// Vertices relative to the body position (YADE stores them local).
+    pub vertices: [Vec3; 3],
+    pub normal: Vec3,
+    pub area: f64,
+    /// Unit in-plane edge normals, pointing out of the triangle.
+    pub ne: [Vec3; 3],
+    /// Vertex distances from the centre and unit vectors towards them.
+    pub vl: [f64; 3],
+    pub vu: [Vec3; 3],
+    /// Inscribed circle radius.
+    pub icr: f64,
+}
+
+impl Facet {
+    /// Mirrors `Facet::postLoad` (pkg/common/Facet.cpp), in its evaluation order.
+    pub fn new(vertices: [Vec3; 3]) -> Result<Facet, String> {
+        let e = [
+            vertices[1] - vertices[0],
+            vertices[2] - vertices[1],
+            vertices[0] - vertices[2],
+        ];
+        for (i, ei) in e.iter().enumerate() {
+            if crate::math::norm2(ei) == 0.0 {
+                return Err(format!(
+                    "facet has coincident vertices {} and {}",
+                    i,
+                    (i + 1) % 3
+                ));
+            }
+        }
+        let mut normal = cross(&e[0], &e[1]);
+        let area = 0.5 * norm(&normal);
+        let two_area = 2.0 * area;
+        normal = Vec3::new(normal[0] / two_area, normal[1] / two_area, normal[2] / two_area);
+        let mut ne = [Vec3::zeros(); 3];
+        let mut vl = [0.0; 3];
+        let mut vu = [Vec3::zeros(); 3];
+        for i in 0..3 {
+            ne[i] = normalized(&cross(&e[i], &normal));
+            vl[i] = norm(&vertices[i]);
+            vu[i] = Vec3::new(
+                vertices[i][0] / vl[i],
+                vertices[i][1] / vl[i],
+                vertices[i][2] / vl[i],
+            );
+        }
+        let p = norm(&e[0]) + norm(&e[1]) + norm(&e[2]);
+        let icr = norm(&e[0]) * crate::math::dot(&ne[0], &e[2]) / p;
+        Ok(Facet {
+            vertices,
+            normal,
+            area,
+            ne,
+            vl,
+            vu,
+            icr,
+        })
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    Sphere { radius: f64 },
+    Facet(Box<Facet>),
+    /// Infinite plane normal to `axis`; `sense` -1, 0 (both sides) or 1.
+    Wall { axis: usize, sense: i32 },
+    /// Oriented box with half-sizes `extents`.
+    Box { extents: Vec3 },
+}
+
+impl Shape {
+    pub fn class_name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "Sphere",
+            Shape::Facet(_) => "Facet",
+            Shape::Wall { .. } => "Wall",
+            Shape::Box { .. } => "Box",
+        }
+    }
+
+    pub fn sphere_radius(&self) -> Option<f64> {
+        match self {
+            Shape::Sphere { radius } => Some(*radius),
+            _ => None,
+        }
+    }
+}
