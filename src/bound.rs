@@ -144,7 +144,10 @@ pub fn update_bounds(
             if dist != 0.0 {
                 let mut l = dist * sw.target_interv as f64 / (iter - b.last_update_iter) as f64;
                 l = cxx_max(0.9 * sweep, l);
-                sweep = cxx_max(sw.min_sweep_dist_factor * sw.sweep_dist, cxx_min(l, sw.sweep_dist));
+                sweep = cxx_max(
+                    sw.min_sweep_dist_factor * sw.sweep_dist,
+                    cxx_min(l, sw.sweep_dist),
+                );
             } else {
                 sweep = 0.0;
             }

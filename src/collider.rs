@@ -162,17 +162,22 @@ impl Collider {
     }
 
     /// `spatialOverlapPeri`: overlap through the periods, with the period of body 2 relative to 1.
-    fn spatial_overlap_peri(&self, a: u32, b: u32, cell: &Cell) -> Result<Option<[i32; 3]>, String> {
+    fn spatial_overlap_peri(
+        &self,
+        a: u32,
+        b: u32,
+        cell: &Cell,
+    ) -> Result<Option<[i32; 3]>, String> {
         let mut periods = [0i32; 3];
         let (a3, b3) = (3 * a as usize, 3 * b as usize);
-        for axis in 0..3 {
+        for (axis, period) in periods.iter_mut().enumerate() {
             let inv = self.inv_sizes[axis];
             let lmin = (self.minima[b3 + axis] - self.maxima[a3 + axis]) * inv;
             let lmax = (self.maxima[b3 + axis] - self.maxima[a3 + axis]) * inv;
             let shifted_min = (self.minima[a3 + axis] - self.maxima[a3 + axis]) * inv + 1.0;
             if (lmax - lmin) > 0.5 || shifted_min < 0.0 {
                 if self.p.allow_bigger_than_period {
-                    periods[axis] = 0;
+                    *period = 0;
                     continue;
                 }
                 return Err(format!(
@@ -185,11 +190,11 @@ impl Collider {
             }
             let period1 = lmax.floor() as i32;
             if (lmin - period1 as f64) <= self.p.overlap_tolerance {
-                periods[axis] = -period1;
+                *period = -period1;
                 continue;
             }
             if (lmax - period1 as f64 + self.p.overlap_tolerance) >= shifted_min {
-                periods[axis] = -period1 - 1;
+                *period = -period1 - 1;
                 continue;
             }
             return Ok(None);
@@ -205,7 +210,14 @@ impl Collider {
     }
 
     /// `handleBoundInversion` (aperiodic): create the pair if the boxes overlap in 3-D.
-    fn handle_inversion(&self, bodies: &Bodies, intrs: &mut Interactions, a: u32, b: u32, iter: i64) {
+    fn handle_inversion(
+        &self,
+        bodies: &Bodies,
+        intrs: &mut Interactions,
+        a: u32,
+        b: u32,
+        iter: i64,
+    ) {
         if self.spatial_overlap(a, b) && self.may_collide(bodies, a, b) && !intrs.found(a, b) {
             intrs.insert(Interaction::new(a, b, [0; 3], iter));
         }
@@ -233,7 +245,14 @@ impl Collider {
     }
 
     /// `insertionSort` (aperiodic).
-    fn insertion_sort(&mut self, axis: usize, bodies: &Bodies, intrs: &mut Interactions, iter: i64, collide: bool) {
+    fn insertion_sort(
+        &mut self,
+        axis: usize,
+        bodies: &Bodies,
+        intrs: &mut Interactions,
+        iter: i64,
+        collide: bool,
+    ) {
         let mut v = std::mem::take(&mut self.bb[axis].v);
         for i in 1..v.len() {
             let vi = v[i];
@@ -242,7 +261,11 @@ impl Collider {
                 let vj = v[j as usize];
                 v[j as usize + 1] = vj;
                 if vi.is_min && !vj.is_min && collide && vi.has_bb && vj.has_bb && vi.id != vj.id {
-                    let (a, b) = if vi.id < vj.id { (vi.id, vj.id) } else { (vj.id, vi.id) };
+                    let (a, b) = if vi.id < vj.id {
+                        (vi.id, vj.id)
+                    } else {
+                        (vj.id, vi.id)
+                    };
                     self.handle_inversion(bodies, intrs, a, b, iter);
                 }
                 j -= 1;
@@ -290,7 +313,12 @@ impl Collider {
             let is_min = vb.v[i].is_min;
             while j < ui
                 && vb.v[j].coord
-                    > (vi.coord + if vb.norm(j as i64 + 1) == vb.lo_idx { cd } else { 0.0 })
+                    > (vi.coord
+                        + if vb.norm(j as i64 + 1) == vb.lo_idx {
+                            cd
+                        } else {
+                            0.0
+                        })
             {
                 let j1 = vb.norm(j as i64 + 1);
                 vb.v[j1] = vb.v[j];
@@ -304,8 +332,18 @@ impl Collider {
                     vb.lo_idx = vb.norm(vb.lo_idx as i64 - 1);
                 }
                 let vnew = vb.v[j1];
-                if is_min && !vb.v[j].is_min && collide && vi_has_bb && vb.v[j].has_bb && vi.id != vnew.id {
-                    let (a, b) = if vi.id < vnew.id { (vi.id, vnew.id) } else { (vnew.id, vi.id) };
+                if is_min
+                    && !vb.v[j].is_min
+                    && collide
+                    && vi_has_bb
+                    && vb.v[j].has_bb
+                    && vi.id != vnew.id
+                {
+                    let (a, b) = if vi.id < vnew.id {
+                        (vi.id, vnew.id)
+                    } else {
+                        (vnew.id, vi.id)
+                    };
                     if let Err(e) = self.handle_inversion_peri(bodies, intrs, cell, a, b, iter) {
                         res = Err(e);
                     }
@@ -329,7 +367,13 @@ impl Collider {
     }
 
     /// `findOverlaps`: sweep the sorted list along one axis after a full sort.
-    fn find_overlaps(&mut self, bodies: &Bodies, intrs: &mut Interactions, cell: Option<&Cell>, iter: i64) -> Result<(), String> {
+    fn find_overlaps(
+        &mut self,
+        bodies: &Bodies,
+        intrs: &mut Interactions,
+        cell: Option<&Cell>,
+        iter: i64,
+    ) -> Result<(), String> {
         let axis = self.p.sort_axis;
         let v = std::mem::take(&mut self.bb[axis].v);
         let mut res = Ok(());
@@ -343,7 +387,12 @@ impl Collider {
                     let mut j = i + 1;
                     while j < v.len() && v[j].id != iid {
                         let jid = v[j].id;
-                        if v[j].is_min && v[j].has_bb && self.spatial_overlap(iid, jid) && self.may_collide(bodies, iid, jid) && !intrs.found(iid, jid) {
+                        if v[j].is_min
+                            && v[j].has_bb
+                            && self.spatial_overlap(iid, jid)
+                            && self.may_collide(bodies, iid, jid)
+                            && !intrs.found(iid, jid)
+                        {
                             let (a, b) = if iid < jid { (iid, jid) } else { (jid, iid) };
                             intrs.insert(Interaction::new(a, b, [0; 3], iter));
                         }
@@ -364,7 +413,8 @@ impl Collider {
                         let jid = v[j].id;
                         if v[j].is_min && v[j].has_bb {
                             let (a, b) = if iid < jid { (iid, jid) } else { (jid, iid) };
-                            if let Err(e) = self.handle_inversion_peri(bodies, intrs, c, a, b, iter) {
+                            if let Err(e) = self.handle_inversion_peri(bodies, intrs, c, a, b, iter)
+                            {
                                 res = Err(e);
                             }
                         }
@@ -396,7 +446,10 @@ impl Collider {
         if self.bb[0].v.len() != 2 * n {
             let bbsize = self.bb[0].v.len();
             if 2 * n < bbsize {
-                return Err("bodies were removed from the scene: ryade does not support erasing bodies yet".into());
+                return Err(
+                    "bodies were removed from the scene: ryade does not support erasing bodies yet"
+                        .into(),
+                );
             }
             if bbsize == 0 || ((2 * n - bbsize) as f64 / bbsize as f64) > 0.2 {
                 do_init_sort = true;
@@ -430,7 +483,11 @@ impl Collider {
             let min_r = (0..n)
                 .filter_map(|i| ctx.bodies.shape[i].sphere_radius())
                 .fold(f64::INFINITY, |a, r| if r < a { r } else { a });
-            self.p.verlet_dist = if min_r.is_infinite() { 0.0 } else { self.p.verlet_dist.abs() * min_r };
+            self.p.verlet_dist = if min_r.is_infinite() {
+                0.0
+            } else {
+                self.p.verlet_dist.abs() * min_r
+            };
         }
         if ctx.interactions.dirty {
             do_init_sort = true;
@@ -504,7 +561,14 @@ impl Collider {
                 }
                 Some(c) => {
                     for axis in 0..3 {
-                        self.insertion_sort_peri(axis, ctx.bodies, ctx.interactions, c, ctx.iter, true)?;
+                        self.insertion_sort_peri(
+                            axis,
+                            ctx.bodies,
+                            ctx.interactions,
+                            c,
+                            ctx.iter,
+                            true,
+                        )?;
                     }
                 }
             }
@@ -519,12 +583,25 @@ impl Collider {
                 match ctx.cell {
                     None => {
                         for axis in 0..3 {
-                            self.insertion_sort(axis, ctx.bodies, ctx.interactions, ctx.iter, false);
+                            self.insertion_sort(
+                                axis,
+                                ctx.bodies,
+                                ctx.interactions,
+                                ctx.iter,
+                                false,
+                            );
                         }
                     }
                     Some(c) => {
                         for axis in 0..3 {
-                            self.insertion_sort_peri(axis, ctx.bodies, ctx.interactions, c, ctx.iter, false)?;
+                            self.insertion_sort_peri(
+                                axis,
+                                ctx.bodies,
+                                ctx.interactions,
+                                c,
+                                ctx.iter,
+                                false,
+                            )?;
                         }
                     }
                 }

@@ -39,13 +39,8 @@ impl Default for Newton {
 /// Problems the integrator refuses to integrate through.
 #[derive(Debug, Clone, PartialEq)]
 pub enum NewtonError {
-    NonFinite {
-        id: usize,
-        what: &'static str,
-    },
-    BadMass {
-        id: usize,
-    },
+    NonFinite { id: usize, what: &'static str },
+    BadMass { id: usize },
 }
 
 impl Newton {
@@ -72,7 +67,11 @@ impl Newton {
             // because YADE adds them and the additions turn -0.0 into +0.0)
             let dvg = c.vel_grad - self.prev_vel_grad;
             let r = (dvg - dvg.transpose()) * 0.5;
-            (c.homo_deform, dvg, Vec3::new(-r[(1, 2)], r[(0, 2)], -r[(0, 1)]))
+            (
+                c.homo_deform,
+                dvg,
+                Vec3::new(-r[(1, 2)], r[(0, 2)], -r[(0, 1)]),
+            )
         } else {
             (0, Mat3::zeros(), Vec3::zeros())
         };

@@ -76,8 +76,7 @@ pub fn go(
                     e.plast_dissip += dissip;
                 }
             }
-            e.elast_potential +=
-                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&fs) / ph.ks);
+            e.elast_potential += 0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&fs) / ph.ks);
         }
     }
     ph.shear_force = fs;

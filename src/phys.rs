@@ -17,8 +17,16 @@ pub struct FrictPhys {
 
 /// `Ip2_FrictMat_FrictMat_FrictPhys::go`: harmonic means of E·R and E·R·ν, friction of the weaker.
 pub fn ip2_frict(m1: &FrictMat, m2: &FrictMat, g: &ScGeom) -> FrictPhys {
-    let ra = if g.radius1 > 0.0 { g.radius1 } else { g.radius2 };
-    let rb = if g.radius2 > 0.0 { g.radius2 } else { g.radius1 };
+    let ra = if g.radius1 > 0.0 {
+        g.radius1
+    } else {
+        g.radius2
+    };
+    let rb = if g.radius2 > 0.0 {
+        g.radius2
+    } else {
+        g.radius1
+    };
     let kna = m1.young * ra;
     let knb = m2.young * rb;
     let ksa = kna * m1.poisson;

@@ -150,7 +150,8 @@ impl Scene {
                     Ok(())
                 }
                 Engine::Collider(c) => {
-                    if c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty) {
+                    if c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty)
+                    {
                         c.action(ColliderCtx {
                             bodies: &mut self.bodies,
                             interactions: &mut self.interactions,
@@ -196,7 +197,10 @@ impl Scene {
             },
             NewtonError::BadMass { id } => StepError::Engine {
                 iter: self.iter,
-                msg: format!("body #{} is dynamic but has a non-positive mass or inertia", id),
+                msg: format!(
+                    "body #{} is dynamic but has a non-positive mass or inertia",
+                    id
+                ),
             },
         }
     }
@@ -219,7 +223,8 @@ impl Scene {
                 continue;
             }
             if self.interactions.list[k].functor == GeomFunctor::Unresolved {
-                let (f, swap) = dispatch(il, &self.bodies.shape[id1_raw], &self.bodies.shape[id2_raw]);
+                let (f, swap) =
+                    dispatch(il, &self.bodies.shape[id1_raw], &self.bodies.shape[id2_raw]);
                 let it = &mut self.interactions.list[k];
                 it.functor = f;
                 if f == GeomFunctor::Missing {
@@ -257,17 +262,62 @@ impl Scene {
                 ori: b.ori[id2],
             };
             let created = match (it.functor, &b.shape[id1], &b.shape[id2]) {
-                (GeomFunctor::SphereSphere, Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => {
-                    geom::sphere_sphere::go(il.sphere_sphere.as_ref().unwrap(), *r1, *r2, &k1, &k2, &shift2, was_real, &mut it.geom, &ctx)
-                }
+                (
+                    GeomFunctor::SphereSphere,
+                    Shape::Sphere { radius: r1 },
+                    Shape::Sphere { radius: r2 },
+                ) => geom::sphere_sphere::go(
+                    il.sphere_sphere.as_ref().unwrap(),
+                    *r1,
+                    *r2,
+                    &k1,
+                    &k2,
+                    &shift2,
+                    was_real,
+                    &mut it.geom,
+                    &ctx,
+                ),
                 (GeomFunctor::FacetSphere, Shape::Facet(f), Shape::Sphere { radius }) => {
-                    geom::facet_sphere::go(il.facet_sphere.as_mut().unwrap(), f, *radius, &k1, &k2, &shift2, was_real, &mut it.geom, &ctx)
+                    geom::facet_sphere::go(
+                        il.facet_sphere.as_mut().unwrap(),
+                        f,
+                        *radius,
+                        &k1,
+                        &k2,
+                        &shift2,
+                        was_real,
+                        &mut it.geom,
+                        &ctx,
+                    )
                 }
-                (GeomFunctor::WallSphere, Shape::Wall { axis, sense }, Shape::Sphere { radius }) => {
-                    geom::wall_sphere::go(il.wall_sphere.as_ref().unwrap(), *axis, *sense, *radius, &k1, &k2, &shift2, was_real, &mut it.geom, &ctx)
-                }
+                (
+                    GeomFunctor::WallSphere,
+                    Shape::Wall { axis, sense },
+                    Shape::Sphere { radius },
+                ) => geom::wall_sphere::go(
+                    il.wall_sphere.as_ref().unwrap(),
+                    *axis,
+                    *sense,
+                    *radius,
+                    &k1,
+                    &k2,
+                    &shift2,
+                    was_real,
+                    &mut it.geom,
+                    &ctx,
+                ),
                 (GeomFunctor::BoxSphere, Shape::Box { extents }, Shape::Sphere { radius }) => {
-                    geom::box_sphere::go(il.box_sphere.as_ref().unwrap(), extents, *radius, &k1, &k2, &shift2, was_real, &mut it.geom, &ctx)
+                    geom::box_sphere::go(
+                        il.box_sphere.as_ref().unwrap(),
+                        extents,
+                        *radius,
+                        &k1,
+                        &k2,
+                        &shift2,
+                        was_real,
+                        &mut it.geom,
+                        &ctx,
+                    )
                 }
                 (f, s1, s2) => {
                     return Err(format!(
@@ -320,7 +370,11 @@ impl Scene {
                 id2,
                 &lb,
                 &mut self.forces,
-                if self.track_energy { Some(&mut energy) } else { None },
+                if self.track_energy {
+                    Some(&mut energy)
+                } else {
+                    None
+                },
             );
             if !keep {
                 it.reset();
@@ -339,10 +393,14 @@ impl Scene {
 fn dispatch(il: &InteractionLoop, s1: &Shape, s2: &Shape) -> (GeomFunctor, bool) {
     use Shape::*;
     match (s1, s2) {
-        (Sphere { .. }, Sphere { .. }) if il.sphere_sphere.is_some() => (GeomFunctor::SphereSphere, false),
+        (Sphere { .. }, Sphere { .. }) if il.sphere_sphere.is_some() => {
+            (GeomFunctor::SphereSphere, false)
+        }
         (Facet(_), Sphere { .. }) if il.facet_sphere.is_some() => (GeomFunctor::FacetSphere, false),
         (Sphere { .. }, Facet(_)) if il.facet_sphere.is_some() => (GeomFunctor::FacetSphere, true),
-        (Wall { .. }, Sphere { .. }) if il.wall_sphere.is_some() => (GeomFunctor::WallSphere, false),
+        (Wall { .. }, Sphere { .. }) if il.wall_sphere.is_some() => {
+            (GeomFunctor::WallSphere, false)
+        }
         (Sphere { .. }, Wall { .. }) if il.wall_sphere.is_some() => (GeomFunctor::WallSphere, true),
         (Box { .. }, Sphere { .. }) if il.box_sphere.is_some() => (GeomFunctor::BoxSphere, false),
         (Sphere { .. }, Box { .. }) if il.box_sphere.is_some() => (GeomFunctor::BoxSphere, true),

@@ -38,7 +38,11 @@ impl Facet {
         let mut normal = cross(&e[0], &e[1]);
         let area = 0.5 * norm(&normal);
         let two_area = 2.0 * area;
-        normal = Vec3::new(normal[0] / two_area, normal[1] / two_area, normal[2] / two_area);
+        normal = Vec3::new(
+            normal[0] / two_area,
+            normal[1] / two_area,
+            normal[2] / two_area,
+        );
         let mut ne = [Vec3::zeros(); 3];
         let mut vl = [0.0; 3];
         let mut vu = [Vec3::zeros(); 3];
@@ -67,12 +71,19 @@ impl Facet {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
-    Sphere { radius: f64 },
+    Sphere {
+        radius: f64,
+    },
     Facet(Box<Facet>),
     /// Infinite plane normal to `axis`; `sense` -1, 0 (both sides) or 1.
-    Wall { axis: usize, sense: i32 },
+    Wall {
+        axis: usize,
+        sense: i32,
+    },
     /// Oriented box with half-sizes `extents`.
-    Box { extents: Vec3 },
+    Box {
+        extents: Vec3,
+    },
 }
 
 impl Shape {

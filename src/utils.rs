@@ -29,7 +29,10 @@ pub fn pwave_time_step(scene: &Scene) -> Option<f64> {
 /// `Shop::unbalancedForce`: mean (or max) |F + m g| over dynamic bodies divided by the mean
 /// |Fn + Fs| over real contacts. NaN without contacts, as in YADE.
 pub fn unbalanced_force(scene: &Scene, use_max_force: bool) -> f64 {
-    let g = scene.newton().map(|n| n.gravity).unwrap_or_else(Vec3::zeros);
+    let g = scene
+        .newton()
+        .map(|n| n.gravity)
+        .unwrap_or_else(Vec3::zeros);
     let b = &scene.bodies;
     let mut sum = 0.0;
     let mut maxf: f64 = 0.0;
@@ -149,7 +152,11 @@ pub fn box_(center: Vec3, extents: Vec3, material: usize, density: f64, fixed: b
     let v = 8.0 * extents[0] * extents[1] * extents[2];
     let mass = v * density;
     // geomInert = (V/3)·(e1²+e2², e0²+e2², e0²+e1²), then times density
-    let e2 = Vec3::new(extents[0].powf(2.0), extents[1].powf(2.0), extents[2].powf(2.0));
+    let e2 = Vec3::new(
+        extents[0].powf(2.0),
+        extents[1].powf(2.0),
+        extents[2].powf(2.0),
+    );
     let inertia = Vec3::new(
         v / 3.0 * (e2[1] + e2[2]) * density,
         v / 3.0 * (e2[0] + e2[2]) * density,
@@ -218,13 +225,18 @@ pub fn critical_time_step(scene: &Scene) -> Option<f64> {
             let kn = scene.materials[b.material[id]].young * r;
             Some(2.0 * (b.mass[id] / (2.0 * kn)).sqrt())
         })
-        .fold(None, |acc: Option<f64>, x| Some(acc.map_or(x, |a| a.min(x))))
+        .fold(None, |acc: Option<f64>, x| {
+            Some(acc.map_or(x, |a| a.min(x)))
+        })
 }
 
 /// Refuse a time step above the critical one, with the numbers a user needs to fix it.
 pub fn check_time_step(scene: &Scene) -> Result<(), String> {
     if !(scene.dt > 0.0 && scene.dt.is_finite()) {
-        return Err(format!("O.dt = {} is not a positive finite time step", scene.dt));
+        return Err(format!(
+            "O.dt = {} is not a positive finite time step",
+            scene.dt
+        ));
     }
     if let Some(crit) = critical_time_step(scene) {
         if scene.dt > crit {

@@ -2,35 +2,53 @@
 //! `utils::facet`) and checked bit for bit against the YADE 2023.02a values printed there. This
 //! exercises the builders (mass from `pow`, facet inscribed centre) that the golden scene import
 //! bypasses.
+#![allow(clippy::excessive_precision)]
 use ryade::collider::{Collider, ColliderParams};
 use ryade::integrator::Newton;
 use ryade::material::FrictMat;
 use ryade::math::Vec3;
-use ryade::scene::{Engine, InteractionLoop, Scene};
+use ryade::scene::{Engine, Scene};
 use ryade::utils;
 
 fn engines(gravity: Vec3) -> Vec<Engine> {
     vec![
         Engine::ForceResetter,
         Engine::Collider(Box::new(Collider::new(ColliderParams::default()))),
-        Engine::InteractionLoop(Box::new(InteractionLoop::default())),
-        Engine::Newton(Box::new(Newton { damping: 0.0, gravity, ..Default::default() })),
+        Engine::InteractionLoop(Box::default()),
+        Engine::Newton(Box::new(Newton {
+            damping: 0.0,
+            gravity,
+            ..Default::default()
+        })),
     ]
 }
 
 fn mat() -> FrictMat {
-    FrictMat { id: 0, young: 1e7, poisson: 0.3, density: 2600.0, friction_angle: 30f64.to_radians(), ..Default::default() }
+    FrictMat {
+        id: 0,
+        young: 1e7,
+        poisson: 0.3,
+        density: 2600.0,
+        friction_angle: 30f64.to_radians(),
+        ..Default::default()
+    }
 }
 
 #[test]
 fn case_a_head_on_matches_yade() {
-    let mut s = Scene { dt: 1e-5, ..Default::default() };
+    let mut s = Scene {
+        dt: 1e-5,
+        ..Default::default()
+    };
     s.materials.push(mat());
     let mut a = utils::sphere(Vec3::new(0.0, 0.0, 0.0), 0.01, 0, 2600.0, false);
     a.vel = Vec3::new(0.05, 0.0, 0.0);
     let mut b = utils::sphere(Vec3::new(0.0199, 0.0, 0.0), 0.01, 0, 2600.0, false);
     b.vel = Vec3::new(-0.05, 0.0, 0.0);
-    assert_eq!(a.mass, 0.010890854532444618, "utils.sphere mass as YADE computes it");
+    assert_eq!(
+        a.mass, 0.010890854532444618,
+        "utils.sphere mass as YADE computes it"
+    );
     s.bodies.push(a);
     s.bodies.push(b);
     s.engines = engines(Vec3::zeros());
@@ -41,7 +59,10 @@ fn case_a_head_on_matches_yade() {
     assert_eq!(s.forces.force[0][0], -9.9999999999999396);
     let it = &s.interactions.list[0];
     assert_eq!(it.geom.unwrap().pen, 9.9999999999999395e-05);
-    assert_eq!((it.phys.unwrap().kn, it.phys.unwrap().ks), (100000.0, 30000.0));
+    assert_eq!(
+        (it.phys.unwrap().kn, it.phys.unwrap().ks),
+        (100000.0, 30000.0)
+    );
     for _ in 0..4 {
         s.step().unwrap();
     }
@@ -53,35 +74,70 @@ fn case_a_head_on_matches_yade() {
         s.step().unwrap();
     }
     assert_eq!(s.time, 0.003000000000000007);
-    assert_eq!(s.interactions.count_real(), 0, "the spheres separated and the contact was erased");
+    assert_eq!(
+        s.interactions.count_real(),
+        0,
+        "the spheres separated and the contact was erased"
+    );
 }
 
 #[test]
 fn case_b_facet_sliding_matches_yade() {
-    let mut s = Scene { dt: 1e-5, ..Default::default() };
+    let mut s = Scene {
+        dt: 1e-5,
+        ..Default::default()
+    };
     s.materials.push(mat());
     let mut sp = utils::sphere(Vec3::new(0.0, -0.3, 0.01 - 8e-7), 0.01, 0, 2600.0, false);
     sp.vel = Vec3::new(0.5, 0.0, 0.0);
     s.bodies.push(sp);
-    let f = utils::facet([Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)], 0).unwrap();
-    assert_eq!(f.pos[1], -0.38196601125010521, "facet body at the inscribed circle centre");
+    let f = utils::facet(
+        [
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(1.0, -1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ],
+        0,
+    )
+    .unwrap();
+    assert_eq!(
+        f.pos[1], -0.38196601125010521,
+        "facet body at the inscribed circle centre"
+    );
     s.bodies.push(f);
     s.engines = engines(Vec3::new(0.0, 0.0, -9.81));
     s.step().unwrap();
     let p = s.bodies.pos[0];
-    assert_eq!((p[0], p[1], p[2]), (4.9994345344662341e-06, -0.29999999999999999, 0.009999199998415035));
+    assert_eq!(
+        (p[0], p[1], p[2]),
+        (
+            4.9994345344662341e-06,
+            -0.29999999999999999,
+            0.009999199998415035
+        )
+    );
     assert_eq!(s.bodies.ang_vel[0][1], 0.014136072878622757);
     assert_eq!(s.forces.force[0][0], -0.061584028713594967);
     assert_eq!(s.forces.force[0][2], 0.1066666666667271);
-    assert_eq!(s.forces.torque[1][1], 0.0012316559406604138, "facet torque with the 2R arm quirk");
+    assert_eq!(
+        s.forces.torque[1][1], 0.0012316559406604138,
+        "facet torque with the 2R arm quirk"
+    );
     let it = &s.interactions.list[0];
-    assert_eq!((it.id1, it.id2), (1, 0), "facet is id1 after the functor swap");
+    assert_eq!(
+        (it.id1, it.id2),
+        (1, 0),
+        "facet is id1 after the functor swap"
+    );
     assert_eq!(it.phys.unwrap().kn, 133333.33333333334);
     for _ in 1..5 {
         s.step().unwrap();
     }
     let p = s.bodies.pos[0];
-    assert_eq!((p[0], p[2]), (2.4991517977821258e-05, 0.0099991999762933676));
+    assert_eq!(
+        (p[0], p[2]),
+        (2.4991517977821258e-05, 0.0099991999762933676)
+    );
     assert_eq!(s.bodies.vel[0][2], -7.8860693334227967e-07);
     assert_eq!(s.forces.torque[0][1], 0.00061582783122570523);
     for _ in 5..4000 {

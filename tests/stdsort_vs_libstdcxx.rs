@@ -31,7 +31,12 @@ int main() {
         )
         .unwrap();
     let exe = dir.join("s");
-    let st = Command::new("g++").args(["-O1", "-o"]).arg(&exe).arg(&src).status().unwrap();
+    let st = Command::new("g++")
+        .args(["-O1", "-o"])
+        .arg(&exe)
+        .arg(&src)
+        .status()
+        .unwrap();
     assert!(st.success(), "g++ failed to compile the reference program");
     let mut seed = 12345u64;
     let mut input = String::new();
@@ -40,7 +45,9 @@ int main() {
         for modulo in [2u64, 5, 50] {
             let keys: Vec<i64> = (0..n)
                 .map(|_| {
-                    seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
                     ((seed >> 33) % modulo) as i64
                 })
                 .collect();
@@ -57,11 +64,19 @@ int main() {
         .stdout(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
     let out = child.wait_with_output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     for (keys, line) in cases.iter().zip(text.lines()) {
-        let expect: Vec<usize> = line.split_whitespace().map(|t| t.parse().unwrap()).collect();
+        let expect: Vec<usize> = line
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect();
         let mut ours: Vec<(i64, usize)> = keys.iter().copied().zip(0..).collect();
         std_sort(&mut ours, |a, b| a.0 < b.0);
         let got: Vec<usize> = ours.iter().map(|e| e.1).collect();

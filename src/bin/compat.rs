@@ -8,7 +8,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "compat", version, about = "ryade: YADE's DEM core in Rust, and the tools to prove it matches YADE")]
+#[command(
+    name = "compat",
+    version,
+    about = "ryade: YADE's DEM core in Rust, and the tools to prove it matches YADE"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -16,9 +20,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Compare ryade with YADE's golden records. Targets: `micro` (bit for bit, every step).
+    /// Compare ryade with YADE's golden records. Targets: `micro` (bit for bit, every step), `meso`.
     Diff {
-        /// What to compare: micro
+        /// What to compare: micro | meso
         target: String,
         /// Golden directory (default: golden/<target>)
         #[arg(long)]
@@ -55,11 +59,32 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
-        Cmd::Diff { target, golden, only, json } => {
-            if target != "micro" {
-                bail!("unknown diff target '{}': available targets are: micro", target);
-            }
+        Cmd::Diff {
+            target,
+            golden,
+            only,
+            json,
+        } => {
             let dir = golden.unwrap_or_else(|| PathBuf::from("golden").join(&target));
+            if target == "meso" {
+                let rep = ryade::harness::meso::diff_meso(&dir)?;
+                print!("{}", ryade::harness::meso::format_report(&rep));
+                if let Some(j) = json {
+                    std::fs::write(&j, serde_json::to_string_pretty(&rep)?)
+                        .with_context(|| format!("writing {}", j.display()))?;
+                }
+                return Ok(if rep.first_diff_step.is_none() {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::from(1)
+                });
+            }
+            if target != "micro" {
+                bail!(
+                    "unknown diff target '{}': available targets are: micro, meso",
+                    target
+                );
+            }
             let mut reps = Vec::new();
             for p in micro::scene_files(&dir)? {
                 let name = p.file_name().unwrap().to_string_lossy().to_string();
@@ -72,16 +97,29 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 reps.push(micro::diff_scene(sf, &p)?);
             }
             if reps.is_empty() {
-                bail!("no *.scene.json found in {} (run yade_ref/regen.sh to create goldens)", dir.display());
+                bail!(
+                    "no *.scene.json found in {} (run yade_ref/regen.sh to create goldens)",
+                    dir.display()
+                );
             }
             print!("{}", micro::format_table(&reps));
             let total: u64 = reps.iter().map(|r| r.mismatches).sum();
             let values: u64 = reps.iter().map(|r| r.values).sum();
-            println!("{} scenes, {} values compared, {} mismatches", reps.len(), values, total);
+            println!(
+                "{} scenes, {} values compared, {} mismatches",
+                reps.len(),
+                values,
+                total
+            );
             if let Some(j) = json {
-                std::fs::write(&j, serde_json::to_string_pretty(&reps)?).with_context(|| format!("writing {}", j.display()))?;
+                std::fs::write(&j, serde_json::to_string_pretty(&reps)?)
+                    .with_context(|| format!("writing {}", j.display()))?;
             }
-            Ok(if total == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) })
+            Ok(if total == 0 {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
         }
         Cmd::Scene { file, steps, out } => {
             let sf = scene_json::load(&file)?;
@@ -92,12 +130,21 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let mut rec = Recorder::create(&out, &name)?;
             rec.record(&scene)?;
             let bar = indicatif::ProgressBar::new(steps);
-            bar.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps {elapsed}<{eta}").unwrap());
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:40} {pos}/{len} steps {elapsed}<{eta}",
+                )
+                .unwrap(),
+            );
             for _ in 0..steps {
                 if let Err(e) = scene.step() {
                     bar.abandon();
                     eprintln!("stopped: {}", e);
-                    eprintln!("records up to step {} are kept in {}", scene.iter, out.display());
+                    eprintln!(
+                        "records up to step {} are kept in {}",
+                        scene.iter,
+                        out.display()
+                    );
                     return Ok(ExitCode::from(1));
                 }
                 rec.record(&scene)?;

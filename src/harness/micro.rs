@@ -20,7 +20,8 @@ pub fn ulp_distance(a: f64, b: f64) -> u64 {
         let bits = x.to_bits() as i64;
         (if bits < 0 { i64::MIN - bits } else { bits }) as i128
     };
-    (key(a) - key(b)).unsigned_abs().min(u64::MAX as u128) as u64
+    // +0 and -0 are one step apart: their bits differ, so they are a mismatch
+    ((key(a) - key(b)).unsigned_abs().min(u64::MAX as u128) as u64).max(1)
 }
 
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -54,7 +55,12 @@ impl DiffReport {
             self.mismatches += 1;
             self.max_ulp = self.max_ulp.max(d);
             if self.first.is_none() {
-                self.first = Some(FirstDiff { step, what: what(), ryade: ours, yade: theirs });
+                self.first = Some(FirstDiff {
+                    step,
+                    what: what(),
+                    ryade: ours,
+                    yade: theirs,
+                });
             }
         }
     }
@@ -64,7 +70,10 @@ impl DiffReport {
 pub fn golden_paths(scene_json: &Path) -> (PathBuf, PathBuf) {
     let s = scene_json.to_string_lossy();
     let base = s.trim_end_matches(".scene.json");
-    (PathBuf::from(format!("{}.bodies.csv.gz", base)), PathBuf::from(format!("{}.intrs.csv.gz", base)))
+    (
+        PathBuf::from(format!("{}.bodies.csv.gz", base)),
+        PathBuf::from(format!("{}.intrs.csv.gz", base)),
+    )
 }
 
 /// Compare a ryade run of `sf` with the golden records next to `scene_json`.
@@ -75,9 +84,21 @@ pub fn diff_scene(sf: SceneFile, scene_json: &Path) -> Result<DiffReport> {
     Ok(diff_against(sf, &bodies, &intrs))
 }
 
-pub fn diff_against(sf: SceneFile, bodies: &[golden::BodyRow], intrs: &[golden::IntrRow]) -> DiffReport {
-    let SceneFile { mut scene, steps, name } = sf;
-    let mut rep = DiffReport { scene: name, steps, ..Default::default() };
+pub fn diff_against(
+    sf: SceneFile,
+    bodies: &[golden::BodyRow],
+    intrs: &[golden::IntrRow],
+) -> DiffReport {
+    let SceneFile {
+        mut scene,
+        steps,
+        name,
+    } = sf;
+    let mut rep = DiffReport {
+        scene: name,
+        steps,
+        ..Default::default()
+    };
     let mut by_step_b: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
     for r in bodies {
         by_step_b.entry(r.step).or_default().push(r);
@@ -94,7 +115,13 @@ pub fn diff_against(sf: SceneFile, bodies: &[golden::BodyRow], intrs: &[golden::
                 break;
             }
         }
-        compare_step(&scene, step, by_step_b.get(&step), by_step_i.get(&step), &mut rep);
+        compare_step(
+            &scene,
+            step,
+            by_step_b.get(&step),
+            by_step_i.get(&step),
+            &mut rep,
+        );
     }
     rep
 }
@@ -113,7 +140,11 @@ fn compare_step(
         if rep.first.is_none() {
             rep.first = Some(FirstDiff {
                 step,
-                what: format!("body count: golden has {} rows, ryade {} bodies", gb.len(), scene.bodies.len()),
+                what: format!(
+                    "body count: golden has {} rows, ryade {} bodies",
+                    gb.len(),
+                    scene.bodies.len()
+                ),
                 ..Default::default()
             });
         }
@@ -132,7 +163,8 @@ fn compare_step(
     let empty_i = Vec::new();
     let gi = gi.unwrap_or(&empty_i);
     let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
-    let mut ours_map: HashMap<(u32, u32), (usize, u32, u32, &[f64; 18])> = HashMap::new();
+    type Entry<'a> = (usize, u32, u32, &'a [f64; 18]);
+    let mut ours_map: HashMap<(u32, u32), Entry> = HashMap::new();
     for (ord, (a, b, v)) in ours.iter().enumerate() {
         ours_map.insert(key(*a, *b), (ord, *a, *b, v));
     }
@@ -161,13 +193,21 @@ fn compare_step(
                     if rep.first.is_none() {
                         rep.first = Some(FirstDiff {
                             step,
-                            what: format!("contact {}-{} has ids in order {}-{} in ryade", row.id1, row.id2, a, b),
+                            what: format!(
+                                "contact {}-{} has ids in order {}-{} in ryade",
+                                row.id1, row.id2, a, b
+                            ),
                             ..Default::default()
                         });
                     }
                 }
                 for (k, (o, t)) in v.iter().zip(row.v.iter()).enumerate() {
-                    rep.note(step, || format!("contact {}-{} {}", row.id1, row.id2, INTR_COLS[k]), *o, *t);
+                    rep.note(
+                        step,
+                        || format!("contact {}-{} {}", row.id1, row.id2, INTR_COLS[k]),
+                        *o,
+                        *t,
+                    );
                 }
             }
         }
@@ -177,7 +217,11 @@ fn compare_step(
         rep.mismatches += 1;
         rep.missing_contacts += 1;
         if rep.first.is_none() {
-            rep.first = Some(FirstDiff { step, what: format!("contact {}-{} exists in ryade only", a, b), ..Default::default() });
+            rep.first = Some(FirstDiff {
+                step,
+                what: format!("contact {}-{} exists in ryade only", a, b),
+                ..Default::default()
+            });
         }
     }
     if !order_same {
@@ -215,10 +259,17 @@ pub fn format_table(reps: &[DiffReport]) -> String {
     for r in reps {
         let first = match (&r.error, &r.first) {
             (Some(e), _) => format!("ERROR: {}", e),
-            (None, Some(f)) => format!("step {}: {} (ryade {:e}, yade {:e})", f.step, f.what, f.ryade, f.yade),
+            (None, Some(f)) => format!(
+                "step {}: {} (ryade {:e}, yade {:e})",
+                f.step, f.what, f.ryade, f.yade
+            ),
             (None, None) => "-".into(),
         };
-        let ulp = if r.max_ulp == u64::MAX { "NaN".to_string() } else { r.max_ulp.to_string() };
+        let ulp = if r.max_ulp == u64::MAX {
+            "NaN".to_string()
+        } else {
+            r.max_ulp.to_string()
+        };
         s.push_str(&format!(
             "{:<14} {:>6} {:>10} {:>10} {:>8} {:>7}  {}\n",
             r.scene, r.steps, r.values, r.mismatches, ulp, r.order_differs_steps, first
@@ -235,6 +286,9 @@ mod tests {
         assert_eq!(ulp_distance(1.0, 1.0), 0);
         assert_eq!(ulp_distance(1.0, f64::from_bits(1.0f64.to_bits() + 3)), 3);
         assert_eq!(ulp_distance(0.0, -0.0), 1);
-        assert_eq!(ulp_distance(-1.0, f64::from_bits((-1.0f64).to_bits() + 2)), 2);
+        assert_eq!(
+            ulp_distance(-1.0, f64::from_bits((-1.0f64).to_bits() + 2)),
+            2
+        );
     }
 }

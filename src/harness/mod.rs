@@ -1,3 +1,4 @@
 //! Comparison of ryade against YADE's golden records.
 
+pub mod meso;
 pub mod micro;

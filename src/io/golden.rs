@@ -9,12 +9,28 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
 
 pub const BODY_COLS: [&str; 19] = [
-    "pos_x", "pos_y", "pos_z", "vel_x", "vel_y", "vel_z", "angVel_x", "angVel_y", "angVel_z", "ori_w",
-    "ori_x", "ori_y", "ori_z", "f_x", "f_y", "f_z", "t_x", "t_y", "t_z",
+    "pos_x", "pos_y", "pos_z", "vel_x", "vel_y", "vel_z", "angVel_x", "angVel_y", "angVel_z",
+    "ori_w", "ori_x", "ori_y", "ori_z", "f_x", "f_y", "f_z", "t_x", "t_y", "t_z",
 ];
 pub const INTR_COLS: [&str; 18] = [
-    "normal_x", "normal_y", "normal_z", "pen", "cp_x", "cp_y", "cp_z", "shearInc_x", "shearInc_y",
-    "shearInc_z", "fn_x", "fn_y", "fn_z", "fs_x", "fs_y", "fs_z", "kn", "ks",
+    "normal_x",
+    "normal_y",
+    "normal_z",
+    "pen",
+    "cp_x",
+    "cp_y",
+    "cp_z",
+    "shearInc_x",
+    "shearInc_y",
+    "shearInc_z",
+    "fn_x",
+    "fn_y",
+    "fn_z",
+    "fs_x",
+    "fs_y",
+    "fs_z",
+    "kn",
+    "ks",
 ];
 
 #[derive(Clone, Debug, PartialEq)]
@@ -43,31 +59,69 @@ fn open_text(path: &Path) -> Result<Box<dyn BufRead>> {
     Ok(Box::new(BufReader::new(r)))
 }
 
-fn parse_rows<const N: usize>(path: &Path, key_cols: &[&str], cols: &[&str; N]) -> Result<Vec<(Vec<u64>, [f64; N])>> {
-    let mut rdr = csv::ReaderBuilder::new().has_headers(true).from_reader(open_text(path)?);
-    let header = rdr.headers().with_context(|| format!("reading header of {}", path.display()))?.clone();
+fn parse_rows<const N: usize>(
+    path: &Path,
+    key_cols: &[&str],
+    cols: &[&str; N],
+) -> Result<Vec<(Vec<u64>, [f64; N])>> {
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(open_text(path)?);
+    let header = rdr
+        .headers()
+        .with_context(|| format!("reading header of {}", path.display()))?
+        .clone();
     let expect: Vec<&str> = key_cols.iter().chain(cols.iter()).copied().collect();
     let got: Vec<&str> = header.iter().collect();
     if got != expect {
-        bail!("{}: unexpected columns {:?}; expected {:?} (see golden/FORMAT.md)", path.display(), got, expect);
+        bail!(
+            "{}: unexpected columns {:?}; expected {:?} (see golden/FORMAT.md)",
+            path.display(),
+            got,
+            expect
+        );
     }
     let mut out = Vec::new();
     for (line, rec) in rdr.records().enumerate() {
-        let rec = rec.with_context(|| format!("{}: malformed CSV at data line {}", path.display(), line + 1))?;
+        let rec = rec.with_context(|| {
+            format!(
+                "{}: malformed CSV at data line {}",
+                path.display(),
+                line + 1
+            )
+        })?;
         if rec.len() != expect.len() {
-            bail!("{}: line {} has {} fields, expected {}", path.display(), line + 2, rec.len(), expect.len());
+            bail!(
+                "{}: line {} has {} fields, expected {}",
+                path.display(),
+                line + 2,
+                rec.len(),
+                expect.len()
+            );
         }
         let mut keys = Vec::with_capacity(key_cols.len());
         for (k, name) in key_cols.iter().enumerate() {
             keys.push(rec[k].parse::<u64>().map_err(|_| {
-                anyhow!("{}: line {}: '{}' is not an integer in column {}", path.display(), line + 2, &rec[k], name)
+                anyhow!(
+                    "{}: line {}: '{}' is not an integer in column {}",
+                    path.display(),
+                    line + 2,
+                    &rec[k],
+                    name
+                )
             })?);
         }
         let mut v = [0.0; N];
         for (i, x) in v.iter_mut().enumerate() {
             let s = &rec[key_cols.len() + i];
             *x = s.parse::<f64>().map_err(|_| {
-                anyhow!("{}: line {}: '{}' is not a number in column {}", path.display(), line + 2, s, cols[i])
+                anyhow!(
+                    "{}: line {}: '{}' is not a number in column {}",
+                    path.display(),
+                    line + 2,
+                    s,
+                    cols[i]
+                )
             })?;
         }
         out.push((keys, v));
@@ -78,15 +132,27 @@ fn parse_rows<const N: usize>(path: &Path, key_cols: &[&str], cols: &[&str; N]) 
 pub fn read_bodies(path: &Path) -> Result<Vec<BodyRow>> {
     Ok(parse_rows(path, &["step", "id"], &BODY_COLS)?
         .into_iter()
-        .map(|(k, v)| BodyRow { step: k[0], id: k[1] as u32, v })
+        .map(|(k, v)| BodyRow {
+            step: k[0],
+            id: k[1] as u32,
+            v,
+        })
         .collect())
 }
 
 pub fn read_intrs(path: &Path) -> Result<Vec<IntrRow>> {
-    Ok(parse_rows(path, &["step", "ord", "id1", "id2"], &INTR_COLS)?
-        .into_iter()
-        .map(|(k, v)| IntrRow { step: k[0], ord: k[1] as u32, id1: k[2] as u32, id2: k[3] as u32, v })
-        .collect())
+    Ok(
+        parse_rows(path, &["step", "ord", "id1", "id2"], &INTR_COLS)?
+            .into_iter()
+            .map(|(k, v)| IntrRow {
+                step: k[0],
+                ord: k[1] as u32,
+                id1: k[2] as u32,
+                id2: k[3] as u32,
+                v,
+            })
+            .collect(),
+    )
 }
 
 fn push3(out: &mut Vec<f64>, v: &Vec3) {
@@ -102,8 +168,24 @@ pub fn body_values(scene: &Scene, id: usize) -> [f64; 19] {
     push3(&mut v, &b.ang_vel[id]);
     let q = b.ori[id];
     v.extend_from_slice(&[q.w, q.x, q.y, q.z]);
-    push3(&mut v, &scene.forces.force.get(id).copied().unwrap_or_else(Vec3::zeros));
-    push3(&mut v, &scene.forces.torque.get(id).copied().unwrap_or_else(Vec3::zeros));
+    push3(
+        &mut v,
+        &scene
+            .forces
+            .force
+            .get(id)
+            .copied()
+            .unwrap_or_else(Vec3::zeros),
+    );
+    push3(
+        &mut v,
+        &scene
+            .forces
+            .torque
+            .get(id)
+            .copied()
+            .unwrap_or_else(Vec3::zeros),
+    );
     v.try_into().unwrap()
 }
 
@@ -130,10 +212,20 @@ pub fn intr_values(scene: &Scene) -> Vec<(u32, u32, [f64; 18])> {
 /// Format a double as C's `%.17g` (what the YADE recorder writes).
 pub fn g17(x: f64) -> String {
     if x == 0.0 {
-        return if x.is_sign_negative() { "-0".into() } else { "0".into() };
+        return if x.is_sign_negative() {
+            "-0".into()
+        } else {
+            "0".into()
+        };
     }
     if !x.is_finite() {
-        return if x.is_nan() { "nan".into() } else if x > 0.0 { "inf".into() } else { "-inf".into() };
+        return if x.is_nan() {
+            "nan".into()
+        } else if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
     }
     let e = format!("{:.16e}", x);
     let (mant, exp) = e.split_once('e').unwrap();
@@ -147,7 +239,11 @@ pub fn g17(x: f64) -> String {
             s
         }
     } else {
-        let m = if mant.contains('.') { mant.trim_end_matches('0').trim_end_matches('.') } else { mant };
+        let m = if mant.contains('.') {
+            mant.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            mant
+        };
         format!("{}e{}{:02}", m, if exp < 0 { '-' } else { '+' }, exp.abs())
     }
 }
@@ -168,7 +264,10 @@ impl Recorder {
                 std::fs::File::create(&p).with_context(|| format!("creating {}", p.display()))?,
             )))
         };
-        let mut r = Recorder { bodies: open("bodies.csv")?, intrs: open("intrs.csv")? };
+        let mut r = Recorder {
+            bodies: open("bodies.csv")?,
+            intrs: open("intrs.csv")?,
+        };
         writeln!(r.bodies, "step,id,{}", BODY_COLS.join(","))?;
         writeln!(r.intrs, "step,ord,id1,id2,{}", INTR_COLS.join(","))?;
         Ok(r)
@@ -183,7 +282,15 @@ impl Recorder {
         }
         for (ord, (a, b, v)) in intr_values(scene).into_iter().enumerate() {
             let cells: Vec<String> = v.iter().map(|x| g17(*x)).collect();
-            writeln!(self.intrs, "{},{},{},{},{}", step, ord, a, b, cells.join(","))?;
+            writeln!(
+                self.intrs,
+                "{},{},{},{},{}",
+                step,
+                ord,
+                a,
+                b,
+                cells.join(",")
+            )?;
         }
         self.bodies.flush()?;
         self.intrs.flush()?;
@@ -192,6 +299,7 @@ impl Recorder {
 }
 
 #[cfg(test)]
+#[allow(clippy::excessive_precision)]
 mod tests {
     use super::g17;
     #[test]

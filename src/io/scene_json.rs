@@ -33,14 +33,18 @@ fn f(v: &Value, key: &str) -> Result<f64> {
 fn fo(v: &Value, key: &str, default: f64) -> Result<f64> {
     match v.get(key) {
         None => Ok(default),
-        Some(x) => x.as_f64().ok_or_else(|| anyhow!("'{}' is not a number in {}", key, short(v))),
+        Some(x) => x
+            .as_f64()
+            .ok_or_else(|| anyhow!("'{}' is not a number in {}", key, short(v))),
     }
 }
 
 fn bo(v: &Value, key: &str, default: bool) -> Result<bool> {
     match v.get(key) {
         None => Ok(default),
-        Some(x) => x.as_bool().ok_or_else(|| anyhow!("'{}' is not a boolean in {}", key, short(v))),
+        Some(x) => x
+            .as_bool()
+            .ok_or_else(|| anyhow!("'{}' is not a boolean in {}", key, short(v))),
     }
 }
 
@@ -52,16 +56,24 @@ fn vec3(v: &Value, key: &str) -> Result<Vec3> {
     if a.len() != 3 {
         bail!("'{}' must have 3 components in {}", key, short(v));
     }
-    let c = |i: usize| a[i].as_f64().ok_or_else(|| anyhow!("'{}'[{}] is not a number", key, i));
+    let c = |i: usize| {
+        a[i].as_f64()
+            .ok_or_else(|| anyhow!("'{}'[{}] is not a number", key, i))
+    };
     Ok(Vec3::new(c(0)?, c(1)?, c(2)?))
 }
 
 fn vec3_of(a: &Value) -> Result<Vec3> {
-    let a = a.as_array().ok_or_else(|| anyhow!("expected a 3-vector, got {}", short(a)))?;
+    let a = a
+        .as_array()
+        .ok_or_else(|| anyhow!("expected a 3-vector, got {}", short(a)))?;
     if a.len() != 3 {
         bail!("expected a 3-vector, got {} components", a.len());
     }
-    let c = |i: usize| a[i].as_f64().ok_or_else(|| anyhow!("component {} is not a number", i));
+    let c = |i: usize| {
+        a[i].as_f64()
+            .ok_or_else(|| anyhow!("component {} is not a number", i))
+    };
     Ok(Vec3::new(c(0)?, c(1)?, c(2)?))
 }
 
@@ -81,7 +93,8 @@ fn class(v: &Value) -> Result<&str> {
 }
 
 pub fn load(path: &Path) -> Result<SceneFile> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let v: Value = serde_json::from_str(&text)
         .with_context(|| format!("{} is not valid JSON", path.display()))?;
     let name = path
@@ -118,9 +131,16 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
         .and_then(Value::as_array)
         .ok_or_else(|| anyhow!("missing 'bodies' array"))?;
     for (k, b) in bodies.iter().enumerate() {
-        let id = b.get("id").and_then(Value::as_u64).ok_or_else(|| anyhow!("body {} without id", k))?;
+        let id = b
+            .get("id")
+            .and_then(Value::as_u64)
+            .ok_or_else(|| anyhow!("body {} without id", k))?;
         if id as usize != k {
-            bail!("body ids must be consecutive from 0 (found id {} at position {})", id, k);
+            bail!(
+                "body ids must be consecutive from 0 (found id {} at position {})",
+                id,
+                k
+            );
         }
         let spec = body(b, &mut scene.materials).with_context(|| format!("body #{}", id))?;
         scene.bodies.push(spec);
@@ -140,11 +160,18 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
 fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     let cls = class(m)?;
     if cls != "FrictMat" {
-        bail!("material class '{}' is not supported by ryade yet (supported: FrictMat)", cls);
+        bail!(
+            "material class '{}' is not supported by ryade yet (supported: FrictMat)",
+            cls
+        );
     }
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
-        label: m.get("label").and_then(Value::as_str).unwrap_or("").to_string(),
+        label: m
+            .get("label")
+            .and_then(Value::as_str)
+            .unwrap_or("")
+            .to_string(),
         young: f(m, "young")?,
         poisson: f(m, "poisson")?,
         friction_angle: f(m, "frictionAngle")?,
@@ -181,21 +208,40 @@ fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
             Shape::Facet(Box::new(Facet::new(v).map_err(|e| anyhow!(e))?))
         }
         "Wall" => Shape::Wall {
-            axis: s.get("axis").and_then(Value::as_u64).filter(|a| *a < 3).ok_or_else(|| anyhow!("wall axis must be 0, 1 or 2"))? as usize,
-            sense: s.get("sense").and_then(Value::as_i64).filter(|x| (-1..=1).contains(x)).ok_or_else(|| anyhow!("wall sense must be -1, 0 or 1"))? as i32,
+            axis: s
+                .get("axis")
+                .and_then(Value::as_u64)
+                .filter(|a| *a < 3)
+                .ok_or_else(|| anyhow!("wall axis must be 0, 1 or 2"))? as usize,
+            sense: s
+                .get("sense")
+                .and_then(Value::as_i64)
+                .filter(|x| (-1..=1).contains(x))
+                .ok_or_else(|| anyhow!("wall sense must be -1, 0 or 1"))? as i32,
         },
         "Box" => Shape::Box {
             extents: vec3(s, "extents")?,
         },
-        other => bail!("shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box)", other),
+        other => bail!(
+            "shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box)",
+            other
+        ),
     };
-    let material = material(b.get("material").ok_or_else(|| anyhow!("missing 'material'"))?, mats)?;
+    let material = material(
+        b.get("material")
+            .ok_or_else(|| anyhow!("missing 'material'"))?,
+        mats,
+    )?;
     let ori = b
         .get("ori")
         .and_then(Value::as_array)
         .filter(|a| a.len() == 4)
         .ok_or_else(|| anyhow!("'ori' must be [w, x, y, z]"))?;
-    let q = |i: usize| ori[i].as_f64().ok_or_else(|| anyhow!("ori[{}] is not a number", i));
+    let q = |i: usize| {
+        ori[i]
+            .as_f64()
+            .ok_or_else(|| anyhow!("ori[{}] is not a number", i))
+    };
     let blocked = b.get("blockedDOFs").and_then(Value::as_u64).unwrap_or(0);
     if blocked > 63 {
         bail!("blockedDOFs bits must be < 64");
