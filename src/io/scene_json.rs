@@ -355,3 +355,95 @@ fn engine(e: &Value) -> Result<Engine> {
         other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator)", other),
     })
 }
+
+/// Export a scene in the same format (17 significant digits are kept by serde_json's shortest
+/// round-trip float formatting), so that YADE or ryade can load exactly the same state.
+pub fn to_value(scene: &Scene, steps: u64) -> Value {
+    use serde_json::json;
+    let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
+    let b = &scene.bodies;
+    let bodies: Vec<Value> = (0..b.len())
+        .map(|id| {
+            let shape = match &b.shape[id] {
+                Shape::Sphere { radius } => json!({"class": "Sphere", "radius": radius}),
+                Shape::Facet(f) => json!({"class": "Facet", "vertices": [v3(&f.vertices[0]), v3(&f.vertices[1]), v3(&f.vertices[2])]}),
+                Shape::Wall { axis, sense } => json!({"class": "Wall", "axis": axis, "sense": sense}),
+                Shape::Box { extents } => json!({"class": "Box", "extents": v3(extents)}),
+            };
+            let m = &scene.materials[b.material[id]];
+            let q = b.ori[id];
+            json!({
+                "id": id, "shape": shape,
+                "material": {"id": m.id, "class": "FrictMat", "young": m.young, "poisson": m.poisson,
+                             "frictionAngle": m.friction_angle, "density": m.density, "label": m.label},
+                "mask": b.mask[id], "bounded": b.bounded[id],
+                "pos": v3(&b.pos[id]), "vel": v3(&b.vel[id]), "angVel": v3(&b.ang_vel[id]),
+                "ori": [q.w, q.x, q.y, q.z], "mass": b.mass[id], "inertia": v3(&b.inertia[id]),
+                "blockedDOFs": b.blocked[id], "isDamped": b.is_damped[id],
+            })
+        })
+        .collect();
+    let engines: Vec<Value> = scene
+        .engines
+        .iter()
+        .map(|e| match e {
+            Engine::ForceResetter => json!({"class": "ForceResetter"}),
+            Engine::Collider(c) => {
+                let p = &c.p;
+                let mut bounds = Vec::new();
+                if let Some(f) = p.bounds.sphere {
+                    bounds.push(json!({"class": "Bo1_Sphere_Aabb", "aabbEnlargeFactor": f}));
+                }
+                if p.bounds.facet {
+                    bounds.push(json!({"class": "Bo1_Facet_Aabb"}));
+                }
+                if p.bounds.wall {
+                    bounds.push(json!({"class": "Bo1_Wall_Aabb"}));
+                }
+                if p.bounds.box_ {
+                    bounds.push(json!({"class": "Bo1_Box_Aabb"}));
+                }
+                json!({"class": "InsertionSortCollider", "bounds": bounds, "verletDist": p.verlet_dist,
+                       "allowBiggerThanPeriod": p.allow_bigger_than_period, "targetInterv": p.target_interv,
+                       "minSweepDistFactor": p.min_sweep_dist_factor, "sortAxis": p.sort_axis,
+                       "sortThenCollide": p.sort_then_collide})
+            }
+            Engine::InteractionLoop(il) => {
+                let mut geom = Vec::new();
+                if let Some(g) = &il.sphere_sphere {
+                    geom.push(json!({"class": "Ig2_Sphere_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor, "avoidGranularRatcheting": g.avoid_granular_ratcheting}));
+                }
+                if let Some(g) = &il.facet_sphere {
+                    geom.push(json!({"class": "Ig2_Facet_Sphere_ScGeom", "shrinkFactor": g.shrink_factor}));
+                }
+                if let Some(g) = &il.wall_sphere {
+                    geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch}));
+                }
+                if let Some(g) = &il.box_sphere {
+                    geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
+                }
+                let phys: Vec<Value> = if il.frict_phys { vec![json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"})] } else { vec![] };
+                let law: Vec<Value> = il
+                    .cundall_strack
+                    .iter()
+                    .map(|l| json!({"class": "Law2_ScGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase, "sphericalBodies": l.spherical_bodies}))
+                    .collect();
+                json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
+            }
+            Engine::Newton(n) => json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask}),
+        })
+        .collect();
+    let mut out = json!({
+        "format": "ryade-scene-1", "source": "ryade", "steps": steps, "dt": scene.dt,
+        "periodic": scene.cell.is_some(), "bodies": bodies, "engines": engines,
+    });
+    if let Some(c) = &scene.cell {
+        let h = c.hsize;
+        out["cell_hsize"] = json!([
+            [h[(0, 0)], h[(0, 1)], h[(0, 2)]],
+            [h[(1, 0)], h[(1, 1)], h[(1, 2)]],
+            [h[(2, 0)], h[(2, 1)], h[(2, 2)]]
+        ]);
+    }
+    out
+}

@@ -1,0 +1,128 @@
+//! Bad input must stop a run with a message that names the body, the step and the likely cause, and
+//! keep everything recorded before the failure.
+use ryade::integrator::Newton;
+use ryade::io::scene_json;
+use ryade::material::FrictMat;
+use ryade::math::Vec3;
+use ryade::scene::{Engine, Scene};
+use ryade::utils;
+use std::process::Command;
+
+/// Three spheres resting on each other under gravity, with the given dt.
+fn column(dt: f64) -> Scene {
+    let mut s = Scene {
+        dt,
+        ..Default::default()
+    };
+    s.materials.push(FrictMat {
+        id: 0,
+        young: 1e7,
+        poisson: 0.3,
+        density: 2600.0,
+        friction_angle: 0.5,
+        ..Default::default()
+    });
+    for k in 0..3 {
+        s.bodies.push(utils::sphere(
+            Vec3::new(0.0, 0.0, 0.0199 * k as f64),
+            0.01,
+            0,
+            2600.0,
+            k == 0,
+        ));
+    }
+    s.engines = vec![
+        Engine::ForceResetter,
+        Engine::Collider(Box::default()),
+        Engine::InteractionLoop(Box::default()),
+        Engine::Newton(Box::new(Newton {
+            gravity: Vec3::new(0.0, 0.0, -9.81),
+            ..Default::default()
+        })),
+    ];
+    s
+}
+
+fn write_scene(s: &Scene, name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("ryade-bad-{}-{}", name, std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(format!("{}.scene.json", name));
+    std::fs::write(
+        &p,
+        serde_json::to_string(&scene_json::to_value(s, 50)).unwrap(),
+    )
+    .unwrap();
+    p
+}
+
+#[test]
+fn time_step_above_critical_is_refused_with_the_numbers() {
+    // PWave dt = r/sqrt(E/rho) = 1.6e-4 s; the contact's critical dt is about 2.9x that
+    let s = column(2e-3);
+    let err = utils::check_time_step(&s).unwrap_err();
+    assert!(err.contains("critical time step"), "{}", err);
+    assert!(err.contains("PWaveTimeStep"), "{}", err);
+    let ok = column(0.5 * utils::pwave_time_step(&s).unwrap());
+    utils::check_time_step(&ok).unwrap();
+    // the CLI refuses too, with a non-zero exit code
+    let p = write_scene(&s, "bigdt");
+    let out = Command::new(env!("CARGO_BIN_EXE_compat"))
+        .arg("scene")
+        .arg(&p)
+        .arg("--out")
+        .arg(p.parent().unwrap())
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("critical time step"));
+}
+
+#[test]
+fn nan_in_a_state_stops_the_run_naming_body_and_step_and_keeps_records() {
+    let mut s = column(1e-5);
+    s.bodies.vel[2] = Vec3::new(0.0, f64::NAN, 0.0);
+    let p = write_scene(&s, "nan");
+    let outdir = p.parent().unwrap().join("out");
+    // JSON cannot carry NaN: the scene file must be rejected with a message naming the value
+    let text = std::fs::read_to_string(&p).unwrap();
+    assert!(text.contains("null"), "serde writes NaN as null");
+    let out = Command::new(env!("CARGO_BIN_EXE_compat"))
+        .arg("scene")
+        .arg(&p)
+        .arg("--out")
+        .arg(&outdir)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("body #2") && err.contains("vel"), "{}", err);
+
+    // a NaN that appears during the run: the integrator stops at the step it appears
+    s.step().unwrap_err();
+    let mut s = column(1e-5);
+    for _ in 0..5 {
+        s.step().unwrap();
+    }
+    s.bodies.vel[1][2] = f64::NAN;
+    let e = s.step().unwrap_err().to_string();
+    assert!(e.contains("step 5") && e.contains("body #1"), "{}", e);
+    assert!(e.contains("time step"), "names the likely cause: {}", e);
+}
+
+#[test]
+fn records_before_a_failure_are_kept_on_disk() {
+    let mut s = column(1e-5);
+    let dir = std::env::temp_dir().join(format!("ryade-keep-{}", std::process::id()));
+    let mut rec = ryade::io::golden::Recorder::create(&dir, "col").unwrap();
+    rec.record(&s).unwrap();
+    for _ in 0..3 {
+        s.step().unwrap();
+        rec.record(&s).unwrap();
+    }
+    s.bodies.pos[2][0] = f64::INFINITY;
+    assert!(s.step().is_err());
+    drop(rec);
+    let rows = ryade::io::golden::read_bodies(&dir.join("col.bodies.csv")).unwrap();
+    assert_eq!(rows.len(), 4 * 3, "steps 0..3 of 3 bodies are on disk");
+    assert_eq!(rows.last().unwrap().step, 3);
+}
