@@ -366,6 +366,25 @@ impl Collider {
         res
     }
 
+    /// Insertion-sort the three axes (`insertionSort` or `insertionSortPeri`), creating pairs at
+    /// inversions when `collide`.
+    fn sort_all(&mut self, ctx: &mut ColliderCtx, collide: bool) -> Result<(), String> {
+        for axis in 0..3 {
+            match ctx.cell {
+                None => self.insertion_sort(axis, ctx.bodies, ctx.interactions, ctx.iter, collide),
+                Some(c) => self.insertion_sort_peri(
+                    axis,
+                    ctx.bodies,
+                    ctx.interactions,
+                    c,
+                    ctx.iter,
+                    collide,
+                )?,
+            }
+        }
+        Ok(())
+    }
+
     /// `findOverlaps`: sweep the sorted list along one axis after a full sort.
     fn find_overlaps(
         &mut self,
@@ -428,7 +447,7 @@ impl Collider {
     }
 
     /// `InsertionSortCollider::action`.
-    pub fn action(&mut self, ctx: ColliderCtx) -> Result<(), String> {
+    pub fn action(&mut self, mut ctx: ColliderCtx) -> Result<(), String> {
         self.num_action += 1;
         let n = ctx.bodies.len();
         let periodic = ctx.cell.is_some();
@@ -553,25 +572,7 @@ impl Collider {
             }
         }
         if !do_init_sort && !self.p.sort_then_collide {
-            match ctx.cell {
-                None => {
-                    for axis in 0..3 {
-                        self.insertion_sort(axis, ctx.bodies, ctx.interactions, ctx.iter, true);
-                    }
-                }
-                Some(c) => {
-                    for axis in 0..3 {
-                        self.insertion_sort_peri(
-                            axis,
-                            ctx.bodies,
-                            ctx.interactions,
-                            c,
-                            ctx.iter,
-                            true,
-                        )?;
-                    }
-                }
-            }
+            self.sort_all(&mut ctx, true)?;
         } else {
             if do_init_sort {
                 for vb in self.bb.iter_mut() {
@@ -580,31 +581,7 @@ impl Collider {
                 }
                 self.num_reinit += 1;
             } else {
-                match ctx.cell {
-                    None => {
-                        for axis in 0..3 {
-                            self.insertion_sort(
-                                axis,
-                                ctx.bodies,
-                                ctx.interactions,
-                                ctx.iter,
-                                false,
-                            );
-                        }
-                    }
-                    Some(c) => {
-                        for axis in 0..3 {
-                            self.insertion_sort_peri(
-                                axis,
-                                ctx.bodies,
-                                ctx.interactions,
-                                c,
-                                ctx.iter,
-                                false,
-                            )?;
-                        }
-                    }
-                }
+                self.sort_all(&mut ctx, false)?;
             }
             self.find_overlaps(ctx.bodies, ctx.interactions, ctx.cell, ctx.iter)?;
         }

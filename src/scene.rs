@@ -8,7 +8,7 @@ use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderCtx};
 use crate::forces::Forces;
-use crate::geom::{self, GeomCtx, Kin};
+use crate::geom::{self, GeomCtx, Kin, Pair};
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
 use crate::law::{self, LawBodies, LawEnergy};
@@ -249,46 +249,28 @@ impl Scene {
                 None => ctx0,
             };
             let b = &self.bodies;
-            let k1 = Kin {
-                pos: b.pos[id1],
-                vel: b.vel[id1],
-                ang_vel: b.ang_vel[id1],
-                ori: b.ori[id1],
+            let kin = |id: usize| Kin {
+                pos: b.pos[id],
+                vel: b.vel[id],
+                ang_vel: b.ang_vel[id],
+                ori: b.ori[id],
             };
-            let k2 = Kin {
-                pos: b.pos[id2],
-                vel: b.vel[id2],
-                ang_vel: b.ang_vel[id2],
-                ori: b.ori[id2],
+            let pr = Pair {
+                s1: kin(id1),
+                s2: kin(id2),
+                shift2,
+                is_real: was_real,
+                ctx,
             };
+            let g = &mut it.geom;
             let created = match (it.functor, &b.shape[id1], &b.shape[id2]) {
                 (
                     GeomFunctor::SphereSphere,
                     Shape::Sphere { radius: r1 },
                     Shape::Sphere { radius: r2 },
-                ) => geom::sphere_sphere::go(
-                    il.sphere_sphere.as_ref().unwrap(),
-                    *r1,
-                    *r2,
-                    &k1,
-                    &k2,
-                    &shift2,
-                    was_real,
-                    &mut it.geom,
-                    &ctx,
-                ),
+                ) => geom::sphere_sphere::go(il.sphere_sphere.as_ref().unwrap(), *r1, *r2, &pr, g),
                 (GeomFunctor::FacetSphere, Shape::Facet(f), Shape::Sphere { radius }) => {
-                    geom::facet_sphere::go(
-                        il.facet_sphere.as_mut().unwrap(),
-                        f,
-                        *radius,
-                        &k1,
-                        &k2,
-                        &shift2,
-                        was_real,
-                        &mut it.geom,
-                        &ctx,
-                    )
+                    geom::facet_sphere::go(il.facet_sphere.as_mut().unwrap(), f, *radius, &pr, g)
                 }
                 (
                     GeomFunctor::WallSphere,
@@ -299,25 +281,11 @@ impl Scene {
                     *axis,
                     *sense,
                     *radius,
-                    &k1,
-                    &k2,
-                    &shift2,
-                    was_real,
-                    &mut it.geom,
-                    &ctx,
+                    &pr,
+                    g,
                 ),
                 (GeomFunctor::BoxSphere, Shape::Box { extents }, Shape::Sphere { radius }) => {
-                    geom::box_sphere::go(
-                        il.box_sphere.as_ref().unwrap(),
-                        extents,
-                        *radius,
-                        &k1,
-                        &k2,
-                        &shift2,
-                        was_real,
-                        &mut it.geom,
-                        &ctx,
-                    )
+                    geom::box_sphere::go(il.box_sphere.as_ref().unwrap(), extents, *radius, &pr, g)
                 }
                 (f, s1, s2) => {
                     return Err(format!(

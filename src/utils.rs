@@ -102,20 +102,15 @@ pub fn sphere(center: Vec3, radius: f64, material: usize, density: f64, fixed: b
     let v = (4.0 / 3.0) * std::f64::consts::PI * radius.powf(3.0);
     let mass = v * density;
     let inertia = (2.0 / 5.0) * v * radius.powf(2.0) * density;
-    BodySpec {
-        shape: Shape::Sphere { radius },
+    let blocked = if fixed { DOF_ALL } else { 0 };
+    at_rest(
+        Shape::Sphere { radius },
         material,
-        mask: 1,
-        bounded: true,
-        pos: center,
-        vel: Vec3::zeros(),
-        ang_vel: Vec3::zeros(),
-        ori: Quat::IDENTITY,
+        center,
         mass,
-        inertia: Vec3::repeat(inertia),
-        blocked: if fixed { DOF_ALL } else { 0 },
-        is_damped: true,
-    }
+        Vec3::repeat(inertia),
+        blocked,
+    )
 }
 
 /// `Shop::inscribedCircleCenter`: `v0 + ((v2-v0)|v1-v0| + (v1-v0)|v2-v0|) / (|v1-v0|+|v2-v1|+|v0-v2|)`.
@@ -131,20 +126,8 @@ pub fn inscribed_circle_center(v0: &Vec3, v1: &Vec3, v2: &Vec3) -> Vec3 {
 pub fn facet(vertices: [Vec3; 3], material: usize) -> Result<BodySpec, String> {
     let c = inscribed_circle_center(&vertices[0], &vertices[1], &vertices[2]);
     let local = [vertices[0] - c, vertices[1] - c, vertices[2] - c];
-    Ok(BodySpec {
-        shape: Shape::Facet(Box::new(Facet::new(local)?)),
-        material,
-        mask: 1,
-        bounded: true,
-        pos: c,
-        vel: Vec3::zeros(),
-        ang_vel: Vec3::zeros(),
-        ori: Quat::IDENTITY,
-        mass: 0.0,
-        inertia: Vec3::zeros(),
-        blocked: DOF_ALL,
-        is_damped: true,
-    })
+    let shape = Shape::Facet(Box::new(Facet::new(local)?));
+    Ok(at_rest(shape, material, c, 0.0, Vec3::zeros(), DOF_ALL))
 }
 
 /// `utils.box(center, extents, fixed)`: extents are half sizes; mass from the material density.
@@ -162,28 +145,42 @@ pub fn box_(center: Vec3, extents: Vec3, material: usize, density: f64, fixed: b
         v / 3.0 * (e2[0] + e2[2]) * density,
         v / 3.0 * (e2[0] + e2[1]) * density,
     );
-    BodySpec {
-        shape: Shape::Box { extents },
+    let blocked = if fixed { DOF_ALL } else { 0 };
+    at_rest(
+        Shape::Box { extents },
         material,
-        mask: 1,
-        bounded: true,
-        pos: center,
-        vel: Vec3::zeros(),
-        ang_vel: Vec3::zeros(),
-        ori: Quat::IDENTITY,
+        center,
         mass,
         inertia,
-        blocked: if fixed { DOF_ALL } else { 0 },
-        is_damped: true,
-    }
+        blocked,
+    )
 }
 
 /// `utils.wall(position, axis, sense)`: fixed infinite plane.
 pub fn wall(position: f64, axis: usize, sense: i32, material: usize) -> BodySpec {
     let mut pos = Vec3::zeros();
     pos[axis] = position;
+    at_rest(
+        Shape::Wall { axis, sense },
+        material,
+        pos,
+        0.0,
+        Vec3::zeros(),
+        DOF_ALL,
+    )
+}
+
+/// A body at rest with identity orientation, mask 1, bounded, damped.
+fn at_rest(
+    shape: Shape,
+    material: usize,
+    pos: Vec3,
+    mass: f64,
+    inertia: Vec3,
+    blocked: u8,
+) -> BodySpec {
     BodySpec {
-        shape: Shape::Wall { axis, sense },
+        shape,
         material,
         mask: 1,
         bounded: true,
@@ -191,9 +188,9 @@ pub fn wall(position: f64, axis: usize, sense: i32, material: usize) -> BodySpec
         vel: Vec3::zeros(),
         ang_vel: Vec3::zeros(),
         ori: Quat::IDENTITY,
-        mass: 0.0,
-        inertia: Vec3::zeros(),
-        blocked: DOF_ALL,
+        mass,
+        inertia,
+        blocked,
         is_damped: true,
     }
 }

@@ -2,7 +2,7 @@
 //! purpose: the centre-inside branch uses the ratcheting-free relative velocity, the outside branch
 //! uses real lever arms.
 
-use super::{GeomCtx, Kin, ScGeom};
+use super::{Pair, ScGeom};
 use crate::math::{mat_t_vec, mat_vec, norm, normalized, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,18 +19,8 @@ impl Default for Params {
 }
 
 /// Body 1 is the box (half sizes `ext`), body 2 the sphere of radius `r`.
-#[allow(clippy::too_many_arguments)]
-pub fn go(
-    p: &Params,
-    ext: &Vec3,
-    r: f64,
-    bx: &Kin,
-    sph: &Kin,
-    shift2: &Vec3,
-    is_real: bool,
-    geom: &mut Option<ScGeom>,
-    ctx: &GeomCtx,
-) -> bool {
+pub fn go(p: &Params, ext: &Vec3, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
+    let (bx, sph, shift2, is_real) = (&pr.s1, &pr.s2, &pr.shift2, pr.is_real);
     let axis_t = bx.ori.to_rotation_matrix();
     let rel = sph.pos + shift2 - bx.pos;
     let mut c = mat_t_vec(&axis_t, &rel);
@@ -67,7 +57,7 @@ pub fn go(
         g.pen = norm(&(pt1 - pt2));
         g.radius1 = r;
         g.radius2 = r;
-        g.precompute(bx, sph, ctx, &normal2, is_new, shift2, true);
+        g.precompute(bx, sph, &pr.ctx, &normal2, is_new, shift2, true);
     } else {
         let c_box = mat_vec(&axis_t, &c);
         let c_sph = c_box - rel;
@@ -84,7 +74,7 @@ pub fn go(
         g.pen = depth;
         g.radius1 = r;
         g.radius2 = r;
-        g.precompute(bx, sph, ctx, &(-dir), is_new, shift2, false);
+        g.precompute(bx, sph, &pr.ctx, &(-dir), is_new, shift2, false);
     }
     true
 }

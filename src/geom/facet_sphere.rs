@@ -1,6 +1,6 @@
 //! `Ig2_Facet_Sphere_ScGeom` (pkg/dem/Ig2_Facet_Sphere_ScGeom.cpp): face, edge and vertex branches.
 
-use super::{GeomCtx, Kin, ScGeom};
+use super::{Pair, ScGeom};
 use crate::math::{dot, mat_t_vec, mat_vec, norm, normalized, Vec3};
 use crate::shape::Facet;
 
@@ -11,18 +11,8 @@ pub struct Params {
 
 /// Body 1 is the facet, body 2 the sphere of radius `r`. A new contact needs a strictly positive
 /// penetration; a real one is always updated.
-#[allow(clippy::too_many_arguments)]
-pub fn go(
-    p: &mut Params,
-    facet: &Facet,
-    r: f64,
-    s1: &Kin,
-    s2: &Kin,
-    shift2: &Vec3,
-    is_real: bool,
-    geom: &mut Option<ScGeom>,
-    ctx: &GeomCtx,
-) -> bool {
+pub fn go(p: &mut Params, facet: &Facet, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
+    let (s1, s2, shift2, is_real) = (&pr.s1, &pr.s2, &pr.shift2, pr.is_real);
     let axis_t = s1.ori.to_rotation_matrix();
     // branch vector in facet-local coordinates: facetAxis = axis_t^T
     let cl = mat_t_vec(&axis_t, &(s2.pos + shift2 - s1.pos));
@@ -82,7 +72,7 @@ pub fn go(
         g.pen = pen;
         g.radius1 = 2.0 * r;
         g.radius2 = r;
-        g.precompute(s1, s2, ctx, &n_global, is_new, shift2, false);
+        g.precompute(s1, s2, &pr.ctx, &n_global, is_new, shift2, false);
         return true;
     }
     false

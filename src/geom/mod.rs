@@ -26,6 +26,17 @@ pub struct GeomCtx {
     pub shift_vel: Vec3,
 }
 
+/// One pair as a geometry functor sees it: both bodies' kinematics (body 1 first, after the swap),
+/// the periodic shift of body 2, and whether the interaction is already real.
+#[derive(Clone, Copy, Debug)]
+pub struct Pair {
+    pub s1: Kin,
+    pub s2: Kin,
+    pub shift2: Vec3,
+    pub is_real: bool,
+    pub ctx: GeomCtx,
+}
+
 /// Sphere-contact geometry (YADE `pkg/dem/ScGeom.hpp`, with `GenericSpheresContact`'s refR1/refR2,
 /// which are `radius1`/`radius2` here).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

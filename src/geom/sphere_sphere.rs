@@ -1,6 +1,6 @@
 //! `Ig2_Sphere_Sphere_ScGeom` (pkg/dem/Ig2_Sphere_Sphere_ScGeom.cpp).
 
-use super::{GeomCtx, Kin, ScGeom};
+use super::{Pair, ScGeom};
 use crate::math::{norm, norm2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,20 +20,10 @@ impl Default for Params {
 
 /// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
 /// interaction always gets its geometry updated, even when the spheres have separated.
-#[allow(clippy::too_many_arguments)]
-pub fn go(
-    p: &Params,
-    r1: f64,
-    r2: f64,
-    s1: &Kin,
-    s2: &Kin,
-    shift2: &Vec3,
-    is_real: bool,
-    geom: &mut Option<ScGeom>,
-    ctx: &GeomCtx,
-) -> bool {
+pub fn go(p: &Params, r1: f64, r2: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
+    let (s1, s2, shift2) = (&pr.s1, &pr.s2, &pr.shift2);
     let d = (s2.pos + shift2) - s1.pos;
-    if !is_real {
+    if !pr.is_real {
         let f = p.interaction_detection_factor * (r1 + r2);
         // pow(x, 2) is x*x in glibc for every finite x
         if f * f - norm2(&d) < 0.0 {
@@ -49,6 +39,14 @@ pub fn go(
     g.pen = pen;
     g.radius1 = r1;
     g.radius2 = r2;
-    g.precompute(s1, s2, ctx, &n, is_new, shift2, p.avoid_granular_ratcheting);
+    g.precompute(
+        s1,
+        s2,
+        &pr.ctx,
+        &n,
+        is_new,
+        shift2,
+        p.avoid_granular_ratcheting,
+    );
     true
 }

@@ -1,6 +1,6 @@
 //! `Ig2_Wall_Sphere_ScGeom` (pkg/dem/Ig2_Facet_Sphere_ScGeom.cpp, second class in the file).
 
-use super::{GeomCtx, Kin, ScGeom};
+use super::{Pair, ScGeom};
 use crate::math::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,21 +15,17 @@ impl Default for Params {
 }
 
 /// Body 1 is the wall (axis, sense), body 2 the sphere of radius `r`.
-#[allow(clippy::too_many_arguments)]
 pub fn go(
     p: &Params,
     axis: usize,
     sense: i32,
     r: f64,
-    wall: &Kin,
-    sph: &Kin,
-    shift2: &Vec3,
-    is_real: bool,
+    pr: &Pair,
     geom: &mut Option<ScGeom>,
-    ctx: &GeomCtx,
 ) -> bool {
+    let (wall, sph, shift2) = (&pr.s1, &pr.s2, &pr.shift2);
     let dist = sph.pos[axis] + shift2[axis] - wall.pos[axis];
-    if !is_real && dist.abs() > r {
+    if !pr.is_real && dist.abs() > r {
         return false;
     }
     let mut cp = sph.pos + shift2;
@@ -53,6 +49,6 @@ pub fn go(
     g.radius2 = r;
     g.contact_point = cp;
     g.pen = -(dist.abs() - r);
-    g.precompute(wall, sph, ctx, &n, is_new, shift2, p.no_ratch);
+    g.precompute(wall, sph, &pr.ctx, &n, is_new, shift2, p.no_ratch);
     true
 }

@@ -11,7 +11,8 @@ from yade import Vector3, Matrix3
 
 # repository root = three levels above this script (yade passes the script path as sys.argv[0])
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(sys.argv[0]))))
-OUT = os.path.join(ROOT, 'golden', 'pack')
+# output directory: first script argument if given, else golden/pack
+OUT = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, 'golden', 'pack')
 os.makedirs(OUT, exist_ok=True)
 
 # name -> keyword arguments of makeCloud (minCorner/maxCorner given as tuples)

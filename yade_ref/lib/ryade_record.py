@@ -1,0 +1,502 @@
+"""Recorder for ryade golden files (see golden/FORMAT.md).
+
+Used from plain YADE scripts run with ``yade -n -x script.py [OUTDIR]``:
+
+    import os, sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), '..', 'lib'))
+    import ryade_record
+    ... build the scene (O.bodies, O.engines, O.dt) ...
+    ryade_record.record('headon', steps=300)
+
+Under ``yade -x`` the name ``__file__`` is /usr/bin/yade, so the script path is taken from
+``sys.argv[0]`` (YADE does not change the working directory, so abspath() resolves it).
+
+``record`` introspects the scene (raising on anything FORMAT.md cannot express), runs
+``O.step()`` ``steps`` times and writes, atomically (temp file + rename, all files at the end):
+  <name>.scene.json       always
+  <name>.bodies.csv.gz    every step, or only ``keep_steps``
+  <name>.intrs.csv.gz     if ``intrs`` (every step)
+  <name>.digest.csv       if ``digest`` (SHA-256 per step)
+"""
+
+import gzip
+import hashlib
+import math
+import os
+import struct
+import sys
+
+from yade import O  # noqa: F401  (the YADE scene singleton)
+
+FORMAT_ID = 'ryade-scene-1'
+SOURCE = 'yade 2023.02a'
+
+BODY_HEADER = ('step,id,pos_x,pos_y,pos_z,vel_x,vel_y,vel_z,angVel_x,angVel_y,angVel_z,'
+               'ori_w,ori_x,ori_y,ori_z,f_x,f_y,f_z,t_x,t_y,t_z')
+INTR_HEADER = ('step,ord,id1,id2,normal_x,normal_y,normal_z,pen,cp_x,cp_y,cp_z,'
+               'shearInc_x,shearInc_y,shearInc_z,fn_x,fn_y,fn_z,fs_x,fs_y,fs_z,kn,ks')
+BODY_FMT = '%d,%d,' + ','.join(['%.17g'] * 19) + '\n'
+INTR_FMT = '%d,%d,%d,%d,' + ','.join(['%.17g'] * 18) + '\n'
+
+DOF_BITS = {'x': 1, 'y': 2, 'z': 4, 'X': 8, 'Y': 16, 'Z': 32}
+
+
+class UnsupportedScene(RuntimeError):
+    """The scene holds something golden/FORMAT.md cannot describe."""
+
+
+# ----------------------------------------------------------------------------------------
+# paths
+
+def script_path():
+    """Absolute path of the running YADE script (``__file__`` is /usr/bin/yade under -x)."""
+    return os.path.abspath(sys.argv[0])
+
+
+def repo_root():
+    """Repository root: scripts live in <root>/yade_ref/<kind>/<script>.py."""
+    return os.path.normpath(os.path.join(os.path.dirname(script_path()), '..', '..'))
+
+
+def output_dir(default_sub):
+    """First script argument if given, else <root>/<default_sub> (e.g. 'golden/micro')."""
+    if len(sys.argv) > 1 and sys.argv[1]:
+        d = os.path.abspath(sys.argv[1])
+    else:
+        d = os.path.join(repo_root(), default_sub)
+    os.makedirs(d, exist_ok=True)
+    return d
+
+
+def script_rel():
+    return os.path.relpath(script_path(), repo_root()).replace(os.sep, '/')
+
+
+# ----------------------------------------------------------------------------------------
+# small helpers
+
+def _cls(o):
+    return type(o).__name__
+
+
+def _v3(v):
+    return [float(v[0]), float(v[1]), float(v[2])]
+
+
+def _quat_wxyz(q):
+    # YADE Python: q[0..2] = x, y, z and q[3] = w
+    return [float(q[3]), float(q[0]), float(q[1]), float(q[2])]
+
+
+def dof_bits(s):
+    bits = 0
+    for ch in s:
+        if ch not in DOF_BITS:
+            raise UnsupportedScene('unknown blockedDOFs letter %r in %r' % (ch, s))
+        bits |= DOF_BITS[ch]
+    return bits
+
+
+def _require(cond, what):
+    if not cond:
+        raise UnsupportedScene(what)
+
+
+def _is_zero_m3(m):
+    return all(m[i][j] == 0 for i in range(3) for j in range(3))
+
+
+# ----------------------------------------------------------------------------------------
+# scene introspection
+
+def _shape(b):
+    s = b.shape
+    c = _cls(s)
+    if c == 'Sphere':
+        return {'class': 'Sphere', 'radius': float(s.radius)}
+    if c == 'Facet':
+        return {'class': 'Facet', 'vertices': [_v3(v) for v in s.vertices]}
+    if c == 'Wall':
+        return {'class': 'Wall', 'axis': int(s.axis), 'sense': int(s.sense)}
+    if c == 'Box':
+        return {'class': 'Box', 'extents': _v3(s.extents)}
+    raise UnsupportedScene('body %d: shape class %s is not supported by golden/FORMAT.md' % (b.id, c))
+
+
+def _material(b):
+    m = b.material
+    c = _cls(m)
+    if c != 'FrictMat':
+        raise UnsupportedScene('body %d: material class %s is not supported (only FrictMat)' % (b.id, c))
+    return {'id': int(m.id), 'class': 'FrictMat', 'young': float(m.young), 'poisson': float(m.poisson),
+            'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label)}
+
+
+def _body(b):
+    _require(b is not None, 'erased body (None) in O.bodies: ids must be dense')
+    _require(not b.isClump and not b.isClumpMember, 'body %d: clumps are not supported' % b.id)
+    st = b.state
+    _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
+    shape = _shape(b)
+    if shape['class'] == 'Sphere':
+        _require(not b.aspherical, 'body %d: aspherical sphere' % b.id)
+    return {'id': int(b.id), 'shape': shape, 'material': _material(b),
+            'mask': int(b.mask), 'bounded': bool(b.bounded),
+            'pos': _v3(st.pos), 'vel': _v3(st.vel), 'angVel': _v3(st.angVel), 'ori': _quat_wxyz(st.ori),
+            'mass': float(st.mass), 'inertia': _v3(st.inertia), 'blockedDOFs': dof_bits(st.blockedDOFs),
+            'isDamped': bool(st.isDamped)}
+
+
+def _bound_functor(f):
+    c = _cls(f)
+    if c == 'Bo1_Sphere_Aabb':
+        return {'class': c, 'aabbEnlargeFactor': float(f.aabbEnlargeFactor)}
+    if c in ('Bo1_Facet_Aabb', 'Bo1_Wall_Aabb', 'Bo1_Box_Aabb'):
+        return {'class': c}
+    raise UnsupportedScene('bound functor class %s is not supported' % c)
+
+
+def _geom_functor(f):
+    c = _cls(f)
+    if c == 'Ig2_Sphere_Sphere_ScGeom':
+        return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor),
+                'avoidGranularRatcheting': bool(f.avoidGranularRatcheting)}
+    if c == 'Ig2_Facet_Sphere_ScGeom':
+        _require(not f.hertzian, 'Ig2_Facet_Sphere_ScGeom.hertzian=True is not supported')
+        return {'class': c, 'shrinkFactor': float(f.shrinkFactor)}
+    if c == 'Ig2_Wall_Sphere_ScGeom':
+        _require(not f.hertzian, 'Ig2_Wall_Sphere_ScGeom.hertzian=True is not supported')
+        return {'class': c, 'noRatch': bool(f.noRatch)}
+    if c == 'Ig2_Box_Sphere_ScGeom':
+        return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
+    raise UnsupportedScene('geometry functor class %s is not supported' % c)
+
+
+def _phys_functor(f):
+    c = _cls(f)
+    if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
+        for a in ('kn', 'ks', 'frictAngle'):
+            _require(getattr(f, a) is None, 'Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker) is not supported' % a)
+        return {'class': c}
+    raise UnsupportedScene('physics functor class %s is not supported' % c)
+
+
+def _law_functor(f):
+    c = _cls(f)
+    if c == 'Law2_ScGeom_FrictPhys_CundallStrack':
+        return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
+    raise UnsupportedScene('law functor class %s is not supported' % c)
+
+
+def _engine(e):
+    c = _cls(e)
+    _require(not e.dead, 'engine %s is dead=True (not supported)' % c)
+    if c == 'ForceResetter':
+        return {'class': c}
+    if c == 'InsertionSortCollider':
+        _require(e.avoidSelfInteractionMask == 0, 'InsertionSortCollider.avoidSelfInteractionMask != 0')
+        _require(not e.smartInsertErase, 'InsertionSortCollider.smartInsertErase=True is not supported')
+        _require(not e.keepListsShort, 'InsertionSortCollider.keepListsShort=True is not supported')
+        return {'class': c, 'bounds': [_bound_functor(f) for f in e.boundDispatcher.functors],
+                'verletDist': float(e.verletDist), 'allowBiggerThanPeriod': bool(e.allowBiggerThanPeriod),
+                'targetInterv': int(e.targetInterv), 'minSweepDistFactor': float(e.minSweepDistFactor),
+                'sortAxis': int(e.sortAxis), 'sortThenCollide': bool(e.sortThenCollide)}
+    if c == 'InteractionLoop':
+        _require(len(e.callbacks) == 0, 'InteractionLoop.callbacks are not supported')
+        _require(not e.loopOnSortedInteractions, 'InteractionLoop.loopOnSortedInteractions=True is not supported')
+        return {'class': c,
+                'geom': [_geom_functor(f) for f in e.geomDispatcher.functors],
+                'phys': [_phys_functor(f) for f in e.physDispatcher.functors],
+                'law': [_law_functor(f) for f in e.lawDispatcher.functors]}
+    if c == 'NewtonIntegrator':
+        _require(not e.densityScaling, 'NewtonIntegrator.densityScaling=True is not supported')
+        _require(e.mask == -1, 'NewtonIntegrator.mask != -1 is not supported')
+        _require(_is_zero_m3(e.prevVelGrad), 'NewtonIntegrator.prevVelGrad != 0 is not supported')
+        return {'class': c, 'damping': float(e.damping), 'gravity': _v3(e.gravity),
+                'dampGravity': bool(e.dampGravity)}
+    raise UnsupportedScene('engine class %s is not supported by golden/FORMAT.md' % c)
+
+
+def scene_dict(steps, script=None):
+    """The scene as YADE holds it now (call before the first step)."""
+    d = {'format': FORMAT_ID, 'source': SOURCE, 'script': script if script is not None else script_rel(),
+         'steps': int(steps), 'dt': float(O.dt), 'periodic': bool(O.periodic)}
+    if O.periodic:
+        c = O.cell
+        _require(_is_zero_m3(c.velGrad) and _is_zero_m3(c.nextVelGrad) and _is_zero_m3(c.prevVelGrad),
+                 'periodic cell with velGrad != 0 is not supported')
+        h = c.hSize
+        d['cell_hsize'] = [[float(h[i][j]) for j in range(3)] for i in range(3)]
+    bodies = [_body(b) for b in O.bodies]
+    for i, b in enumerate(bodies):
+        _require(b['id'] == i, 'body ids are not dense 0..n-1')
+    d['bodies'] = bodies
+    d['engines'] = [_engine(e) for e in O.engines]
+    return d
+
+
+# ----------------------------------------------------------------------------------------
+# JSON writer: floats as '%.17g' (FORMAT.md), one body / engine per line
+
+def _js(v):
+    if isinstance(v, bool):
+        return 'true' if v else 'false'
+    if isinstance(v, int):
+        return '%d' % v
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            raise UnsupportedScene('non-finite float %r cannot be written to JSON' % v)
+        return '%.17g' % v
+    if isinstance(v, str):
+        import json
+        return json.dumps(v)
+    if isinstance(v, (list, tuple)):
+        return '[' + ', '.join(_js(x) for x in v) + ']'
+    if isinstance(v, dict):
+        return '{' + ', '.join('%s: %s' % (_js(str(k)), _js(x)) for k, x in v.items()) + '}'
+    raise TypeError('cannot serialise %r' % (v,))
+
+
+def scene_json(d):
+    out = ['{']
+    keys = list(d.keys())
+    for k in keys:
+        v = d[k]
+        last = (k == keys[-1])
+        if k in ('bodies', 'engines'):
+            out.append('  %s: [' % _js(k))
+            for i, x in enumerate(v):
+                out.append('    ' + _js(x) + (',' if i + 1 < len(v) else ''))
+            out.append('  ]' + ('' if last else ','))
+        else:
+            out.append('  %s: %s%s' % (_js(k), _js(v), '' if last else ','))
+    out.append('}')
+    return '\n'.join(out) + '\n'
+
+
+# ----------------------------------------------------------------------------------------
+# outputs
+
+class _AtomicGz(object):
+    """gzip text writer with mtime=0 and an empty file name (reproducible bytes)."""
+
+    def __init__(self, path):
+        self.path = path
+        self.tmp = path + '.tmp%d' % os.getpid()
+        self.raw = open(self.tmp, 'wb')
+        self.gz = gzip.GzipFile(filename='', mode='wb', fileobj=self.raw, mtime=0, compresslevel=9)
+        self.buf = []
+
+    def write(self, s):
+        self.buf.append(s)
+        if len(self.buf) >= 4096:
+            self.flush()
+
+    def flush(self):
+        if self.buf:
+            self.gz.write(''.join(self.buf).encode('ascii'))
+            self.buf = []
+
+    def close_tmp(self):
+        self.flush()
+        self.gz.close()
+        self.raw.flush()
+        os.fsync(self.raw.fileno())
+        self.raw.close()
+
+    def commit(self):
+        os.replace(self.tmp, self.path)
+
+    def abort(self):
+        try:
+            self.gz.close()
+            self.raw.close()
+        except Exception:
+            pass
+        if os.path.exists(self.tmp):
+            os.remove(self.tmp)
+
+
+class _AtomicText(object):
+    def __init__(self, path):
+        self.path = path
+        self.tmp = path + '.tmp%d' % os.getpid()
+        self.f = open(self.tmp, 'w', encoding='ascii', newline='\n')
+
+    def write(self, s):
+        self.f.write(s)
+
+    def close_tmp(self):
+        self.f.flush()
+        os.fsync(self.f.fileno())
+        self.f.close()
+
+    def commit(self):
+        os.replace(self.tmp, self.path)
+
+    def abort(self):
+        try:
+            self.f.close()
+        except Exception:
+            pass
+        if os.path.exists(self.tmp):
+            os.remove(self.tmp)
+
+
+def _body_values(b, forces):
+    s = b.state
+    p = s.pos
+    v = s.vel
+    w = s.angVel
+    q = s.ori
+    f = forces.f(b.id)
+    t = forces.t(b.id)
+    return (p[0], p[1], p[2], v[0], v[1], v[2], w[0], w[1], w[2], q[3], q[0], q[1], q[2],
+            f[0], f[1], f[2], t[0], t[1], t[2])
+
+
+def _write_bodies(out, step, vals):
+    for i, v in enumerate(vals):
+        out.write(BODY_FMT % ((step, i) + v))
+
+
+def _real_intrs():
+    # container order (O.interactions.all(False) is the raw container; keep the real ones)
+    return [i for i in O.interactions.all(False) if i.isReal]
+
+
+def _write_intrs(out, step, intrs):
+    for k, I in enumerate(intrs):
+        g = I.geom
+        ph = I.phys
+        n = g.normal
+        cp = g.contactPoint
+        si = g.shearInc
+        fn = ph.normalForce
+        fs = ph.shearForce
+        out.write(INTR_FMT % (step, k, I.id1, I.id2, n[0], n[1], n[2], g.penetrationDepth,
+                              cp[0], cp[1], cp[2], si[0], si[1], si[2],
+                              fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], ph.kn, ph.ks))
+
+
+def _say(msg):
+    print('[ryade_record] ' + msg, flush=True)
+    sys.stderr.flush()
+
+
+def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, keep_steps=None, digest=False,
+           min_contacts_check=None, final_check=None):
+    """Record scene ``name`` for ``steps`` steps (see module docstring).
+
+    keep_steps: None = every step 0..steps in the bodies file, else an iterable of steps to keep.
+    digest:     also write <name>.digest.csv (SHA-256 of 19 little-endian doubles per body, id order).
+    min_contacts_check: (k, n) -> fail unless at least n dynamic bodies have >= k real contacts at the end.
+    final_check: callable run after the last step; returns None or an error message (-> failure).
+    Returns a dict of statistics.
+    """
+    if outdir is None:
+        outdir = output_dir(default_sub)
+    os.makedirs(outdir, exist_ok=True)
+    _require(O.iter == 0, 'record() must be called before the first step (O.iter=%d)' % O.iter)
+    _require(O.numThreads == 1, 'YADE must run with one thread (O.numThreads=%d)' % O.numThreads)
+
+    scene = scene_dict(steps)
+    text = scene_json(scene)
+    nb = len(scene['bodies'])
+    dynamic = [b['blockedDOFs'] != 63 for b in scene['bodies']]
+    keep = None if keep_steps is None else set(int(s) for s in keep_steps)
+
+    files = []
+    try:
+        fscene = _AtomicText(os.path.join(outdir, name + '.scene.json'))
+        files.append(fscene)
+        fscene.write(text)
+        fb = _AtomicGz(os.path.join(outdir, name + '.bodies.csv.gz'))
+        files.append(fb)
+        fb.write(BODY_HEADER + '\n')
+        fi = None
+        if intrs:
+            fi = _AtomicGz(os.path.join(outdir, name + '.intrs.csv.gz'))
+            files.append(fi)
+            fi.write(INTR_HEADER + '\n')
+        fd = None
+        if digest:
+            fd = _AtomicText(os.path.join(outdir, name + '.digest.csv'))
+            files.append(fd)
+            fd.write('step,sha256\n')
+        pack = struct.Struct('<19d').pack
+
+        max_real = 0
+        max_real_step = 0
+        max_per_body = 0      # over dynamic bodies
+        max_per_body_any = 0  # including fixed ones
+        last_counts = [0] * nb
+        forces = O.forces
+
+        for step in range(0, steps + 1):
+            if step > 0:
+                O.step()
+            bodies = list(O.bodies)
+            vals = [_body_values(b, forces) for b in bodies]
+            if keep is None or step in keep:
+                _write_bodies(fb, step, vals)
+            if fd is not None:
+                h = hashlib.sha256()
+                for v in vals:
+                    h.update(pack(*v))
+                fd.write('%d,%s\n' % (step, h.hexdigest()))
+            real = _real_intrs()
+            if fi is not None:
+                _write_intrs(fi, step, real)
+            counts = [0] * nb
+            for I in real:
+                counts[I.id1] += 1
+                counts[I.id2] += 1
+            if len(real) > max_real:
+                max_real, max_real_step = len(real), step
+            md = max([c for c, d in zip(counts, dynamic) if d] or [0])
+            max_per_body = max(max_per_body, md)
+            max_per_body_any = max(max_per_body_any, max(counts or [0]))
+            last_counts = counts
+            if step % 500 == 0 and step > 0:
+                _say('%s: step %d/%d, real intrs %d' % (name, step, steps, len(real)))
+
+        _require(O.iter == steps, 'O.iter=%d after %d steps' % (O.iter, steps))
+        end_ge3 = sum(1 for c, d in zip(last_counts, dynamic) if d and c >= 3)
+        stats = {'name': name, 'bodies': nb, 'steps': steps, 'max_real': max_real, 'max_real_step': max_real_step,
+                 'max_contacts_dynamic_body': max_per_body, 'max_contacts_any_body': max_per_body_any,
+                 'end_real': len(_real_intrs()), 'end_dynamic_bodies_ge3': end_ge3}
+        if min_contacts_check is not None:
+            k, n = min_contacts_check
+            got = sum(1 for c, d in zip(last_counts, dynamic) if d and c >= k)
+            msg = '%s: only %d dynamic bodies end with >= %d contacts (need %d)' % (name, got, k, n)
+            if got < n:
+                if os.environ.get('RYADE_RECORD_NOCHECK'):
+                    _say('WARNING (RYADE_RECORD_NOCHECK set): ' + msg)
+                else:
+                    raise UnsupportedScene(msg)
+
+        if final_check is not None:
+            msg = final_check()
+            if msg:
+                if os.environ.get('RYADE_RECORD_NOCHECK'):
+                    _say('WARNING (RYADE_RECORD_NOCHECK set): %s: %s' % (name, msg))
+                else:
+                    raise UnsupportedScene('%s: %s' % (name, msg))
+        for f in files:
+            f.close_tmp()
+        for f in files:
+            f.commit()
+    except BaseException:
+        for f in files:
+            f.abort()
+        raise
+    _say('%s: done %s' % (name, ' '.join('%s=%s' % (k, v) for k, v in stats.items() if k != 'name')))
+    return stats
+
+
+def finish():
+    """End the script cleanly (flush, exit 0)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    sys.exit(0)
