@@ -17,3 +17,5 @@ echo "== cargo test"
 cargo test --release
 echo "== compat diff micro"
 ./target/release/compat diff micro
+echo "== compat diff meso"
+./target/release/compat diff meso
