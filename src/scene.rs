@@ -50,6 +50,9 @@ pub enum Engine {
     Collider(Box<Collider>),
     InteractionLoop(Box<InteractionLoop>),
     Newton(Box<Newton>),
+    /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
+    /// `Scene::step_with` with this id, at this position in the engine list.
+    External(u32),
 }
 
 impl Engine {
@@ -59,6 +62,7 @@ impl Engine {
             Engine::Collider(_) => "InsertionSortCollider",
             Engine::InteractionLoop(_) => "InteractionLoop",
             Engine::Newton(_) => "NewtonIntegrator",
+            Engine::External(_) => "External",
         }
     }
 }
@@ -93,6 +97,8 @@ pub struct Scene {
     pub forces: Forces,
     pub cell: Option<Cell>,
     pub engines: Vec<Engine>,
+    /// `Engine.dead` per engine (missing entries are alive); dead engines are skipped.
+    pub engine_dead: Vec<bool>,
     pub dt: f64,
     pub iter: i64,
     pub time: f64,
@@ -109,6 +115,7 @@ impl Default for Scene {
             forces: Forces::default(),
             cell: None,
             engines: Vec::new(),
+            engine_dead: Vec::new(),
             dt: 1e-8,
             iter: 0,
             time: 0.0,
@@ -130,57 +137,81 @@ impl Scene {
         })
     }
 
-    /// `O.step()`: cell update, every engine in order, then `iter += 1` and `time += dt`.
+    /// `O.step()`: cell update, every engine in order, then `iter += 1` and `time += dt`. A scene with
+    /// `External` engines must be stepped with `step_with`.
     pub fn step(&mut self) -> Result<(), StepError> {
+        self.step_with(&mut |id, s: &mut Scene| {
+            Err(format!(
+                "external engine {} has no runner (at iteration {})",
+                id, s.iter
+            ))
+        })
+    }
+
+    /// One step; `hook(id, scene)` runs each `Engine::External(id)` with full access to the scene.
+    pub fn step_with(
+        &mut self,
+        hook: &mut dyn FnMut(u32, &mut Scene) -> Result<(), String>,
+    ) -> Result<(), StepError> {
         let iter = self.iter;
-        let err = |msg: String| StepError::Engine { iter, msg };
         if let Some(c) = self.cell.as_mut() {
-            c.integrate_and_update(self.dt).map_err(err)?;
+            c.integrate_and_update(self.dt)
+                .map_err(|msg| StepError::Engine { iter, msg })?;
         }
-        let newton_indicator = self.newton().map(|n| n.max_velocity_sq);
-        let mut engines = std::mem::take(&mut self.engines);
-        let mut result = Ok(());
-        for e in engines.iter_mut() {
-            let r = match e {
-                Engine::ForceResetter => {
-                    self.forces.reset(self.bodies.len(), self.iter);
-                    if self.track_energy {
-                        self.energy.elast_potential = 0.0;
-                    }
-                    Ok(())
+        let mut k = 0;
+        while k < self.engines.len() {
+            if !self.engine_dead.get(k).copied().unwrap_or(false) {
+                if let Engine::External(id) = self.engines[k] {
+                    hook(id, self).map_err(|msg| StepError::Engine { iter, msg })?;
+                } else {
+                    self.run_engine(k)?;
                 }
-                Engine::Collider(c) => {
-                    if c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty)
-                    {
-                        c.action(ColliderCtx {
-                            bodies: &mut self.bodies,
-                            interactions: &mut self.interactions,
-                            cell: self.cell.as_ref(),
-                            iter: self.iter,
-                            newton_indicator,
-                        })
-                        .map_err(err)
-                    } else {
-                        Ok(())
-                    }
-                }
-                Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
-                Engine::Newton(n) => {
-                    self.forces.sync();
-                    n.step(&mut self.bodies, &self.forces, self.cell.as_mut(), self.dt)
-                        .map_err(|e| self.newton_error(e))
-                }
-            };
-            if let Err(e) = r {
-                result = Err(e);
-                break;
             }
+            k += 1;
         }
-        self.engines = engines;
-        result?;
         self.iter += 1;
         self.time += self.dt;
         Ok(())
+    }
+
+    /// Run the built-in engine at position `k`.
+    fn run_engine(&mut self, k: usize) -> Result<(), StepError> {
+        let iter = self.iter;
+        let err = |msg: String| StepError::Engine { iter, msg };
+        let newton_indicator = self.newton().map(|n| n.max_velocity_sq);
+        let mut e = std::mem::replace(&mut self.engines[k], Engine::External(u32::MAX));
+        let r = match &mut e {
+            Engine::ForceResetter => {
+                self.forces.reset(self.bodies.len(), self.iter);
+                if self.track_energy {
+                    self.energy.elast_potential = 0.0;
+                }
+                Ok(())
+            }
+            Engine::Collider(c) => {
+                if c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty) {
+                    c.action(ColliderCtx {
+                        bodies: &mut self.bodies,
+                        interactions: &mut self.interactions,
+                        cell: self.cell.as_ref(),
+                        iter: self.iter,
+                        newton_indicator,
+                    })
+                    .map_err(err)
+                } else {
+                    Ok(())
+                }
+            }
+            Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
+            Engine::Newton(n) => {
+                self.forces.sync();
+                n.step(&mut self.bodies, &self.forces, self.cell.as_mut(), self.dt)
+                    .map_err(|e| self.newton_error(e))
+            }
+            Engine::External(_) => Ok(()),
+        };
+        self.engines[k] = e;
+        r
     }
 
     fn newton_error(&self, e: NewtonError) -> StepError {

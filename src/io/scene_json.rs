@@ -431,6 +431,8 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
             Engine::Newton(n) => json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask}),
+            // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner
+            Engine::External(id) => json!({"class": "External", "id": id}),
         })
         .collect();
     let mut out = json!({
