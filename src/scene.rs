@@ -153,15 +153,12 @@ impl Scene {
         &mut self,
         hook: &mut dyn FnMut(u32, &mut Scene) -> Result<(), String>,
     ) -> Result<(), StepError> {
-        let iter = self.iter;
-        if let Some(c) = self.cell.as_mut() {
-            c.integrate_and_update(self.dt)
-                .map_err(|msg| StepError::Engine { iter, msg })?;
-        }
+        self.step_prologue()?;
         let mut k = 0;
         while k < self.engines.len() {
-            if !self.engine_dead.get(k).copied().unwrap_or(false) {
+            if !self.is_dead(k) {
                 if let Engine::External(id) = self.engines[k] {
+                    let iter = self.iter;
                     hook(id, self).map_err(|msg| StepError::Engine { iter, msg })?;
                 } else {
                     self.run_engine(k)?;
@@ -169,13 +166,35 @@ impl Scene {
             }
             k += 1;
         }
-        self.iter += 1;
-        self.time += self.dt;
+        self.step_epilogue();
         Ok(())
     }
 
-    /// Run the built-in engine at position `k`.
-    fn run_engine(&mut self, k: usize) -> Result<(), StepError> {
+    /// First part of a step (`Cell::integrateAndUpdate` in a periodic scene). A caller that drives the
+    /// engines itself runs `step_prologue`, then `run_engine(k)` for each live engine in order, then
+    /// `step_epilogue`.
+    pub fn step_prologue(&mut self) -> Result<(), StepError> {
+        let iter = self.iter;
+        if let Some(c) = self.cell.as_mut() {
+            c.integrate_and_update(self.dt)
+                .map_err(|msg| StepError::Engine { iter, msg })?;
+        }
+        Ok(())
+    }
+
+    /// Last part of a step: `iter += 1`, `time += dt` (a running sum, as YADE).
+    pub fn step_epilogue(&mut self) {
+        self.iter += 1;
+        self.time += self.dt;
+    }
+
+    /// Whether engine `k` is marked dead.
+    pub fn is_dead(&self, k: usize) -> bool {
+        self.engine_dead.get(k).copied().unwrap_or(false)
+    }
+
+    /// Run the built-in engine at position `k` (an `External` one is a no-op here).
+    pub fn run_engine(&mut self, k: usize) -> Result<(), StepError> {
         let iter = self.iter;
         let err = |msg: String| StepError::Engine { iter, msg };
         let newton_indicator = self.newton().map(|n| n.max_velocity_sq);

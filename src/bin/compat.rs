@@ -34,6 +34,21 @@ enum Cmd {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
+    #[command(trailing_var_arg = true)]
+    Run {
+        script: PathBuf,
+        /// Arguments passed to the script in sys.argv
+        #[arg(allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Run a yade-batch parameter table: one job per line, in parallel (see `compat batch -- --help`).
+    #[command(trailing_var_arg = true)]
+    Batch {
+        /// TABLE script.py [-j N] [--log DIR] [--lines ...] [--dry-run] [--emit-slurm FILE] ...
+        #[arg(allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Run a scene file (*.scene.json) and record every step in the golden format.
     Scene {
         file: PathBuf,
@@ -57,8 +72,38 @@ fn main() -> ExitCode {
     }
 }
 
+/// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
+fn python(module: &str, args: &[std::ffi::OsString]) -> Result<ExitCode> {
+    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
+    let status = std::process::Command::new(&py)
+        .arg("-m")
+        .arg(module)
+        .args(args)
+        .status()
+        .with_context(|| {
+            format!(
+                "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
+                py
+            )
+        })?;
+    Ok(match status.code() {
+        Some(0) => ExitCode::SUCCESS,
+        Some(c) => ExitCode::from(c.clamp(1, 255) as u8),
+        None => ExitCode::from(1),
+    })
+}
+
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
+        Cmd::Run { script, args } => {
+            let mut a: Vec<std::ffi::OsString> = vec![script.into_os_string()];
+            a.extend(args.into_iter().map(Into::into));
+            python("yade.runner", &a)
+        }
+        Cmd::Batch { args } => {
+            let a: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
+            python("yade.batch", &a)
+        }
         Cmd::Diff {
             target,
             golden,

@@ -157,7 +157,7 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
     Ok(SceneFile { scene, steps, name })
 }
 
-fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
+pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     let cls = class(m)?;
     if cls != "FrictMat" {
         bail!(
@@ -190,7 +190,7 @@ fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     Ok(mats.len() - 1)
 }
 
-fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
+pub fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
     let s = b.get("shape").ok_or_else(|| anyhow!("missing 'shape'"))?;
     let shape = match class(s)? {
         "Sphere" => Shape::Sphere {
@@ -262,9 +262,14 @@ fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
     })
 }
 
-fn engine(e: &Value) -> Result<Engine> {
+pub fn engine(e: &Value) -> Result<Engine> {
     Ok(match class(e)? {
         "ForceResetter" => Engine::ForceResetter,
+        "External" => Engine::External(
+            e.get("id")
+                .and_then(Value::as_u64)
+                .ok_or_else(|| anyhow!("External engine without an integer 'id'"))? as u32,
+        ),
         "InsertionSortCollider" => {
             let mut p = ColliderParams {
                 verlet_dist: fo(e, "verletDist", -0.5)?,

@@ -1,0 +1,881 @@
+"""`O` (Omega) and the containers a YADE script talks to: bodies, materials, engines, interactions,
+forces, the periodic cell. Each object is a view onto the Rust scene (`_ryade.Sim`), addressed by id, so
+YADE's live-reference semantics hold (`O.bodies[1].state.vel[2] = 0.1` moves the body)."""
+
+import builtins
+import json
+import math
+import sys
+
+from . import _ryade
+from ._errors import unsupported
+from .minieigen import Matrix3, Quaternion, Vector3, Vector3i, to_vec3
+from .wrapper import Engine, FrictMat, Material, Serializable, YADE_CLASSES
+
+
+def _blocked_bits(s):
+    bits = 0
+    for c in s:
+        try:
+            bits |= {'x': 1, 'y': 2, 'z': 4, 'X': 8, 'Y': 16, 'Z': 32}[c]
+        except KeyError:
+            raise ValueError("invalid character '%s' in blockedDOFs '%s': use letters from 'xyzXYZ'" % (c, s))
+    return bits
+
+
+def _blocked_str(bits):
+    return ''.join(c for c, b in zip('xyzXYZ', (1, 2, 4, 8, 16, 32)) if bits & b)
+
+
+# ---------------------------------------------------------------- shapes
+
+class Shape(Serializable):
+    _attrs = {'color': (1.0, 1.0, 1.0), 'wire': False, 'highlight': False}
+
+    def _bind(self, omega, body_id):
+        object.__setattr__(self, '_owner', (omega, body_id))
+
+
+class Sphere(Shape):
+    _attrs = {'radius': float('nan')}
+    _positional = ('radius',)
+
+    def _read(self, k):
+        if k == 'radius' and self._owner is not None:
+            omega, bid = self._owner
+            return omega._sim.get_scalar(bid, 'radius')
+        return self._values[k]
+
+    def _changed(self, k):
+        if k == 'radius' and self._owner is not None:
+            omega, bid = self._owner
+            omega._sim.set_scalar(bid, 'radius', float(self._values['radius']))
+
+    def _json(self):
+        return {'class': 'Sphere', 'radius': float(self._values['radius'])}
+
+
+class Facet(Shape):
+    _attrs = {'vertices': [], 'normal': None, 'area': None}
+
+    def _convert(self, k, v):
+        if k == 'vertices':
+            if self._owner is not None:
+                unsupported('changing Facet.vertices of a body already in O.bodies')
+            if len(v) != 3:
+                raise ValueError('a Facet needs exactly 3 vertices, got %d' % len(v))
+            return [to_vec3(x, 'Facet vertex') for x in v]
+        return v
+
+    def _read(self, k):
+        if k == 'vertices':
+            return [Vector3(*x) for x in self._values['vertices']]
+        if k in ('normal', 'area'):
+            a, b, c = [Vector3(*x) for x in self._values['vertices']]
+            n = (b - a).cross(c - b)
+            return 0.5 * n.norm() if k == 'area' else n / n.norm()
+        return self._values[k]
+
+    def _json(self):
+        return {'class': 'Facet', 'vertices': [list(v) for v in self._values['vertices']]}
+
+
+class Wall(Shape):
+    _attrs = {'axis': 0, 'sense': 0}
+
+    def _json(self):
+        return {'class': 'Wall', 'axis': int(self._values['axis']), 'sense': int(self._values['sense'])}
+
+
+class Box(Shape):
+    _attrs = {'extents': (0.0, 0.0, 0.0)}
+
+    def _convert(self, k, v):
+        return to_vec3(v, 'Box.extents') if k == 'extents' else v
+
+    def _read(self, k):
+        return Vector3(*self._values['extents']) if k == 'extents' else self._values[k]
+
+    def _json(self):
+        return {'class': 'Box', 'extents': list(self._values['extents'])}
+
+
+# ---------------------------------------------------------------- state and body
+
+_STATE_VEC = ('pos', 'vel', 'angVel', 'inertia')
+
+
+class State(Serializable):
+    """`State`: kinematic state. Unbound (before O.bodies.append) it stores values; bound it is a view."""
+    _attrs = {'pos': (0.0, 0.0, 0.0), 'vel': (0.0, 0.0, 0.0), 'angVel': (0.0, 0.0, 0.0), 'inertia': (0.0, 0.0, 0.0),
+              'ori': (1.0, 0.0, 0.0, 0.0), 'mass': 0.0, 'blockedDOFs': '', 'isDamped': True,
+              'refPos': (0.0, 0.0, 0.0), 'refOri': (1.0, 0.0, 0.0, 0.0), 'angMom': (0.0, 0.0, 0.0),
+              'densityScaling': -1.0}
+
+    def _bind(self, omega, body_id):
+        object.__setattr__(self, '_owner', (omega, body_id))
+
+    def _convert(self, k, v):
+        if k in _STATE_VEC or k in ('refPos', 'angMom'):
+            return to_vec3(v, 'State.' + k)
+        if k in ('ori', 'refOri'):
+            if isinstance(v, Quaternion):
+                return (v[3], v[0], v[1], v[2])
+            raise TypeError('State.%s must be a Quaternion' % k)
+        if k == 'blockedDOFs':
+            _blocked_bits(v)
+            return v
+        if k == 'mass':
+            return float(v)
+        return v
+
+    def _changed(self, k):
+        if self._owner is None:
+            return
+        omega, bid = self._owner
+        sim, v = omega._sim, self._values[k]
+        if k in _STATE_VEC:
+            sim.set_vec3(bid, k, tuple(v))
+        elif k == 'ori':
+            sim.set_ori(bid, tuple(v))
+        elif k == 'mass':
+            sim.set_scalar(bid, 'mass', v)
+        elif k == 'blockedDOFs':
+            sim.set_int(bid, 'blockedDOFs', _blocked_bits(v))
+        elif k == 'isDamped':
+            sim.set_int(bid, 'isDamped', int(bool(v)))
+        elif k in ('refPos', 'refOri'):
+            pass  # bookkeeping only (used by utils displacement helpers)
+        else:
+            unsupported('State.%s' % k)
+
+    def _read(self, k):
+        if self._owner is None:
+            v = self._values[k]
+            if k in _STATE_VEC or k in ('refPos', 'angMom'):
+                return Vector3(*v)
+            if k in ('ori', 'refOri'):
+                return Quaternion(*v)
+            return v
+        omega, bid = self._owner
+        sim = omega._sim
+        if k in _STATE_VEC:
+            return Vector3._view(lambda: sim.get_vec3(bid, k), lambda t: sim.set_vec3(bid, k, tuple(t)))
+        if k == 'ori':
+            return Quaternion._view(lambda: sim.get_ori(bid), lambda t: sim.set_ori(bid, tuple(t)))
+        if k == 'mass':
+            return sim.get_scalar(bid, 'mass')
+        if k == 'blockedDOFs':
+            return _blocked_str(sim.get_int(bid, 'blockedDOFs'))
+        if k == 'isDamped':
+            return bool(sim.get_int(bid, 'isDamped'))
+        if k == 'refPos':
+            return Vector3(*self._values['refPos'])
+        if k == 'refOri':
+            return Quaternion(*self._values['refOri'])
+        return self._values[k]
+
+    @property
+    def displ(self):
+        return self.pos - self.refPos
+
+    def _json_into(self, d):
+        v = self._values
+        d.update({'pos': list(v['pos']), 'vel': list(v['vel']), 'angVel': list(v['angVel']), 'ori': list(v['ori']),
+                  'mass': float(v['mass']), 'inertia': list(v['inertia']), 'blockedDOFs': _blocked_bits(v['blockedDOFs']),
+                  'isDamped': bool(v['isDamped'])})
+
+
+class Body(Serializable):
+    _attrs = {'shape': None, 'state': None, 'material': None, 'groupMask': 1, 'bounded': True, 'aspherical': False,
+              'bound': None, 'clumpId': -1, 'iterBorn': -1, 'timeBorn': -1.0, 'flags': 0}
+
+    def __init__(self, **kw):
+        Serializable.__init__(self, **kw)
+        if self._values['state'] is None:
+            self._values['state'] = State()
+        object.__setattr__(self, '_id', -1)
+
+    @property
+    def id(self):
+        return self._id
+
+    @property
+    def mat(self):
+        return self.material
+
+    @mat.setter
+    def mat(self, m):
+        self.material = m
+
+    @property
+    def mask(self):
+        return self.groupMask
+
+    @mask.setter
+    def mask(self, m):
+        self.groupMask = m
+
+    @property
+    def dynamic(self):
+        return self.state.blockedDOFs != 'xyzXYZ'
+
+    @dynamic.setter
+    def dynamic(self, d):
+        self.state.blockedDOFs = '' if d else 'xyzXYZ'
+
+    @property
+    def isClump(self):
+        return False
+
+    @property
+    def isStandalone(self):
+        return True
+
+    @property
+    def isClumpMember(self):
+        return False
+
+    def _changed(self, k):
+        if self._owner is None:
+            return
+        omega, bid = self._owner
+        if k == 'groupMask':
+            omega._sim.set_int(bid, 'mask', int(self._values['groupMask']))
+        elif k == 'bounded':
+            omega._sim.set_int(bid, 'bounded', int(bool(self._values['bounded'])))
+        else:
+            unsupported('changing Body.%s of a body already in O.bodies' % k)
+
+    def intrs(self):
+        return [i for i in self._owner[0].interactions if i.id1 == self._id or i.id2 == self._id] if self._owner else []
+
+    def _json(self, material_json):
+        d = {'id': 0, 'shape': self._values['shape']._json(), 'material': material_json,
+             'mask': int(self._values['groupMask']), 'bounded': bool(self._values['bounded'])}
+        self._values['state']._json_into(d)
+        return d
+
+
+# ---------------------------------------------------------------- containers
+
+class BodyContainer(object):
+    def __init__(self, omega):
+        self._o = omega
+        self._objs = []
+
+    def append(self, b):
+        if isinstance(b, (list, tuple)):
+            return [self.append(x) for x in b]
+        if not isinstance(b, Body):
+            raise TypeError('O.bodies.append takes a Body or a list of Bodies, not %s' % type(b).__name__)
+        if b._owner is not None:
+            raise IndexError('body already has id %d set; appending such body (for the second time) is not allowed' % b.id)
+        o = self._o
+        if b.shape is None:
+            raise ValueError('a Body needs a shape before it is appended')
+        mat = b.material
+        if mat is None:
+            mat = o.materials._default()
+            b._values['material'] = mat
+        if not isinstance(mat, FrictMat):
+            unsupported('material class %s' % type(mat).__name__)
+        if o._sim.in_step():
+            unsupported('adding bodies from inside a PyRunner during a step', 'add them between O.run calls')
+        bid = o._sim.add_body(json.dumps(b._json(mat._json())))
+        object.__setattr__(b, '_id', bid)
+        b._bind_all(o, bid) if hasattr(b, '_bind_all') else None
+        object.__setattr__(b, '_owner', (o, bid))
+        b._values['shape']._bind(o, bid)
+        b._values['state']._bind(o, bid)
+        if mat._owner is None:
+            mat._bind(o, o._sim.material_index_of_body(bid))
+        b._values['iterBorn'] = o.iter
+        b._values['timeBorn'] = o.time
+        self._objs.append(b)
+        return bid
+
+    def __getitem__(self, i):
+        if not isinstance(i, int):
+            raise TypeError('body ids are integers')
+        n = len(self._objs)
+        if i < 0 or i >= n:
+            raise IndexError('Body id out of range.')
+        return self._objs[i]
+
+    def __len__(self):
+        return len(self._objs)
+
+    def __iter__(self):
+        return iter(list(self._objs))
+
+    def erase(self, i, eraseClumpMembers=False):
+        unsupported('O.bodies.erase')
+
+    def appendClumped(self, *a, **kw):
+        unsupported('clumps (O.bodies.appendClumped)')
+
+    def clear(self):
+        unsupported('O.bodies.clear')
+
+    def replace(self, bodies):
+        unsupported('O.bodies.replace')
+
+
+class MaterialContainer(object):
+    def __init__(self, omega):
+        self._o = omega
+        self._mats = []
+
+    def append(self, m):
+        if isinstance(m, (list, tuple)):
+            return [self.append(x) for x in m]
+        if not isinstance(m, Material):
+            raise TypeError('O.materials.append takes a Material')
+        if not isinstance(m, FrictMat):
+            unsupported('material class %s' % type(m).__name__)
+        mid = len(self._mats)
+        m._values['id'] = mid
+        idx = self._o._sim.add_material(json.dumps(m._json()))
+        m._bind(self._o, idx)
+        self._mats.append(m)
+        return mid
+
+    def _default(self):
+        """`utils.defaultMaterial()` appended when a body takes material=-1 and O.materials is empty."""
+        if not self._mats:
+            from .utils import defaultMaterial
+            self.append(defaultMaterial())
+        return self._mats[-1]
+
+    def __getitem__(self, k):
+        if isinstance(k, str):
+            for m in self._mats:
+                if m.label == k:
+                    return m
+            raise KeyError("No material labeled '%s'." % k)
+        return self._mats[k]
+
+    def __len__(self):
+        return len(self._mats)
+
+    def __iter__(self):
+        return iter(list(self._mats))
+
+
+class _GeomView(object):
+    """`i.geom` of a real interaction: ScGeom attributes read live from the engine."""
+    _fields = {'normal': 'v', 'penetrationDepth': 's', 'contactPoint': 'v', 'shearInc': 'v', 'refR1': 's', 'refR2': 's'}
+    _cls = 'ScGeom'
+
+    def __init__(self, omega, a, b):
+        object.__setattr__(self, '_k', (omega, a, b))
+
+    def __getattr__(self, k):
+        if k in self._fields:
+            omega, a, b = self._k
+            v = omega._sim.intr_get(a, b, k)
+            return Vector3(*v) if self._fields[k] == 'v' else v
+        if k in YADE_CLASSES.get(self._cls, {}).get('attrs', ()):
+            unsupported('%s.%s' % (self._cls, k))
+        raise AttributeError("'%s' object has no attribute '%s'" % (self._cls, k))
+
+    def __setattr__(self, k, v):
+        unsupported('setting %s.%s' % (self._cls, k))
+
+    @property
+    def __class__(self):
+        return _named_class(self._cls)
+
+    def dict(self):
+        return {k: getattr(self, k) for k in self._fields}
+
+
+class _PhysView(_GeomView):
+    _fields = {'normalForce': 'v', 'shearForce': 'v', 'kn': 's', 'ks': 's', 'tangensOfFrictionAngle': 's'}
+    _cls = 'FrictPhys'
+
+    def __setattr__(self, k, v):
+        if k in ('normalForce', 'shearForce'):
+            omega, a, b = self._k
+            omega._sim.intr_set_vec3(a, b, k, to_vec3(v, k))
+            return
+        unsupported('setting FrictPhys.%s' % k)
+
+
+_NAMED = {}
+
+
+def _named_class(name):
+    if name not in _NAMED:
+        _NAMED[name] = type(name, (object,), {})
+    return _NAMED[name]
+
+
+class Interaction(object):
+    def __init__(self, omega, a, b):
+        self._o, self._a, self._b = omega, a, b
+
+    def _get(self, k):
+        return self._o._sim.intr_get(self._a, self._b, k)
+
+    @property
+    def id1(self):
+        return self._get('id1')
+
+    @property
+    def id2(self):
+        return self._get('id2')
+
+    @property
+    def isReal(self):
+        return self._get('isReal')
+
+    @property
+    def iterMadeReal(self):
+        return self._get('iterMadeReal')
+
+    @property
+    def iterBorn(self):
+        return self._get('iterBorn')
+
+    @property
+    def cellDist(self):
+        return Vector3i(*self._get('cellDist'))
+
+    @property
+    def geom(self):
+        return _GeomView(self._o, self._a, self._b) if self.isReal else None
+
+    @property
+    def phys(self):
+        return _PhysView(self._o, self._a, self._b) if self.isReal else None
+
+    def __repr__(self):
+        return '<Interaction instance at %#x>' % id(self)
+
+
+class InteractionContainer(object):
+    def __init__(self, omega):
+        self._o = omega
+
+    def __iter__(self):
+        return iter([Interaction(self._o, a, b) for a, b in self._o._sim.intr_list(True)])
+
+    def all(self, onlyReal=False):
+        return [Interaction(self._o, a, b) for a, b in self._o._sim.intr_list(bool(onlyReal))]
+
+    def __len__(self):
+        return len(self._o._sim.intr_list(False))
+
+    def __getitem__(self, key):
+        a, b = key
+        if not self._o._sim.intr_exists(a, b):
+            raise IndexError('No such interaction')
+        return Interaction(self._o, a, b)
+
+    def has(self, a, b, onlyReal=False):
+        if not self._o._sim.intr_exists(a, b):
+            return False
+        return self._o._sim.intr_get(a, b, 'isReal') if onlyReal else True
+
+    def countReal(self):
+        return self._o._sim.intr_count_real()
+
+    def withBody(self, bid):
+        return [i for i in self if i.id1 == bid or i.id2 == bid]
+
+    def withBodyAll(self, bid):
+        return [i for i in self.all(False) if i.id1 == bid or i.id2 == bid]
+
+    def nth(self, n):
+        return self.all(False)[n]
+
+    def erase(self, a, b):
+        unsupported('O.interactions.erase')
+
+    def clear(self):
+        unsupported('O.interactions.clear')
+
+
+class ForceContainer(object):
+    def __init__(self, omega):
+        self._o = omega
+
+    def f(self, bid, sync=False):
+        return Vector3(*self._o._sim.force(bid))
+
+    def t(self, bid, sync=False):
+        return Vector3(*self._o._sim.torque(bid))
+
+    def m(self, bid, sync=False):
+        return self.t(bid)
+
+    def addF(self, bid, f, permanent=False):
+        if permanent:
+            unsupported('O.forces.addF(..., permanent=True)', 'use O.forces.setPermF')
+        self._o._sim.add_force(bid, to_vec3(f, 'force'))
+
+    def addT(self, bid, t, permanent=False):
+        if permanent:
+            unsupported('O.forces.addT(..., permanent=True)', 'use O.forces.setPermT')
+        self._o._sim.add_torque(bid, to_vec3(t, 'torque'))
+
+    def setPermF(self, bid, f):
+        self._o._sim.set_perm_force(bid, to_vec3(f, 'force'))
+
+    def setPermT(self, bid, t):
+        self._o._sim.set_perm_torque(bid, to_vec3(t, 'torque'))
+
+    def sync(self):
+        pass
+
+
+class Cell(object):
+    def __init__(self, omega):
+        self._o = omega
+
+    def _h(self):
+        h = self._o._sim.get_cell()
+        if h is None:
+            raise RuntimeError('the scene is not periodic (set O.periodic=True first)')
+        return h
+
+    def setBox(self, *args):
+        size = to_vec3(args[0] if len(args) == 1 else args, 'Cell.setBox')
+        self._o._sim.set_cell([[size[0], 0.0, 0.0], [0.0, size[1], 0.0], [0.0, 0.0, size[2]]])
+
+    @property
+    def hSize(self):
+        return Matrix3(*[x for row in self._h() for x in row])
+
+    @hSize.setter
+    def hSize(self, m):
+        self._o._sim.set_cell([[float(m[i, j]) for j in range(3)] for i in range(3)])
+
+    @property
+    def refHSize(self):
+        return self.hSize
+
+    @property
+    def size(self):
+        self._h()
+        return Vector3(*self._o._sim.cell_size())
+
+    @property
+    def refSize(self):
+        return self.size
+
+    @refSize.setter
+    def refSize(self, s):
+        self.setBox(s)
+
+    @property
+    def volume(self):
+        self._h()
+        return self._o._sim.cell_volume()
+
+    @property
+    def trsf(self):
+        return Matrix3.Identity
+
+    @property
+    def velGrad(self):
+        return Matrix3.Zero
+
+    @property
+    def nextVelGrad(self):
+        return Matrix3.Zero
+
+    @property
+    def prevVelGrad(self):
+        return Matrix3.Zero
+
+    @property
+    def homoDeform(self):
+        return 2
+
+    @trsf.setter
+    def trsf(self, m):
+        if any(float(m[i, j]) != (1.0 if i == j else 0.0) for i in range(3) for j in range(3)):
+            unsupported('Cell.trsf other than identity')
+
+    @velGrad.setter
+    def velGrad(self, m):
+        if any(float(m[i, j]) != 0.0 for i in range(3) for j in range(3)):
+            unsupported('a deforming periodic cell (Cell.velGrad != 0)')
+
+    def wrap(self, p):
+        return Vector3(*self._o._sim.cell_wrap(to_vec3(p, 'point')))
+
+    def wrapPt(self, p):
+        return self.wrap(p)
+
+
+class EnergyTracker(object):
+    def __init__(self, omega):
+        self._o = omega
+
+    def _d(self):
+        return self._o._sim.energy()
+
+    def keys(self):
+        return list(self._d().keys())
+
+    def items(self):
+        return list(self._d().items())
+
+    def __getitem__(self, k):
+        return self._d()[k]
+
+    def total(self):
+        return sum(self._d().values())
+
+    def clear(self):
+        pass
+
+
+# ---------------------------------------------------------------- Omega
+
+class Omega(object):
+    """`O`: the simulation. `Omega()` returns the same object, as in YADE."""
+    _instance = None
+
+    def __new__(cls, *a, **kw):
+        if Omega._instance is None:
+            inst = object.__new__(cls)
+            inst._init()
+            Omega._instance = inst
+        return Omega._instance
+
+    def _init(self):
+        self._sim = _ryade.Sim()
+        self.bodies = BodyContainer(self)
+        self.materials = MaterialContainer(self)
+        self.interactions = InteractionContainer(self)
+        self.forces = ForceContainer(self)
+        self._cell = Cell(self)
+        self.energy = EnergyTracker(self)
+        self.tags = {}
+        self._engines = []
+        self._external = []
+        self._pending_engines = None
+        self._paused = False
+        self._background = None
+        self.stopAtIter = 0
+        self.stopAtTime = 0.0
+        self.timingEnabled = False
+        self.dynDt = False
+        self._saved = {}
+        self._default_engines()
+
+    def _default_engines(self):
+        """A fresh YADE `O` has a default engine list (core.md §1); ryade lacks its
+        GlobalStiffnessTimeStepper, so using it unchanged fails when the first step runs."""
+        from .wrapper import ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator
+        self._engines_default = True
+        self.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop(), NewtonIntegrator(damping=0.2)]
+        self._engines_default = True
+
+    # ---- time ----
+    dt = property(lambda self: self._sim.dt, lambda self, v: setattr(self._sim, 'dt', float(v)))
+    iter = property(lambda self: self._sim.iter)
+    time = property(lambda self: self._sim.time)
+
+    @property
+    def realtime(self):
+        import time as _t
+        return _t.time() - _START
+
+    @property
+    def numThreads(self):
+        return 1
+
+    @property
+    def usesTimeStepper(self):
+        return False
+
+    @property
+    def cell(self):
+        return self._cell if self._sim.get_cell() is not None else None
+
+    @property
+    def periodic(self):
+        return self._sim.get_cell() is not None
+
+    @periodic.setter
+    def periodic(self, p):
+        if p and self._sim.get_cell() is None:
+            self._sim.set_cell([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+        elif not p:
+            self._sim.set_cell(None)
+
+    @property
+    def trackEnergy(self):
+        return self._sim.track_energy
+
+    @trackEnergy.setter
+    def trackEnergy(self, on):
+        self._sim.track_energy = bool(on)
+
+    # ---- engines ----
+    @property
+    def engines(self):
+        return list(self._engines)
+
+    @engines.setter
+    def engines(self, lst):
+        lst = list(lst)
+        for e in lst:
+            if not isinstance(e, Engine):
+                raise TypeError('O.engines takes a list of engines, got %s' % type(e).__name__)
+        if self._sim.in_step():
+            self._pending_engines = lst   # YADE applies a new list at the next step (Scene::_nextEngines)
+            return
+        self._apply_engines(lst)
+
+    def _apply_engines(self, lst):
+        self._engines_default = False
+        specs, external = [], []
+        for e in lst:
+            d = e._json()
+            if d.get('class') == 'External':
+                d['id'] = len(external)
+                external.append(e)
+            specs.append(d)
+        self._sim.set_engines(json.dumps(specs))
+        self._external = external
+        self._engines = lst
+        for k, e in enumerate(lst):
+            e._bind(self, k)
+            if e._values.get('dead'):
+                self._sim.set_engine_dead(k, True)
+            for f in getattr(e, '_functors', lambda: [])():
+                object.__setattr__(f, '_owner', e)
+        self._map_labels()
+
+    def _map_labels(self):
+        """YADE's mapLabeledEntitiesToVariables: labelled engines and functors become builtins."""
+        for e in self._engines:
+            for obj in [e] + list(getattr(e, '_functors', lambda: [])()):
+                lab = obj._values.get('label')
+                if lab:
+                    setattr(builtins, lab, obj)
+                    main = sys.modules.get('__main__')
+                    if main is not None and getattr(main, '__ryade_script__', False):
+                        main.__dict__[lab] = obj
+
+    # ---- stepping ----
+    def _one_step(self):
+        if self._pending_engines is not None:
+            lst, self._pending_engines = self._pending_engines, None
+            self._apply_engines(lst)
+        if self._engines_default and self._engines:
+            unsupported("YADE's default engine list (it contains GlobalStiffnessTimeStepper)",
+                        'assign O.engines explicitly')
+        sim = self._sim
+        while True:
+            ext = sim.advance()
+            if ext is None:
+                break
+            e = self._external[ext]
+            if e._is_activated(self):
+                e._action(self)
+
+    def step(self):
+        self._one_step()
+
+    def _stop_reached(self, target):
+        if self._paused:
+            return True
+        if target is not None and self.iter >= target:
+            return True
+        if self.stopAtIter > 0 and self.iter >= self.stopAtIter:
+            return True
+        if self.stopAtTime > 0 and self.time >= self.stopAtTime:
+            return True
+        return False
+
+    def _run(self, n):
+        self._paused = False
+        target = self.iter + n if n > 0 else None
+        if not self._external and not self._pending_engines and target is not None and self.stopAtIter <= 0 \
+                and self.stopAtTime <= 0 and not self._engines_default:
+            self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
+            return
+        if target is None and self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
+            raise RuntimeError('O.run() without a step count and nothing that can stop it (no PyRunner, no '
+                               'O.stopAtIter): it would never return; give O.run(nSteps, True)')
+        while not self._stop_reached(target):
+            self._one_step()
+
+    def run(self, nSteps=-1, wait=False):
+        if wait:
+            self._run(nSteps)
+        else:
+            # YADE starts a background run and returns at once; O.wait() joins it. Headless, we run it
+            # when the script waits (or not at all if it never does: `yade -x` exits at the script end).
+            self._background = nSteps
+
+    def wait(self):
+        if self._background is not None:
+            n, self._background = self._background, None
+            self._run(n)
+
+    def pause(self):
+        self._paused = True
+        self._background = None
+
+    @property
+    def running(self):
+        return self._background is not None
+
+    def reset(self):
+        self._sim.reset()
+        self.bodies = BodyContainer(self)
+        self.materials = MaterialContainer(self)
+        self._engines, self._external, self._pending_engines = [], [], None
+        self._engines_default = False
+        self.tags = {}
+
+    def resetTime(self):
+        self._sim.iter = 0
+        self._sim.time = 0.0
+
+    def saveTmp(self, mark=''):
+        self._sim.save_tmp(mark)
+        self._saved[mark] = (list(self.bodies._objs), list(self.materials._mats), self._engines)
+
+    def loadTmp(self, mark=''):
+        if mark not in self._saved:
+            raise RuntimeError("No memory-saved simulation named '%s'" % mark)
+        self._sim.load_tmp(mark)
+        bodies, mats, engines = self._saved[mark]
+        self.bodies._objs = list(bodies)
+        self.materials._mats = list(mats)
+        self._engines = engines
+
+    def save(self, fileName, quiet=False):
+        unsupported('O.save (YADE .xml/.yade files)', 'use O.saveTmp() for in-memory snapshots')
+
+    def load(self, fileName, quiet=False):
+        unsupported('O.load (YADE .xml/.yade files)')
+
+    def __getattr__(self, k):
+        if k.startswith('_'):
+            raise AttributeError(k)
+        if k in _OMEGA_ATTRS:
+            unsupported('O.%s' % k)
+        raise AttributeError("'Omega' object has no attribute '%s'" % k)
+
+
+import time as _time  # noqa: E402
+
+_START = _time.time()
+
+#: Omega attributes YADE has (used to tell "unsupported" from "no such attribute")
+_OMEGA_ATTRS = {'addScene', 'bexSyncCount', 'childClassesNonrecursive', 'dynDt', 'dynDtAvailable', 'exitNoBacktrace',
+                'filename', 'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
+                'miscParams', 'numSubSteps', 'plugins', 'realtime', 'reload', 'resetAllScenes', 'resetCurrentScene',
+                'resetThisScene', 'runEngine', 'sceneToString', 'speed', 'stringToScene', 'subD', 'subStep', 'subStepping',
+                'switchScene', 'switchToScene', 'tmpFilename', 'tmpToFile', 'tmpToString', 'thisScene', 'timingEnabled'}

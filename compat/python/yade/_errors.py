@@ -1,0 +1,42 @@
+"""Errors of the compatibility layer: anything ryade does not implement fails loudly, naming what and
+where (the user's script file and line), never as a silent no-op."""
+
+import sys
+
+#: Path of the script `compat run` executes (set by yade.runner), used to point at the user's line.
+SCRIPT = None
+
+
+class UnsupportedError(NotImplementedError, AttributeError):
+    """A YADE class, function, attribute or keyword that ryade does not implement yet. It is also an
+    AttributeError so that `hasattr()` feature tests in scripts answer False instead of crashing."""
+
+
+def script_location():
+    """'(script.py, line N)' for the innermost frame of the user's script, or '' when not running one."""
+    f = sys._getframe(1)
+    best = None
+    while f is not None:
+        fn = f.f_code.co_filename
+        if SCRIPT is not None and fn == SCRIPT:
+            best = f
+            break
+        if best is None and not fn.startswith(_PKG_DIR) and not fn.startswith('<frozen'):
+            best = f
+        f = f.f_back
+    if best is None:
+        return ''
+    return '(%s, line %d)' % (best.f_code.co_filename, best.f_lineno)
+
+
+def unsupported(what, hint=None):
+    """Raise UnsupportedError for `what` (e.g. 'class HydroForceEngine', 'NewtonIntegrator.kinSplit')."""
+    msg = 'ryade does not support %s yet %s' % (what, script_location())
+    if hint:
+        msg += ': ' + hint
+    raise UnsupportedError(msg.rstrip())
+
+
+import os as _os  # noqa: E402
+
+_PKG_DIR = _os.path.dirname(_os.path.abspath(__file__))

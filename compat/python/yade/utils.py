@@ -1,0 +1,216 @@
+"""`yade.utils` over ryade: body builders with YADE's exact mass/inertia arithmetic (py/utils.py),
+and the C++ helpers (PWaveTimeStep, unbalancedForce, porosity, ...) computed by the Rust core."""
+
+import math
+import random
+
+from . import _ryade
+from ._core import Body, Box, Facet, Omega, Sphere, Wall
+from ._errors import unsupported
+from .minieigen import Quaternion, Vector3, to_vec3
+from .wrapper import FrictMat, Material
+from ._table import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,  # noqa: F401
+                     waitIfBatch)  # YADE exports them from utils
+
+__all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDim', 'defaultMaterial', 'PWaveTimeStep',
+           'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor',
+           'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
+           'boxPorosity', 'avgNumInteractions', 'sumForces', 'sumTorques']
+
+
+def _O():
+    return Omega()
+
+
+def defaultMaterial():
+    return FrictMat(density=1e3, young=1e7, poisson=.3, frictionAngle=.5, label='defaultMat')
+
+
+def randomColor(seed=None):
+    random.seed(seed)
+    return Vector3(random.random(), random.random(), random.random())
+
+
+def SpherePWaveTimeStep(radius, density, young):
+    return radius / math.sqrt(young / density)
+
+
+def _material(material):
+    O = _O()
+    if isinstance(material, int):
+        if material < 0 and len(O.materials) == 0:
+            O.materials.append(defaultMaterial())
+        return O.materials[material]
+    if isinstance(material, str):
+        return O.materials[material]
+    if isinstance(material, Material):
+        return material
+    if callable(material):
+        return material()
+    raise TypeError("The 'material' argument must be None (for defaultMaterial), string (for shared material label), "
+                    "int (for shared material id) or Material instance.")
+
+
+def _commonBodySetup(b, volume, geomInertia, material, pos, noBound=False, resetState=True, dynamic=None, fixed=False,
+                     blockedDOFs='xyzXYZ'):
+    """py/utils.py::_commonBodySetup: mass = V·ρ, inertia = geomInertia·ρ (Python arithmetic, as YADE)."""
+    b.material = _material(material)
+    mass = volume * b.material.density
+    st = b.state
+    st.mass = mass
+    st.inertia = Vector3(*geomInertia) * b.material.density
+    st.pos = pos
+    st.refPos = pos
+    b.bounded = not noBound
+    if dynamic is not None:
+        fixed = not dynamic
+    st.blockedDOFs = blockedDOFs if fixed else ''
+
+
+def sphere(center, radius, dynamic=None, fixed=False, wire=False, color=None, highlight=False, material=-1, mask=1):
+    b = Body()
+    b.shape = Sphere(radius=radius, color=color if color else randomColor(), wire=wire, highlight=highlight)
+    V = (4. / 3) * math.pi * radius**3
+    geomInert = (2. / 5.) * V * radius**2
+    _commonBodySetup(b, V, (geomInert, geomInert, geomInert), material, pos=center, dynamic=dynamic, fixed=fixed)
+    b.aspherical = False
+    b.mask = mask
+    return b
+
+
+def box(center, extents, orientation=Quaternion(1, 0, 0, 0), dynamic=None, fixed=False, wire=False, color=None,
+        highlight=False, material=-1, mask=1):
+    b = Body()
+    b.shape = Box(extents=extents, color=color if color else randomColor(), wire=wire, highlight=highlight)
+    V = 8 * extents[0] * extents[1] * extents[2]
+    geomInert = (V / 3.) * Vector3(extents[1]**2 + extents[2]**2, extents[0]**2 + extents[2]**2, extents[0]**2 + extents[1]**2)
+    _commonBodySetup(b, V, geomInert, material, pos=center, dynamic=dynamic, fixed=fixed)
+    b.state.ori = orientation
+    b.mask = mask
+    b.aspherical = True
+    return b
+
+
+def wall(position, axis, sense=0, color=None, material=-1, mask=1):
+    b = Body()
+    b.shape = Wall(sense=sense, axis=axis, color=color if color else randomColor())
+    if isinstance(position, (int, float)):
+        pos2 = Vector3(0, 0, 0)
+        pos2[axis] = position
+    else:
+        pos2 = position
+    _commonBodySetup(b, 0, (0, 0, 0), material, pos=pos2, fixed=True)
+    b.aspherical = False
+    b.mask = mask
+    return b
+
+
+def inscribedCircleCenter(v0, v1, v2):
+    """Shop::inscribedCircleCenter, evaluated by the Rust core in YADE's order."""
+    return Vector3(*_ryade.inscribed_circle_center(to_vec3(v0, 'v0'), to_vec3(v1, 'v1'), to_vec3(v2, 'v2')))
+
+
+def facet(vertices, dynamic=None, fixed=True, wire=True, color=None, highlight=False, noBound=False, material=-1, mask=1):
+    b = Body()
+    center = inscribedCircleCenter(vertices[0], vertices[1], vertices[2])
+    vertices = Vector3(*vertices[0]) - center, Vector3(*vertices[1]) - center, Vector3(*vertices[2]) - center
+    b.shape = Facet(color=color if color else randomColor(), wire=wire, highlight=highlight, vertices=vertices)
+    _commonBodySetup(b, 0, (0, 0, 0), material, noBound=noBound, pos=center, fixed=fixed)
+    b.aspherical = False
+    b.mask = mask
+    return b
+
+
+def aabbExtrema(cutoff=0.0, centers=False):
+    if cutoff != 0.0 or centers:
+        unsupported('aabbExtrema(cutoff, centers)')
+    e = _O()._sim.aabb_extrema()
+    if e is None:
+        raise RuntimeError('aabbExtrema: no spheres in the scene')
+    return Vector3(*e[0]), Vector3(*e[1])
+
+
+def aabbDim(cutoff=0., centers=False):
+    a, b = aabbExtrema(cutoff, centers)
+    return b - a
+
+
+def aabbWalls(extrema=None, thickness=0, oversizeFactor=1.5, **kw):
+    walls = []
+    if not extrema:
+        extrema = aabbExtrema()
+    for axis in [0, 1, 2]:
+        mi, ma = extrema
+        center = [(mi[i] + ma[i]) / 2. for i in range(3)]
+        extents = [.5 * oversizeFactor * (ma[i] - mi[i]) for i in range(3)]
+        extents[axis] = thickness / 2.
+        for j in [0, 1]:
+            center[axis] = extrema[j][axis] + (j - .5) * thickness
+            walls.append(box(center=center, extents=extents, fixed=True, **kw))
+            walls[-1].shape.wire = True
+    return walls
+
+
+def typedEngine(name):
+    return [e for e in _O().engines if e.__class__.__name__ == name][0]
+
+
+def PWaveTimeStep():
+    dt = _O()._sim.pwave_time_step()
+    if dt is None:
+        print('WARN: PWaveTimeStep: no spheres found, returning 1.0 (as YADE does)')
+        return 1.0
+    return dt
+
+
+def unbalancedForce(useMaxForce=False):
+    return _O()._sim.unbalanced_force(bool(useMaxForce))
+
+
+def kineticEnergy(findMaxId=False):
+    if findMaxId:
+        unsupported('kineticEnergy(findMaxId=True)')
+    return _O()._sim.kinetic_energy()
+
+
+def porosity(volume=-1):
+    return _O()._sim.porosity(float(volume) if volume > 0 else None)
+
+
+def voxelPorosity(resolution=200, start=Vector3(0, 0, 0), end=Vector3(0, 0, 0)):
+    O = _O()
+    spheres = [(tuple(b.state.pos), b.shape.radius) for b in O.bodies if isinstance(b.shape, Sphere) and b.dynamic]
+    return _ryade.voxel_porosity(spheres, int(resolution), to_vec3(start, 'start'), to_vec3(end, 'end'))
+
+
+def boxPorosity(lo, hi, periodicXY=None):
+    """ryade extension: porosity of an axis-aligned box from the exact sphere-box intersection volumes
+    (all spheres, periodic images in x and y when `periodicXY=(Lx, Ly)` is given)."""
+    O = _O()
+    spheres = [(tuple(b.state.pos), b.shape.radius) for b in O.bodies if isinstance(b.shape, Sphere)]
+    return _ryade.box_porosity(spheres, to_vec3(lo, 'lo'), to_vec3(hi, 'hi'), periodicXY)
+
+
+def avgNumInteractions(cutoff=0., skipFree=False, considerClumps=False):
+    if cutoff or skipFree or considerClumps:
+        unsupported('avgNumInteractions(cutoff, skipFree, considerClumps)')
+    O = _O()
+    n = sum(1 for b in O.bodies if b.dynamic and isinstance(b.shape, Sphere))
+    return 2.0 * O.interactions.countReal() / n if n else float('nan')
+
+
+def sumForces(ids, direction):
+    O = _O()
+    d = Vector3(*to_vec3(direction, 'direction'))
+    return sum(O.forces.f(i).dot(d) for i in ids)
+
+
+def sumTorques(ids, axis, axisPt):
+    unsupported('utils.sumTorques')
+
+
+def __getattr__(name):
+    """A YADE utils function ryade lacks fails with a clear message."""
+    if name.startswith('__'):
+        raise AttributeError(name)
+    unsupported('yade.utils.%s' % name)

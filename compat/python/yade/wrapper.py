@@ -1,0 +1,491 @@
+"""YADE's wrapper classes (engines, functors, materials, shapes) as thin attribute holders.
+
+Every class YADE 2023.02a has is known (``_yade_classes.json``, dumped from the installed YADE by
+``yade_ref/compat/dump_classes.py``): a class or attribute ryade implements works; one that exists in
+YADE but not in ryade raises ``UnsupportedError`` naming it and the script line; a name YADE does not
+have either raises the usual ``AttributeError``/``NameError``. Physics never happens here: engines are
+translated to the engine descriptions the Rust core reads (``_json``).
+"""
+
+import json
+import os
+
+from ._errors import unsupported
+
+with open(os.path.join(os.path.dirname(__file__), '_yade_classes.json')) as _f:
+    YADE_CLASSES = json.load(_f)
+
+
+def _yade_attrs(cls_name):
+    return set(YADE_CLASSES.get(cls_name, {}).get('attrs', ()))
+
+
+class Serializable(object):
+    """Base of every YADE object: keyword construction, `dict()`, unsupported attributes flagged."""
+
+    #: attribute -> default, for attributes ryade implements (or accepts as harmless: colours, labels)
+    _attrs = {}
+    #: names of positional constructor arguments
+    _positional = ()
+
+    def __init__(self, *args, **kw):
+        object.__setattr__(self, '_owner', None)
+        object.__setattr__(self, '_values', {})
+        for k, v in self._all_attrs().items():
+            self._values[k] = _copy_default(v)
+        if len(args) > len(self._positional):
+            raise TypeError('%s() takes at most %d positional arguments (%d given)' % (type(self).__name__, len(self._positional), len(args)))
+        for name, v in zip(self._positional, args):
+            setattr(self, name, v)
+        for k, v in kw.items():
+            setattr(self, k, v)
+
+    @classmethod
+    def _all_attrs(cls):
+        out = {}
+        for c in reversed(cls.__mro__):
+            out.update(c.__dict__.get('_attrs', {}))
+        return out
+
+    def __setattr__(self, k, v):
+        if k.startswith('_'):
+            object.__setattr__(self, k, v)
+            return
+        prop = getattr(type(self), k, None)
+        if isinstance(prop, property):
+            prop.__set__(self, v)
+            return
+        if k in self._all_attrs():
+            self._values[k] = self._convert(k, v)
+            self._changed(k)
+            return
+        self._missing(k)
+
+    def __getattr__(self, k):
+        if k.startswith('_'):
+            raise AttributeError(k)
+        vals = object.__getattribute__(self, '_values')
+        if k in vals:
+            return self._read(k)
+        self._missing(k)
+
+    def _missing(self, k):
+        name = type(self).__name__
+        if k in _yade_attrs(name) or any(k in _yade_attrs(b) for b in YADE_CLASSES.get(name, {}).get('bases', ())):
+            unsupported('the attribute %s.%s' % (name, k))
+        raise AttributeError("'%s' object has no attribute '%s'" % (name, k))
+
+    def _convert(self, k, v):
+        return v
+
+    def _read(self, k):
+        return self._values[k]
+
+    def _changed(self, k):
+        """Hook: an attribute changed (live engines forward it to the Rust core)."""
+
+    def dict(self):
+        return {k: getattr(self, k) for k in self._all_attrs()}
+
+    def __repr__(self):
+        return '<%s instance at %#x>' % (type(self).__name__, id(self))
+
+
+def _copy_default(v):
+    if isinstance(v, list):
+        return list(v)
+    if isinstance(v, dict):
+        return dict(v)
+    return v
+
+
+# ---------------------------------------------------------------- functors and engines
+
+class Functor(Serializable):
+    _attrs = {'label': ''}
+
+    def _json(self):
+        d = {'class': type(self).__name__}
+        for k in self._all_attrs():
+            if k != 'label':
+                d[k] = _jsonable(self._values[k])
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k != 'label':
+            unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k),
+                        'set it before assigning O.engines')
+
+
+class BoundFunctor(Functor):
+    pass
+
+
+class Bo1_Sphere_Aabb(BoundFunctor):
+    _attrs = {'aabbEnlargeFactor': -1.0}
+
+
+class Bo1_Facet_Aabb(BoundFunctor):
+    pass
+
+
+class Bo1_Box_Aabb(BoundFunctor):
+    pass
+
+
+class Bo1_Wall_Aabb(BoundFunctor):
+    pass
+
+
+class IGeomFunctor(Functor):
+    pass
+
+
+class Ig2_Sphere_Sphere_ScGeom(IGeomFunctor):
+    _attrs = {'interactionDetectionFactor': 1.0, 'avoidGranularRatcheting': True}
+
+
+class Ig2_Facet_Sphere_ScGeom(IGeomFunctor):
+    _attrs = {'shrinkFactor': 0.0, 'hertzian': False}
+
+    def _json(self):
+        if self._values['hertzian']:
+            unsupported('Ig2_Facet_Sphere_ScGeom.hertzian=True')
+        return {'class': 'Ig2_Facet_Sphere_ScGeom', 'shrinkFactor': self._values['shrinkFactor']}
+
+
+class Ig2_Wall_Sphere_ScGeom(IGeomFunctor):
+    _attrs = {'noRatch': True, 'hertzian': False}
+
+    def _json(self):
+        if self._values['hertzian']:
+            unsupported('Ig2_Wall_Sphere_ScGeom.hertzian=True')
+        return {'class': 'Ig2_Wall_Sphere_ScGeom', 'noRatch': self._values['noRatch']}
+
+
+class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
+    _attrs = {'interactionDetectionFactor': 1.0}
+
+
+class IPhysFunctor(Functor):
+    pass
+
+
+class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
+    _attrs = {'frictAngle': None, 'kn': None, 'ks': None}
+
+    def _json(self):
+        for k in ('frictAngle', 'kn', 'ks'):
+            if self._values[k] is not None:
+                unsupported('Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker)' % k)
+        return {'class': 'Ip2_FrictMat_FrictMat_FrictPhys'}
+
+
+class LawFunctor(Functor):
+    pass
+
+
+class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
+    _attrs = {'neverErase': False, 'sphericalBodies': True, 'traceEnergy': False}
+
+    def _json(self):
+        if self._values['traceEnergy']:
+            unsupported('Law2_ScGeom_FrictPhys_CundallStrack.traceEnergy', 'use O.trackEnergy=True')
+        return {'class': 'Law2_ScGeom_FrictPhys_CundallStrack', 'neverErase': self._values['neverErase'],
+                'sphericalBodies': self._values['sphericalBodies']}
+
+
+class Engine(Serializable):
+    _attrs = {'label': '', 'dead': False, 'ompThreads': -1}
+    #: attributes the Rust core can change on a live engine
+    _live = ()
+
+    def _bind(self, omega, index):
+        object.__setattr__(self, '_owner', (omega, index))
+
+    def _changed(self, k):
+        if self._owner is None:
+            return
+        omega, index = self._owner
+        if k == 'dead':
+            omega._sim.set_engine_dead(index, bool(self._values['dead']))
+        elif k in ('label', 'ompThreads'):
+            pass
+        elif k in self._live:
+            omega._sim.engine_set(index, k, json.dumps(_jsonable(self._values[k])))
+        elif self._is_builtin():
+            unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k))
+
+    def _is_builtin(self):
+        return True
+
+    def _json(self):
+        raise NotImplementedError
+
+
+class GlobalEngine(Engine):
+    pass
+
+
+class ForceResetter(GlobalEngine):
+    def _json(self):
+        return {'class': 'ForceResetter'}
+
+
+class InsertionSortCollider(GlobalEngine):
+    _attrs = {'verletDist': -0.5, 'allowBiggerThanPeriod': False, 'targetInterv': 100, 'minSweepDistFactor': 0.1,
+              'sortAxis': 0, 'sortThenCollide': False, 'overlapTolerance': 1e-7, 'avoidSelfInteractionMask': 0,
+              'doSort': False, 'smartInsertErase': False, 'keepListsShort': False}
+    _positional = ('_bounds',)
+    _live = ('verletDist', 'allowBiggerThanPeriod', 'doSort')
+
+    def __init__(self, *args, **kw):
+        object.__setattr__(self, '_bounds_list', [Bo1_Sphere_Aabb(), Bo1_Facet_Aabb(), Bo1_Box_Aabb()] if not args else None)
+        Serializable.__init__(self, *args, **kw)
+
+    def __setattr__(self, k, v):
+        if k == '_bounds':
+            object.__setattr__(self, '_bounds_list', list(v))
+            return
+        Serializable.__setattr__(self, k, v)
+
+    @property
+    def boundDispatcher(self):
+        return _Dispatcher(self._bounds_list)
+
+    def _json(self):
+        for k in ('smartInsertErase', 'keepListsShort'):
+            if self._values[k]:
+                unsupported('InsertionSortCollider.%s=True' % k)
+        d = {'class': 'InsertionSortCollider', 'bounds': [b._json() for b in self._bounds_list]}
+        for k in ('verletDist', 'allowBiggerThanPeriod', 'targetInterv', 'minSweepDistFactor', 'sortAxis',
+                  'sortThenCollide', 'overlapTolerance', 'avoidSelfInteractionMask'):
+            d[k] = self._values[k]
+        return d
+
+    def _read(self, k):
+        if k == 'verletDist' and self._owner is not None:
+            omega, index = self._owner
+            return json.loads(omega._sim.engine_get(index, 'verletDist'))
+        return self._values[k]
+
+    def _functors(self):
+        return list(self._bounds_list)
+
+
+class InteractionLoop(GlobalEngine):
+    _attrs = {'loopOnSortedInteractions': False, 'callbacks': []}
+    _positional = ('_geom', '_phys', '_law')
+
+    def __init__(self, *args, **kw):
+        if args and len(args) != 3:
+            raise TypeError('InteractionLoop takes exactly 3 lists of functors (geometry, physics, law)')
+        object.__setattr__(self, '_lists', [list(a) for a in args] if args else [[], [], []])
+        if not args:
+            object.__setattr__(self, '_lists', [[Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()],
+                                                [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]])
+        Serializable.__init__(self, **kw)
+
+    @property
+    def geomDispatcher(self):
+        return _Dispatcher(self._lists[0])
+
+    @property
+    def physDispatcher(self):
+        return _Dispatcher(self._lists[1])
+
+    @property
+    def lawDispatcher(self):
+        return _Dispatcher(self._lists[2])
+
+    def _json(self):
+        if self._values['loopOnSortedInteractions']:
+            unsupported('InteractionLoop.loopOnSortedInteractions')
+        if self._values['callbacks']:
+            unsupported('InteractionLoop.callbacks')
+        return {'class': 'InteractionLoop', 'geom': [f._json() for f in self._lists[0]],
+                'phys': [f._json() for f in self._lists[1]], 'law': [f._json() for f in self._lists[2]]}
+
+    def _functors(self):
+        return self._lists[0] + self._lists[1] + self._lists[2]
+
+
+class _Dispatcher(object):
+    def __init__(self, functors):
+        self.functors = functors
+
+
+class NewtonIntegrator(GlobalEngine):
+    _attrs = {'damping': 0.2, 'gravity': (0.0, 0.0, 0.0), 'dampGravity': True, 'exactAsphericalRot': True,
+              'kinSplit': False, 'mask': -1, 'warnNoForceReset': True, 'densityScaling': False}
+    _live = ('damping', 'gravity', 'dampGravity')
+
+    def _convert(self, k, v):
+        if k == 'gravity':
+            from .minieigen import to_vec3
+            return to_vec3(v, 'NewtonIntegrator.gravity')
+        return v
+
+    @property
+    def prevVelGrad(self):
+        from .minieigen import Matrix3
+        return Matrix3.Zero
+
+    def _read(self, k):
+        if k == 'gravity':
+            from .minieigen import Vector3
+            return Vector3(*self._values['gravity'])
+        if k == 'maxVelocitySq' and self._owner is not None:
+            omega, index = self._owner
+            return json.loads(omega._sim.engine_get(index, 'maxVelocitySq'))
+        return self._values[k]
+
+    def _json(self):
+        if self._values['kinSplit']:
+            unsupported('NewtonIntegrator.kinSplit')
+        if self._values['densityScaling']:
+            unsupported('NewtonIntegrator.densityScaling')
+        return {'class': 'NewtonIntegrator', 'damping': self._values['damping'], 'gravity': list(self._values['gravity']),
+                'dampGravity': self._values['dampGravity'], 'mask': self._values['mask']}
+
+
+class PeriodicEngine(GlobalEngine):
+    """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
+    (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
+    _attrs = {'iterPeriod': 0, 'virtPeriod': 0.0, 'realPeriod': 0.0, 'nDo': -1, 'initRun': False, 'firstIterRun': 0,
+              'nDone': 0, 'iterLast': 0, 'virtLast': 0.0, 'realLast': 0.0}
+
+    def _is_builtin(self):
+        return False
+
+    def _is_activated(self, omega):
+        import time as _t
+        v = self._values
+        virt_now, real_now, iter_now = omega.time, _t.time(), omega.iter
+        if v['firstIterRun'] > 0 and v['nDone'] == 0:
+            if v['firstIterRun'] == iter_now:
+                v['realLast'], v['virtLast'], v['iterLast'] = real_now, virt_now, iter_now
+                v['nDone'] += 1
+                return True
+            return False
+        if iter_now < v['iterLast']:
+            v['nDone'] = 0
+        if (v['nDo'] < 0 or v['nDone'] < v['nDo']) and (
+                (v['virtPeriod'] > 0 and virt_now - v['virtLast'] >= v['virtPeriod'])
+                or (v['realPeriod'] > 0 and real_now - v['realLast'] >= v['realPeriod'])
+                or (v['iterPeriod'] > 0 and iter_now - v['iterLast'] >= v['iterPeriod'])):
+            v['realLast'], v['virtLast'], v['iterLast'] = real_now, virt_now, iter_now
+            v['nDone'] += 1
+            return True
+        if v['nDone'] == 0:
+            v['realLast'], v['virtLast'], v['iterLast'] = real_now, virt_now, iter_now
+            v['nDone'] += 1
+            return bool(v['initRun'])
+        return False
+
+    def _json(self):
+        return {'class': 'External'}
+
+
+class PyRunner(PeriodicEngine):
+    """`PyRunner(command, iterPeriod, ...)`: `command` runs in the script's `__main__` globals."""
+    _attrs = {'command': '', 'ignoreErrors': False, 'updateGlobals': True}
+    _positional = ('iterPeriod', 'command')
+
+    def __init__(self, *args, **kw):
+        # YADE accepts PyRunner(command) and PyRunner(iterPeriod, command)
+        if len(args) == 1 and isinstance(args[0], str):
+            kw['command'] = args[0]
+            args = ()
+        Serializable.__init__(self, *args, **kw)
+
+    def _action(self, omega):
+        cmd = self._values['command']
+        if not cmd:
+            return
+        import __main__
+        try:
+            exec(compile(cmd, '<PyRunner %s>' % (self._values['label'] or 'command'), 'exec'), __main__.__dict__)
+        except Exception:
+            if not self._values['ignoreErrors']:
+                raise
+
+
+# ---------------------------------------------------------------- materials
+
+class Material(Serializable):
+    _attrs = {'label': '', 'id': -1, 'density': 1000.0}
+
+    def _bind(self, omega, rust_index):
+        object.__setattr__(self, '_owner', (omega, rust_index))
+
+    def _changed(self, k):
+        if self._owner is None or k in ('label', 'id'):
+            return
+        omega, idx = self._owner
+        omega._sim.material_set(idx, k, float(self._values[k]))
+
+
+class ElastMat(Material):
+    _attrs = {'young': 1e9, 'poisson': 0.25}
+
+
+class FrictMat(ElastMat):
+    _attrs = {'frictionAngle': 0.5}
+
+    def _json(self):
+        v = self._values
+        return {'class': 'FrictMat', 'id': v['id'], 'label': v['label'], 'young': float(v['young']),
+                'poisson': float(v['poisson']), 'frictionAngle': float(v['frictionAngle']), 'density': float(v['density'])}
+
+
+# ---------------------------------------------------------------- GUI stubs (harmless)
+
+class _GlStub(Serializable):
+    """OpenGL functor stubs: scripts set their static attributes for the GUI; nothing to do headless."""
+
+    def __setattr__(self, k, v):
+        object.__setattr__(self, k, v)
+
+    def __getattr__(self, k):
+        if k.startswith('_'):
+            raise AttributeError(k)
+        return None
+
+
+def _jsonable(v):
+    if isinstance(v, (list, tuple)):
+        return [_jsonable(x) for x in v]
+    if hasattr(v, '__len__') and hasattr(v, '__getitem__') and not isinstance(v, (str, dict)):
+        return [float(x) for x in v]
+    return v
+
+
+# ---------------------------------------------------------------- every other YADE class
+
+def _make_unsupported(name):
+    def __init__(self, *args, **kw):
+        unsupported('class %s' % name)
+    return type(name, (Serializable,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+
+
+_IMPLEMENTED = {c.__name__: c for c in [
+    Serializable, Functor, BoundFunctor, Bo1_Sphere_Aabb, Bo1_Facet_Aabb, Bo1_Box_Aabb, Bo1_Wall_Aabb, IGeomFunctor,
+    Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
+    Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
+    ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
+    ElastMat, FrictMat]}
+
+
+def all_classes():
+    """name -> class for every YADE class: ours where implemented, an UnsupportedError stub otherwise
+    (OpenGL `Gl1_*`/`GlExtra*` classes are harmless stubs for headless runs)."""
+    out = dict(_IMPLEMENTED)
+    for name in YADE_CLASSES:
+        if name in out:
+            continue
+        if name.startswith(('Gl1_', 'GlBound', 'GlShape', 'GlIGeom', 'GlIPhys', 'GlState', 'GlExtra', 'OpenGLRenderer')):
+            out[name] = type(name, (_GlStub,), {})
+        else:
+            out[name] = _make_unsupported(name)
+    return out

@@ -1,0 +1,607 @@
+//! `yade._ryade`: the pyo3 extension behind the `yade` compatibility package.
+//!
+//! The Python layer only translates YADE's API; every piece of physics stays in the `ryade` crate.
+//! State is addressed by body id and field name so that Python can build YADE's live views
+//! (`b.state.vel[2] = 0.1`) on top. A step is driven in segments (`advance`) so that Python engines
+//! (PyRunner) run between built-in engines without holding a borrow of the scene.
+
+use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use ryade::io::scene_json;
+use ryade::math::{Quat, Vec3};
+use ryade::scene::{Engine, Scene};
+use ryade::shape::Shape;
+use serde_json::Value;
+use std::collections::HashMap;
+
+type V3 = (f64, f64, f64);
+
+fn v3(v: &Vec3) -> V3 {
+    (v[0], v[1], v[2])
+}
+
+fn vec(t: V3) -> Vec3 {
+    Vec3::new(t.0, t.1, t.2)
+}
+
+fn err<E: std::fmt::Display>(e: E) -> PyErr {
+    PyRuntimeError::new_err(format!("{:#}", e))
+}
+
+#[pyclass(unsendable)]
+struct Sim {
+    scene: Scene,
+    saved: HashMap<String, Scene>,
+    /// Next engine to run in the step in progress (None: between steps).
+    cursor: Option<usize>,
+}
+
+impl Sim {
+    fn check_id(&self, id: usize) -> PyResult<()> {
+        if id >= self.scene.bodies.len() {
+            return Err(PyIndexError::new_err(format!(
+                "body id {} out of range (there are {} bodies)",
+                id,
+                self.scene.bodies.len()
+            )));
+        }
+        Ok(())
+    }
+
+    fn intr_index(&self, a: u32, b: u32) -> PyResult<usize> {
+        self.scene
+            .interactions
+            .find(a, b)
+            .ok_or_else(|| PyKeyError::new_err(format!("no interaction between #{} and #{}", a, b)))
+    }
+}
+
+#[pymethods]
+impl Sim {
+    #[new]
+    fn new() -> Self {
+        Sim { scene: Scene::default(), saved: HashMap::new(), cursor: None }
+    }
+
+    /// `O.reset()`: empty scene, no engines, dt = 1e-8.
+    fn reset(&mut self) {
+        self.scene = Scene::default();
+        self.cursor = None;
+    }
+
+    // ---- time ----
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.scene.dt
+    }
+    #[setter]
+    fn set_dt(&mut self, dt: f64) {
+        self.scene.dt = dt;
+    }
+    #[getter]
+    fn iter(&self) -> i64 {
+        self.scene.iter
+    }
+    #[setter]
+    fn set_iter(&mut self, i: i64) {
+        self.scene.iter = i;
+    }
+    #[getter]
+    fn time(&self) -> f64 {
+        self.scene.time
+    }
+    #[setter]
+    fn set_time(&mut self, t: f64) {
+        self.scene.time = t;
+    }
+    #[getter]
+    fn track_energy(&self) -> bool {
+        self.scene.track_energy
+    }
+    #[setter]
+    fn set_track_energy(&mut self, on: bool) {
+        self.scene.track_energy = on;
+    }
+    /// Energy terms tracked by the laws (YADE names).
+    fn energy(&self) -> HashMap<String, f64> {
+        let mut m = HashMap::new();
+        if self.scene.track_energy {
+            m.insert("plastDissip".into(), self.scene.energy.plast_dissip);
+            m.insert("elastPotential".into(), self.scene.energy.elast_potential);
+        }
+        m
+    }
+
+    // ---- materials ----
+    /// Add a material given as the scene-file JSON object; returns its internal index.
+    fn add_material(&mut self, json: &str) -> PyResult<usize> {
+        let v: Value = serde_json::from_str(json).map_err(err)?;
+        scene_json::material(&v, &mut self.scene.materials).map_err(err)
+    }
+    fn material_set(&mut self, idx: usize, key: &str, value: f64) -> PyResult<()> {
+        let m = self
+            .scene
+            .materials
+            .get_mut(idx)
+            .ok_or_else(|| PyIndexError::new_err(format!("no material #{}", idx)))?;
+        match key {
+            "young" => m.young = value,
+            "poisson" => m.poisson = value,
+            "frictionAngle" => m.friction_angle = value,
+            "density" => m.density = value,
+            _ => return Err(PyKeyError::new_err(format!("FrictMat has no attribute '{}' in ryade", key))),
+        }
+        Ok(())
+    }
+    fn material_index_of_body(&self, id: usize) -> PyResult<usize> {
+        self.check_id(id)?;
+        Ok(self.scene.bodies.material[id])
+    }
+
+    // ---- bodies ----
+    /// Add a body given as the scene-file JSON object; returns its id.
+    fn add_body(&mut self, json: &str) -> PyResult<usize> {
+        let v: Value = serde_json::from_str(json).map_err(err)?;
+        let spec = scene_json::body(&v, &mut self.scene.materials).map_err(err)?;
+        let id = self.scene.bodies.push(spec);
+        self.scene.forces.resize(self.scene.bodies.len());
+        Ok(id)
+    }
+    fn n_bodies(&self) -> usize {
+        self.scene.bodies.len()
+    }
+    fn get_vec3(&self, id: usize, field: &str) -> PyResult<V3> {
+        self.check_id(id)?;
+        let b = &self.scene.bodies;
+        Ok(match field {
+            "pos" => v3(&b.pos[id]),
+            "vel" => v3(&b.vel[id]),
+            "angVel" => v3(&b.ang_vel[id]),
+            "inertia" => v3(&b.inertia[id]),
+            _ => return Err(PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", field))),
+        })
+    }
+    fn set_vec3(&mut self, id: usize, field: &str, v: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        let b = &mut self.scene.bodies;
+        match field {
+            "pos" => b.pos[id] = vec(v),
+            "vel" => b.vel[id] = vec(v),
+            "angVel" => b.ang_vel[id] = vec(v),
+            "inertia" => b.inertia[id] = vec(v),
+            _ => return Err(PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", field))),
+        }
+        Ok(())
+    }
+    /// Orientation as (w, x, y, z).
+    fn get_ori(&self, id: usize) -> PyResult<(f64, f64, f64, f64)> {
+        self.check_id(id)?;
+        let q = self.scene.bodies.ori[id];
+        Ok((q.w, q.x, q.y, q.z))
+    }
+    fn set_ori(&mut self, id: usize, q: (f64, f64, f64, f64)) -> PyResult<()> {
+        self.check_id(id)?;
+        self.scene.bodies.ori[id] = Quat::new(q.0, q.1, q.2, q.3);
+        Ok(())
+    }
+    fn get_scalar(&self, id: usize, field: &str) -> PyResult<f64> {
+        self.check_id(id)?;
+        let b = &self.scene.bodies;
+        Ok(match field {
+            "mass" => b.mass[id],
+            "radius" => b.shape[id]
+                .sphere_radius()
+                .ok_or_else(|| PyKeyError::new_err(format!("body #{} is a {}, not a Sphere", id, b.shape[id].class_name())))?,
+            _ => return Err(PyKeyError::new_err(format!("no scalar attribute '{}' in ryade", field))),
+        })
+    }
+    fn set_scalar(&mut self, id: usize, field: &str, v: f64) -> PyResult<()> {
+        self.check_id(id)?;
+        let b = &mut self.scene.bodies;
+        match field {
+            "mass" => b.mass[id] = v,
+            "radius" => match &mut b.shape[id] {
+                Shape::Sphere { radius } => *radius = v,
+                s => return Err(PyKeyError::new_err(format!("body #{} is a {}, not a Sphere", id, s.class_name()))),
+            },
+            _ => return Err(PyKeyError::new_err(format!("no scalar attribute '{}' in ryade", field))),
+        }
+        Ok(())
+    }
+    fn get_int(&self, id: usize, field: &str) -> PyResult<i64> {
+        self.check_id(id)?;
+        let b = &self.scene.bodies;
+        Ok(match field {
+            "blockedDOFs" => b.blocked[id] as i64,
+            "mask" => b.mask[id] as i64,
+            "isDamped" => b.is_damped[id] as i64,
+            "bounded" => b.bounded[id] as i64,
+            _ => return Err(PyKeyError::new_err(format!("no integer attribute '{}' in ryade", field))),
+        })
+    }
+    fn set_int(&mut self, id: usize, field: &str, v: i64) -> PyResult<()> {
+        self.check_id(id)?;
+        let b = &mut self.scene.bodies;
+        match field {
+            "blockedDOFs" => {
+                if !(0..64).contains(&v) {
+                    return Err(PyValueError::new_err("blockedDOFs bits must be in 0..63"));
+                }
+                b.blocked[id] = v as u8
+            }
+            "mask" => b.mask[id] = v as i32,
+            "isDamped" => b.is_damped[id] = v != 0,
+            "bounded" => b.bounded[id] = v != 0,
+            _ => return Err(PyKeyError::new_err(format!("no integer attribute '{}' in ryade", field))),
+        }
+        Ok(())
+    }
+    /// The shape as the scene-file JSON object.
+    fn shape_json(&self, id: usize) -> PyResult<String> {
+        self.check_id(id)?;
+        let v = scene_json::to_value(&self.scene, 0);
+        Ok(v["bodies"][id]["shape"].to_string())
+    }
+
+    // ---- periodic cell ----
+    /// Set the cell (rows of hSize) or None for an aperiodic scene.
+    #[pyo3(signature = (hsize=None))]
+    fn set_cell(&mut self, hsize: Option<[[f64; 3]; 3]>) -> PyResult<()> {
+        self.scene.cell = match hsize {
+            None => None,
+            Some(h) => Some(
+                ryade::cell::Cell::new(ryade::math::Mat3::from_fn(|i, j| h[i][j])).map_err(err)?,
+            ),
+        };
+        Ok(())
+    }
+    fn get_cell(&self) -> Option<[[f64; 3]; 3]> {
+        self.scene.cell.as_ref().map(|c| {
+            let h = c.hsize;
+            [[h[(0, 0)], h[(0, 1)], h[(0, 2)]], [h[(1, 0)], h[(1, 1)], h[(1, 2)]], [h[(2, 0)], h[(2, 1)], h[(2, 2)]]]
+        })
+    }
+    fn cell_size(&self) -> Option<V3> {
+        self.scene.cell.as_ref().map(|c| v3(&c.size()))
+    }
+    fn cell_volume(&self) -> Option<f64> {
+        self.scene.cell.as_ref().map(|c| c.volume())
+    }
+    fn cell_wrap(&self, p: V3) -> PyResult<V3> {
+        let c = self.scene.cell.as_ref().ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
+        Ok(v3(&c.wrap_pt(&vec(p))))
+    }
+
+    // ---- engines ----
+    /// Replace the engine list (JSON array of scene-file engine objects; Python engines are
+    /// `{"class": "External", "id": k}`).
+    fn set_engines(&mut self, json: &str) -> PyResult<()> {
+        let v: Value = serde_json::from_str(json).map_err(err)?;
+        let arr = v.as_array().ok_or_else(|| PyValueError::new_err("engines must be a list"))?;
+        let engines: Vec<Engine> = arr.iter().map(scene_json::engine).collect::<Result<_, _>>().map_err(err)?;
+        self.scene.engine_dead = vec![false; engines.len()];
+        self.scene.engines = engines;
+        Ok(())
+    }
+    fn set_engine_dead(&mut self, idx: usize, dead: bool) -> PyResult<()> {
+        if idx >= self.scene.engines.len() {
+            return Err(PyIndexError::new_err(format!("no engine #{}", idx)));
+        }
+        self.scene.engine_dead.resize(self.scene.engines.len(), false);
+        self.scene.engine_dead[idx] = dead;
+        Ok(())
+    }
+    /// Change one attribute of a built-in engine (value as JSON) without resetting its state.
+    fn engine_set(&mut self, idx: usize, key: &str, json: &str) -> PyResult<()> {
+        let v: Value = serde_json::from_str(json).map_err(err)?;
+        let num = || v.as_f64().ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)));
+        let boolean = || v.as_bool().ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)));
+        let e = self.scene.engines.get_mut(idx).ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let unsupported = |cls: &str| PyKeyError::new_err(format!("changing {}.{} during a run is not supported by ryade yet", cls, key));
+        match e {
+            Engine::Newton(n) => match key {
+                "damping" => n.damping = num()?,
+                "gravity" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    n.gravity = vec(a)
+                }
+                "dampGravity" => n.damp_gravity = boolean()?,
+                _ => return Err(unsupported("NewtonIntegrator")),
+            },
+            Engine::Collider(c) => match key {
+                "verletDist" => c.p.verlet_dist = num()?,
+                "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
+                "doSort" => c.do_sort = boolean()?,
+                _ => return Err(unsupported("InsertionSortCollider")),
+            },
+            other => return Err(unsupported(other.class_name())),
+        }
+        Ok(())
+    }
+    /// Read an attribute of a built-in engine (JSON).
+    fn engine_get(&self, idx: usize, key: &str) -> PyResult<String> {
+        let e = self.scene.engines.get(idx).ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let v = match (e, key) {
+            (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
+            (Engine::Newton(n), "gravity") => serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]]),
+            (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
+            (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
+            (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
+            _ => return Err(PyKeyError::new_err(format!("{} has no readable attribute '{}' in ryade", e.class_name(), key))),
+        };
+        Ok(v.to_string())
+    }
+
+    // ---- stepping ----
+    /// Run the current step until the next live Python engine, whose id is returned; None when the
+    /// step is complete (iter and time then advanced).
+    fn advance(&mut self) -> PyResult<Option<u32>> {
+        let mut k = match self.cursor {
+            Some(k) => k,
+            None => {
+                self.scene.step_prologue().map_err(err)?;
+                0
+            }
+        };
+        while k < self.scene.engines.len() {
+            if !self.scene.is_dead(k) {
+                if let Engine::External(id) = self.scene.engines[k] {
+                    self.cursor = Some(k + 1);
+                    return Ok(Some(id));
+                }
+                if let Err(e) = self.scene.run_engine(k) {
+                    self.cursor = None;
+                    return Err(err(e));
+                }
+            }
+            k += 1;
+        }
+        self.scene.step_epilogue();
+        self.cursor = None;
+        Ok(None)
+    }
+    /// True while a step is half done (a Python engine is running).
+    fn in_step(&self) -> bool {
+        self.cursor.is_some()
+    }
+    /// Run `n` whole steps in Rust; fails if a live Python engine is in the list.
+    fn run_steps(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
+        if self.cursor.is_some() {
+            return Err(PyRuntimeError::new_err("run_steps called in the middle of a step"));
+        }
+        let scene = &mut self.scene;
+        py.allow_threads(|| {
+            for _ in 0..n {
+                scene.step().map_err(|e| e.to_string())?;
+            }
+            Ok::<(), String>(())
+        })
+        .map_err(PyRuntimeError::new_err)
+    }
+
+    // ---- forces ----
+    fn force(&self, id: usize) -> PyResult<V3> {
+        self.check_id(id)?;
+        Ok(self.scene.forces.force.get(id).map(v3).unwrap_or((0.0, 0.0, 0.0)))
+    }
+    fn torque(&self, id: usize) -> PyResult<V3> {
+        self.check_id(id)?;
+        Ok(self.scene.forces.torque.get(id).map(v3).unwrap_or((0.0, 0.0, 0.0)))
+    }
+    fn add_force(&mut self, id: usize, f: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        self.scene.forces.resize(self.scene.bodies.len());
+        self.scene.forces.add_force(id, &vec(f));
+        Ok(())
+    }
+    fn add_torque(&mut self, id: usize, t: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        self.scene.forces.resize(self.scene.bodies.len());
+        self.scene.forces.add_torque(id, &vec(t));
+        Ok(())
+    }
+    fn set_perm_force(&mut self, id: usize, f: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        self.scene.forces.resize(self.scene.bodies.len());
+        self.scene.forces.perm_force[id] = vec(f);
+        self.scene.forces.perm_used = true;
+        Ok(())
+    }
+    fn set_perm_torque(&mut self, id: usize, t: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        self.scene.forces.resize(self.scene.bodies.len());
+        self.scene.forces.perm_torque[id] = vec(t);
+        self.scene.forces.perm_used = true;
+        Ok(())
+    }
+
+    // ---- interactions ----
+    /// (id1, id2) of the interactions in container order, real ones only unless `only_real` is false.
+    fn intr_list(&self, only_real: bool) -> Vec<(u32, u32)> {
+        self.scene
+            .interactions
+            .list
+            .iter()
+            .filter(|i| !only_real || i.is_real())
+            .map(|i| (i.id1, i.id2))
+            .collect()
+    }
+    fn intr_count_real(&self) -> usize {
+        self.scene.interactions.count_real()
+    }
+    fn intr_exists(&self, a: u32, b: u32) -> bool {
+        self.scene.interactions.find(a, b).is_some()
+    }
+    /// One attribute of an interaction's geometry or physics, as a float or a 3-tuple.
+    fn intr_get(&self, py: Python<'_>, a: u32, b: u32, field: &str) -> PyResult<PyObject> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let no = |what: &str| PyKeyError::new_err(format!("interaction #{}+#{} has no {} (it is not real)", a, b, what));
+        Ok(match field {
+            "id1" => it.id1.into_pyobject(py)?.into_any().unbind(),
+            "id2" => it.id2.into_pyobject(py)?.into_any().unbind(),
+            "isReal" => it.is_real().into_pyobject(py)?.to_owned().into_any().unbind(),
+            "iterMadeReal" => it.iter_made_real.into_pyobject(py)?.into_any().unbind(),
+            "iterBorn" => it.iter_born.into_pyobject(py)?.into_any().unbind(),
+            "cellDist" => (it.cell_dist[0], it.cell_dist[1], it.cell_dist[2]).into_pyobject(py)?.into_any().unbind(),
+            "normal" | "penetrationDepth" | "contactPoint" | "shearInc" | "refR1" | "refR2" => {
+                let g = it.geom.as_ref().ok_or_else(|| no("geom"))?;
+                match field {
+                    "normal" => v3(&g.normal).into_pyobject(py)?.into_any().unbind(),
+                    "penetrationDepth" => g.pen.into_pyobject(py)?.into_any().unbind(),
+                    "contactPoint" => v3(&g.contact_point).into_pyobject(py)?.into_any().unbind(),
+                    "shearInc" => v3(&g.shear_inc).into_pyobject(py)?.into_any().unbind(),
+                    "refR1" => g.radius1.into_pyobject(py)?.into_any().unbind(),
+                    _ => g.radius2.into_pyobject(py)?.into_any().unbind(),
+                }
+            }
+            "normalForce" | "shearForce" | "kn" | "ks" | "tangensOfFrictionAngle" => {
+                let p = it.phys.as_ref().ok_or_else(|| no("phys"))?;
+                match field {
+                    "normalForce" => v3(&p.normal_force).into_pyobject(py)?.into_any().unbind(),
+                    "shearForce" => v3(&p.shear_force).into_pyobject(py)?.into_any().unbind(),
+                    "kn" => p.kn.into_pyobject(py)?.into_any().unbind(),
+                    "ks" => p.ks.into_pyobject(py)?.into_any().unbind(),
+                    _ => p.tan_phi.into_pyobject(py)?.into_any().unbind(),
+                }
+            }
+            _ => return Err(PyKeyError::new_err(format!("interactions have no attribute '{}' in ryade", field))),
+        })
+    }
+    fn intr_set_vec3(&mut self, a: u32, b: u32, field: &str, v: V3) -> PyResult<()> {
+        let k = self.intr_index(a, b)?;
+        let it = &mut self.scene.interactions.list[k];
+        let p = it.phys.as_mut().ok_or_else(|| PyKeyError::new_err("the interaction is not real"))?;
+        match field {
+            "normalForce" => p.normal_force = vec(v),
+            "shearForce" => p.shear_force = vec(v),
+            _ => return Err(PyKeyError::new_err(format!("setting interaction attribute '{}' is not supported by ryade yet", field))),
+        }
+        Ok(())
+    }
+
+    // ---- utils ----
+    fn pwave_time_step(&self) -> Option<f64> {
+        ryade::utils::pwave_time_step(&self.scene)
+    }
+    fn unbalanced_force(&self, use_max: bool) -> f64 {
+        ryade::utils::unbalanced_force(&self.scene, use_max)
+    }
+    #[pyo3(signature = (volume=None))]
+    fn porosity(&self, volume: Option<f64>) -> PyResult<f64> {
+        ryade::utils::porosity(&self.scene, volume).map_err(err)
+    }
+    fn kinetic_energy(&self) -> f64 {
+        ryade::utils::kinetic_energy(&self.scene)
+    }
+    fn aabb_extrema(&self) -> Option<(V3, V3)> {
+        ryade::utils::aabb_extrema(&self.scene).map(|(a, b)| (v3(&a), v3(&b)))
+    }
+    fn check_time_step(&self) -> PyResult<()> {
+        ryade::utils::check_time_step(&self.scene).map_err(PyValueError::new_err)
+    }
+
+    // ---- whole scene ----
+    fn save_tmp(&mut self, name: &str) {
+        self.saved.insert(name.to_string(), self.scene.clone());
+    }
+    fn load_tmp(&mut self, name: &str) -> PyResult<()> {
+        let s = self
+            .saved
+            .get(name)
+            .ok_or_else(|| PyKeyError::new_err(format!("no scene saved with O.saveTmp('{}')", name)))?;
+        self.scene = s.clone();
+        self.cursor = None;
+        Ok(())
+    }
+    fn scene_json(&self, steps: u64) -> String {
+        scene_json::to_value(&self.scene, steps).to_string()
+    }
+}
+
+fn spheres_of(spheres: Vec<(V3, f64)>) -> Vec<(Vec3, f64)> {
+    spheres.into_iter().map(|(c, r)| (vec(c), r)).collect()
+}
+
+/// Exact sphere-box intersection porosity (periodic images in x, y when given).
+#[pyfunction]
+#[pyo3(signature = (spheres, lo, hi, periodic_xy=None))]
+fn box_porosity(spheres: Vec<(V3, f64)>, lo: V3, hi: V3, periodic_xy: Option<(f64, f64)>) -> f64 {
+    ryade::porosity::box_porosity(&spheres_of(spheres), &vec(lo), &vec(hi), periodic_xy)
+}
+
+/// `utils.voxelPorosity` (dynamic spheres only, as YADE).
+#[pyfunction]
+fn voxel_porosity(spheres: Vec<(V3, f64)>, resolution: i32, start: V3, end: V3) -> PyResult<f64> {
+    ryade::porosity::voxel_porosity(&spheres_of(spheres), resolution, &vec(start), &vec(end)).map_err(err)
+}
+
+/// Result of `make_cloud`: (count, spheres, cell_size, is_periodic, applied_psd_scaling, warnings).
+type CloudOut = (usize, Vec<(V3, f64)>, Option<V3>, bool, f64, Vec<String>);
+
+/// `SpherePack.makeCloud` on a pack holding `spheres` (bit-exact with YADE for seed >= 0).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (spheres, cell_size, min_corner, max_corner, r_mean, r_rel_fuzz, num, periodic, porosity, psd_sizes, psd_cumm, distribute_mass, seed, h_size))]
+fn make_cloud(
+    spheres: Vec<(V3, f64)>,
+    cell_size: Option<V3>,
+    min_corner: V3,
+    max_corner: V3,
+    r_mean: f64,
+    r_rel_fuzz: f64,
+    num: i32,
+    periodic: bool,
+    porosity: f64,
+    psd_sizes: Vec<f64>,
+    psd_cumm: Vec<f64>,
+    distribute_mass: bool,
+    seed: i32,
+    h_size: Option<[[f64; 3]; 3]>,
+) -> PyResult<CloudOut> {
+    let mut sp = ryade::pack::SpherePack::new();
+    for (c, r) in spheres {
+        sp.add(vec(c), r);
+    }
+    sp.cell_size = cell_size.map(vec);
+    sp.is_periodic = cell_size.is_some();
+    let p = ryade::pack::CloudParams {
+        min_corner: vec(min_corner),
+        max_corner: vec(max_corner),
+        r_mean,
+        r_rel_fuzz,
+        num,
+        periodic,
+        porosity,
+        psd_sizes,
+        psd_cumm,
+        distribute_mass,
+        seed,
+        h_size: h_size.map(|h| ryade::math::Mat3::from_fn(|i, j| h[i][j])),
+    };
+    let n = sp.make_cloud(&p).map_err(|e| PyValueError::new_err(format!("makeCloud: {:#}", e)))?;
+    Ok((
+        n,
+        sp.spheres.iter().map(|(c, r)| (v3(c), *r)).collect(),
+        sp.cell_size.map(|c| v3(&c)),
+        sp.is_periodic,
+        sp.applied_psd_scaling,
+        sp.warnings.clone(),
+    ))
+}
+
+/// `Shop::inscribedCircleCenter`, in YADE's evaluation order.
+#[pyfunction]
+fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
+    v3(&ryade::utils::inscribed_circle_center(&vec(v0), &vec(v1), &vec(v2)))
+}
+
+#[pymodule]
+fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Sim>()?;
+    m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
+    m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
+    m.add_function(wrap_pyfunction!(make_cloud, m)?)?;
+    m.add_function(wrap_pyfunction!(inscribed_circle_center, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Run every reference script of yade_ref/{micro,meso,pack} UNCHANGED under `compat run` (ryade's
+# YADE-compatible Python layer) and require the files it writes to equal YADE's goldens
+# (decompressed content, byte for byte).
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/.." && pwd)"
+COMPAT="${COMPAT:-$ROOT/target/release/compat}"
+TMP="$(mktemp -d "${TMPDIR:-/tmp}/ryade_check_compat.XXXXXX")"
+trap 'rm -rf "$TMP"' EXIT
+content() { case "$1" in *.gz) gzip -dc -- "$1" ;; *) cat -- "$1" ;; esac; }
+bad=0; n=0
+for kind in micro meso pack; do
+  mkdir -p "$TMP/$kind"
+  for s in "$HERE/$kind"/*.py; do
+    name="$(basename "$s" .py)"
+    t0=$(date +%s.%N)
+    if ! "$COMPAT" run "$s" "$TMP/$kind" >"$TMP/$kind.$name.log" 2>&1; then
+      echo "FAILED   $kind/$name.py under compat run:"; tail -n 15 "$TMP/$kind.$name.log"; bad=1; continue
+    fi
+    printf '%-6s %-14s %6.2fs\n' "$kind" "$name" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{print b-a}')"
+  done
+  for g in "$ROOT/golden/$kind"/*; do
+    f="$(basename "$g")"; t="$TMP/$kind/$f"; n=$((n + 1))
+    if [[ ! -f "$t" ]]; then echo "MISSING  $kind/$f (not written under compat run)"; bad=1
+    elif cmp -s <(content "$g") <(content "$t"); then :
+    else echo "DIFFERS  $kind/$f"; bad=1; fi
+  done
+done
+if [[ $bad -ne 0 ]]; then echo "check_compat: FAILED ($n golden files)"; exit 1; fi
+echo "check_compat: all $n golden files reproduced by compat run"
