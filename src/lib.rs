@@ -23,4 +23,5 @@ pub mod porosity;
 pub mod scene;
 pub mod shape;
 pub mod stdsort;
+pub mod timestepper;
 pub mod utils;

@@ -50,6 +50,7 @@ pub enum Engine {
     Collider(Box<Collider>),
     InteractionLoop(Box<InteractionLoop>),
     Newton(Box<Newton>),
+    TimeStepper(Box<crate::timestepper::GlobalStiffnessTimeStepper>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -62,6 +63,7 @@ impl Engine {
             Engine::Collider(_) => "InsertionSortCollider",
             Engine::InteractionLoop(_) => "InteractionLoop",
             Engine::Newton(_) => "NewtonIntegrator",
+            Engine::TimeStepper(_) => "GlobalStiffnessTimeStepper",
             Engine::External(_) => "External",
         }
     }
@@ -226,6 +228,15 @@ impl Scene {
                 self.forces.sync();
                 n.step(&mut self.bodies, &self.forces, self.cell.as_mut(), self.dt)
                     .map_err(|e| self.newton_error(e))
+            }
+            Engine::TimeStepper(ts) => {
+                if ts.is_activated(self.iter) {
+                    let pwave = crate::utils::pwave_time_step(self).unwrap_or(1.0);
+                    if let Some(dt) = ts.compute(&self.bodies, &self.interactions, pwave) {
+                        self.dt = dt;
+                    }
+                }
+                Ok(())
             }
             Engine::External(_) => Ok(()),
         };

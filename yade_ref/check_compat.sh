@@ -10,9 +10,10 @@ TMP="$(mktemp -d "${TMPDIR:-/tmp}/ryade_check_compat.XXXXXX")"
 trap 'rm -rf "$TMP"' EXIT
 content() { case "$1" in *.gz) gzip -dc -- "$1" ;; *) cat -- "$1" ;; esac; }
 bad=0; n=0
-for kind in micro meso pack; do
+for kind in micro meso pack examples; do
   mkdir -p "$TMP/$kind"
   for s in "$HERE/$kind"/*.py; do
+    [[ $kind == examples ]] && break
     name="$(basename "$s" .py)"
     t0=$(date +%s.%N)
     if ! "$COMPAT" run "$s" "$TMP/$kind" >"$TMP/$kind.$name.log" 2>&1; then
@@ -20,6 +21,9 @@ for kind in micro meso pack; do
     fi
     printf '%-6s %-14s %6.2fs\n' "$kind" "$name" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{print b-a}')"
   done
+  if [[ $kind == examples ]]; then
+    "$HERE/examples/run_all.sh" compat "$TMP/examples" || bad=1
+  fi
   for g in "$ROOT/golden/$kind"/*; do
     f="$(basename "$g")"; t="$TMP/$kind/$f"; n=$((n + 1))
     if [[ ! -f "$t" ]]; then echo "MISSING  $kind/$f (not written under compat run)"; bad=1

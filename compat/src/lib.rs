@@ -308,6 +308,15 @@ impl Sim {
                 "dampGravity" => n.damp_gravity = boolean()?,
                 _ => return Err(unsupported("NewtonIntegrator")),
             },
+            Engine::TimeStepper(t) => match key {
+                "active" => t.active = boolean()?,
+                "timeStepUpdateInterval" => t.time_step_update_interval = num()? as u32,
+                "defaultDt" => t.default_dt = num()?,
+                "maxDt" => t.max_dt = num()?,
+                "timestepSafetyCoefficient" => t.timestep_safety_coefficient = num()?,
+                "previousDt" => t.previous_dt = num()?,
+                _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
+            },
             Engine::Collider(c) => match key {
                 "verletDist" => c.p.verlet_dist = num()?,
                 "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
@@ -327,6 +336,9 @@ impl Sim {
             (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
             (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
             (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
+            (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
+            (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
+            (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
             _ => return Err(PyKeyError::new_err(format!("{} has no readable attribute '{}' in ryade", e.class_name(), key))),
         };
         Ok(v.to_string())

@@ -18,9 +18,28 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, '..', 'python'))
 
-from yade import minieigen as me  # noqa: E402
-from yade.minieigen import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i,  # noqa: E402
-                            Vector3, Vector3i, Vector6, to_vec3)
+
+
+def _load_minieigen():
+    """yade.minieigen; loaded from its file if the yade package itself cannot be imported
+    (e.g. the native extension is not built): the module has no dependencies."""
+    try:
+        from yade import minieigen
+        return minieigen
+    except Exception:  # noqa: BLE001
+        import importlib.util
+        path = os.path.join(HERE, '..', 'python', 'yade', 'minieigen.py')
+        spec = importlib.util.spec_from_file_location('_minieigen_standalone', path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = mod          # so that pickling finds the classes
+        spec.loader.exec_module(mod)
+        return mod
+
+
+me = _load_minieigen()
+Matrix3, Matrix6, Quaternion = me.Matrix3, me.Matrix6, me.Quaternion
+Vector2, Vector2i, Vector3, Vector3i, Vector6 = me.Vector2, me.Vector2i, me.Vector3, me.Vector3i, me.Vector6
+to_vec3 = me.to_vec3
 
 with open(os.path.join(HERE, 'data', 'minieigen_expect.json')) as _f:
     EXPECT = json.load(_f)
@@ -46,16 +65,19 @@ def floats_of(r):
 
 def evaluate(expr):
     ns = {'math': math, 'pickle': pickle, 'copy': copy}
-    exec('from yade.minieigen import *', ns)
+    ns.update((k, getattr(me, k)) for k in me.__all__)      # = from yade.minieigen import *
     parts = expr.split(';')
     for stmt in parts[:-1]:
         exec(stmt.strip(), ns)
     return eval(parts[-1].strip(), ns)
 
 
-# Results that legitimately differ from YADE (documented in minieigen.py / the report).
+# Deliberate, documented differences from YADE: expr -> (what yade.minieigen gives, why).
 KNOWN_DIFFERENT = {
-    # Matrix6.inverse(): Eigen uses a blocked triangular solve; ours is plain substitution.
+    'Vector3(1,2,3).norm(1)': (
+        'ERROR:TypeError',
+        'a wrong number of arguments to a method raises plain TypeError (Python\'s own), not '
+        'Boost.Python\'s ArgumentError, which is a TypeError subclass'),
 }
 
 
@@ -67,6 +89,8 @@ def test_battery_size():
 @pytest.mark.parametrize('expr', ORDER)
 def test_against_yade(expr):
     want = EXPECT['results'][expr]
+    if expr in KNOWN_DIFFERENT:
+        want = KNOWN_DIFFERENT[expr][0]
     try:
         r = evaluate(expr)
     except Exception as ex:  # noqa: BLE001 - the exception type is what is compared
@@ -74,8 +98,6 @@ def test_against_yade(expr):
         assert got == want, '%s raised %r' % (expr, ex)
         return
     got = repr(r)
-    if expr in KNOWN_DIFFERENT:
-        pytest.skip(KNOWN_DIFFERENT[expr])
     assert got == want
     assert floats_of(r) == EXPECT['floats'].get(expr, [])
 
@@ -283,7 +305,8 @@ def test_to_vec3_numpy():
     np = pytest.importorskip('numpy')
     assert to_vec3(np.array([1.0, 2.0, 3.0]), 'x') == (1.0, 2.0, 3.0)
     assert Vector3(np.array([1, 2, 3])) == Vector3(1, 2, 3)
-    assert Vector3(1, 2, 3) + np.float64(0.5) * Vector3(2, 2, 2) == Vector3(2, 3, 4) or True
+    assert Vector3(1, 2, 3) * np.float64(0.5) == Vector3(0.5, 1, 1.5)
+    assert Vector3(1, 2, 3) == np.array([1.0, 2.0, 3.0]).tolist()
 
 
 def test_argument_error_is_type_error():

@@ -350,6 +350,19 @@ pub fn engine(e: &Value) -> Result<Engine> {
             }
             Engine::InteractionLoop(Box::new(il))
         }
+        "GlobalStiffnessTimeStepper" => {
+            if bo(e, "densityScaling", false)? || bo(e, "viscEl", false)? {
+                bail!("GlobalStiffnessTimeStepper with densityScaling or viscEl is not supported by ryade yet");
+            }
+            Engine::TimeStepper(Box::new(crate::timestepper::GlobalStiffnessTimeStepper {
+                active: bo(e, "active", true)?,
+                time_step_update_interval: fo(e, "timeStepUpdateInterval", 1.0)? as u32,
+                default_dt: fo(e, "defaultDt", -1.0)?,
+                max_dt: fo(e, "maxDt", f64::MAX)?,
+                timestep_safety_coefficient: fo(e, "timestepSafetyCoefficient", 0.8)?,
+                ..Default::default()
+            }))
+        }
         "NewtonIntegrator" => Engine::Newton(Box::new(Newton {
             damping: fo(e, "damping", 0.2)?,
             gravity: if e.get("gravity").is_some() { vec3(e, "gravity")? } else { Vec3::zeros() },
@@ -436,6 +449,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
             Engine::Newton(n) => json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask}),
+            Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
+                "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
+                "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner
             Engine::External(id) => json!({"class": "External", "id": id}),
         })

@@ -553,6 +553,52 @@ Matrix6.Identity*2
 Matrix6.Identity+Matrix6.Ones
 Matrix6.Identity==Matrix6.Identity
 len(Matrix6.Identity)
+Quaternion(u=(1,0,0),v=(0,1,0))
+Quaternion((1,0,0),v=(0,1,0))
+Quaternion(1,axis=(1,0,0))
+Quaternion((1,0,0),angle=1)
+Quaternion(foo=1,bar=2)
+-Quaternion(1,2,3,4)
+Quaternion(1,2,3,4).dot(Quaternion(1,2,3,4))
+Quaternion(1,2,3,4)*Matrix3.Identity
+Quaternion(1,2,3,4)*(1,2)
+Vector3(range(3))
+Vector3(x for x in (1,2,3))
+Vector3({1:2})
+Vector3(1,2,3)==(1,2)
+Vector3(*Vector3(1,2,3))
+Vector3(1,2,3) in [Vector3(0,0,0),Vector3(1,2,3)]
+max(Vector3(1,5,3))
+sum(Vector3(0.1,0.2,0.3))
+'%g %g %g'%tuple(Vector3(0.1,2,3))
+'{}'.format(Vector3(0.1,2,3))
+format(Vector3(1,2,3),'.3f')
+Vector3(0.1,0.2,0.3).normalized().norm()
+Vector3(1,2,3).dot(Vector3(1,2,3).cross(Vector3(0.1,0.2,0.3)))
+Vector3(1,2,3).norm(1)
+Vector3(1,2,3).x
+Vector3i(True,False,1)
+Vector3i(1,2,3)*Vector3i(1,2,3)
+Vector3i(1,2,3)*True
+Matrix3(1,2,3,4,5,6,7,8,9)*Vector3i(1,1,1)
+Matrix3(1,2,3,4,5,6,7,8,9)*[1,1,1]
+Matrix3(1,2,3,4,5,6,7,8,9)*((1,0,0),(0,1,0),(0,0,1))
+[r for r in Matrix3(1,2,3,4,5,6,7,8,9)]
+Matrix3(1,2,3,4,5,6,7,8,9)[0]*2
+m=Matrix3(1,2,3,4,5,6,7,8,9); m[1]=Vector3(0.1,0.2,0.3); m
+m=Matrix3(1,2,3,4,5,6,7,8,9); m[1]=(1,2); m
+m=Matrix3(1,2,3,4,5,6,7,8,9); m[1,1]='a'; m
+m=Matrix3(1,2,3,4,5,6,7,8,9); m+=1; m
+Matrix3(1,2,3,4,5,6,7,8,9).row(1.0)
+Matrix3(1,2,3,4,5,6,7,8,9).transpose().transpose()==Matrix3(1,2,3,4,5,6,7,8,9)
+Matrix3(0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,1.9).inverse()*Matrix3(0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,1.9)
+Quaternion((0.2,-0.3,0.7),1.1).toRotationMatrix()*Vector3(1,2,3)
+Quaternion((0.2,-0.3,0.7),1.1).toRotationMatrix().determinant()
+Quaternion((0.2,-0.3,0.7),1.1).toRotationMatrix().transpose()*Quaternion((0.2,-0.3,0.7),1.1).toRotationMatrix()
+Vector6(1,2,3,4,5,6)==(1,2,3,4,5,6)
+Vector6(1,2,3,4,5,6).head()+Vector6(1,2,3,4,5,6).tail()
+Matrix6.Identity.ul().determinant()
+Matrix6.Identity.__len__()
 '''
 
 # Expressions whose YADE result is not bit-reproducible by design (uninitialised memory,

@@ -670,12 +670,11 @@ class Omega(object):
         self._default_engines()
 
     def _default_engines(self):
-        """A fresh YADE `O` has a default engine list (core.md §1); ryade lacks its
-        GlobalStiffnessTimeStepper, so using it unchanged fails when the first step runs."""
-        from .wrapper import ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator
-        self._engines_default = True
-        self.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop(), NewtonIntegrator(damping=0.2)]
-        self._engines_default = True
+        """A fresh YADE `O` has a default engine list (core.md §1); `O.reset()` empties it."""
+        from .wrapper import (ForceResetter, GlobalStiffnessTimeStepper, InsertionSortCollider, InteractionLoop,
+                              NewtonIntegrator)
+        self.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop(), GlobalStiffnessTimeStepper(),
+                        NewtonIntegrator(damping=0.2)]
 
     # ---- time ----
     dt = property(lambda self: self._sim.dt, lambda self, v: setattr(self._sim, 'dt', float(v)))
@@ -693,7 +692,13 @@ class Omega(object):
 
     @property
     def usesTimeStepper(self):
-        return False
+        return any(type(e).__name__ == 'GlobalStiffnessTimeStepper' and e.active for e in self._engines)
+
+    @usesTimeStepper.setter
+    def usesTimeStepper(self, v):
+        for e in self._engines:
+            if type(e).__name__ == 'GlobalStiffnessTimeStepper':
+                e.active = bool(v)
 
     @property
     def cell(self):
@@ -735,7 +740,6 @@ class Omega(object):
         self._apply_engines(lst)
 
     def _apply_engines(self, lst):
-        self._engines_default = False
         specs, external = [], []
         for e in lst:
             d = e._json()
@@ -770,9 +774,6 @@ class Omega(object):
         if self._pending_engines is not None:
             lst, self._pending_engines = self._pending_engines, None
             self._apply_engines(lst)
-        if self._engines_default and self._engines:
-            unsupported("YADE's default engine list (it contains GlobalStiffnessTimeStepper)",
-                        'assign O.engines explicitly')
         sim = self._sim
         while True:
             ext = sim.advance()
@@ -800,7 +801,7 @@ class Omega(object):
         self._paused = False
         target = self.iter + n if n > 0 else None
         if not self._external and not self._pending_engines and target is not None and self.stopAtIter <= 0 \
-                and self.stopAtTime <= 0 and not self._engines_default:
+                and self.stopAtTime <= 0:
             self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
             return
         if target is None and self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
@@ -835,7 +836,6 @@ class Omega(object):
         self.bodies = BodyContainer(self)
         self.materials = MaterialContainer(self)
         self._engines, self._external, self._pending_engines = [], [], None
-        self._engines_default = False
         self.tags = {}
 
     def resetTime(self):

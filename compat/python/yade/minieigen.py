@@ -9,11 +9,28 @@ precision, no FMA, no vectorisation) does, including
   (``a0 + (a1 + a2)`` for three terms, ``(a0 + a1) + (a2 + a3)`` for four,
   recursive halving in general), so that e.g. ``v.norm()`` is bit-identical;
 * the quirks of minieigen: negative indices raise ``IndexError``, division by
-  zero gives ``inf``/``nan`` instead of raising, ``v += w`` modifies ``v`` in
-  place (aliases see the change), ``Vector3.Zero`` is a fresh object on every
-  access, tuples/lists are accepted wherever a vector is expected, wrong
-  argument types raise ``ArgumentError`` (a ``TypeError`` subclass, as
-  Boost.Python's).
+  zero gives ``inf``/``nan`` instead of raising, ``a += b`` (and ``-=``, ``*=``,
+  ``/=``) modifies the object in place, so aliases see the change, but rebinds
+  ``a`` to a new equal object (``a is alias`` is False afterwards, as in YADE);
+  ``Vector3.Zero`` & co. are fresh objects on every access; tuples/lists are
+  accepted wherever a vector (or a Matrix3: 9 numbers or 3 rows) is expected;
+  wrong argument types raise ``ArgumentError`` (a ``TypeError`` subclass, as
+  Boost.Python's); ``vector * matrix`` computes ``matrix * vector``;
+  ``Quaternion(axis, angle)`` normalises the quaternion (not the axis); the
+  repr of a quaternion is its angle-axis form computed as Eigen does.
+
+Not provided (the error a script gets): ``VectorX``/``MatrixX``/complex types,
+``AlignedBox*``, ``Vector*.pruned()`` (crashes YADE with an Eigen assertion)
+and ``Quaternion - Quaternion`` (gives a VectorX in YADE) -> ``AttributeError``
+/ ``TypeError``; Matrix3/Matrix6 ``jacobiSVD``, ``svd``,
+``polarDecomposition``, ``selfAdjointEigenDecomposition``,
+``spectralDecomposition``, ``computeUnitaryPositive`` -> ``NotImplementedError``.
+``Quaternion(u, v)``/``setFromTwoVectors`` for exactly opposite ``u``, ``v``
+picks a valid but not necessarily Eigen's rotation axis (Eigen uses an SVD).
+A wrong number of arguments to a method raises Python's ``TypeError`` instead
+of ``ArgumentError``.  Uninitialised default values (``Quaternion()``,
+``Matrix3()``, ``Vector2()``, ``Vector6()`` hold garbage in YADE) are the
+identity / zero here.
 
 Live views
 ----------
@@ -48,7 +65,6 @@ _EPS = sys.float_info.epsilon          # NumTraits<double>::epsilon()
 _DUMMY = 1e-12                         # NumTraits<double>::dummy_precision()
 _DBL_MAX = sys.float_info.max
 _NEG_NAN = math.copysign(math.nan, -1.0)   # what x86 produces for invalid operations
-_UNROLL_LIMIT = 100                    # EIGEN_UNROLLING_LIMIT
 
 
 class ArgumentError(TypeError):
@@ -175,38 +191,15 @@ def _argerr(cls_name, meth, args, sigs):
 
 # --- Eigen reductions ---------------------------------------------------------
 
-def _tree_sum(v):
-    """Eigen's completely unrolled sum: recursive halving, first half has n//2 terms."""
-    n = len(v)
-    if n == 3:
-        return v[0] + (v[1] + v[2])
-    if n == 2:
-        return v[0] + v[1]
-    if n == 1:
-        return v[0]
-    h = n >> 1
-    return _tree_sum(v[:h]) + _tree_sum(v[h:])
-
-
 def _tree(v, op):
+    """Eigen's completely unrolled reduction of a fixed-size object: recursive halving,
+    the first half having n//2 terms (3 terms: a0 + (a1 + a2); 4: (a0 + a1) + (a2 + a3)).
+    Verified against YADE for 2, 3, 4, 6, 9 and 36 terms (Matrix6.squaredNorm)."""
     n = len(v)
     if n == 1:
         return v[0]
     h = n >> 1
     return op(_tree(v[:h], op), _tree(v[h:], op))
-
-
-def _linear(v, op):
-    r = v[0]
-    for x in v[1:]:
-        r = op(r, x)
-    return r
-
-
-def _redux(v, op, read_cost=1):
-    """Eigen redux over fixed-size objects: completely unrolled recursive halving.
-    (Verified against YADE up to Matrix6.squaredNorm, 36 terms.)"""
-    return _tree(v, op)
 
 
 def _add(a, b):
@@ -226,17 +219,13 @@ def _min(a, b):          # std::min
 
 
 def _sqnorm(v):
-    """squaredNorm = cwiseAbs2().sum() (read cost 2)."""
-    return _redux([x * x for x in v], _add, 2)
+    """squaredNorm = cwiseAbs2().sum()."""
+    return _tree([x * x for x in v], _add)
 
 
 def _dot(a, b):
-    """dot = cwiseProduct().sum() (read cost 3)."""
-    return _redux([x * y for x, y in zip(a, b)], _add, 3)
-
-
-def _sum3(a0, a1, a2):
-    return a0 + (a1 + a2)
+    """dot = cwiseProduct().sum(); also every coefficient of a (lazy) matrix product."""
+    return _tree([x * y for x, y in zip(a, b)], _add)
 
 
 def _norm3(x, y, z):
@@ -455,19 +444,19 @@ class _Redux:
         return self._r()
 
     def sum(self):
-        return _redux(list(self._storage()), _add)
+        return _tree(list(self._storage()), _add)
 
     def prod(self):
-        return _redux(list(self._storage()), _mul)
+        return _tree(list(self._storage()), _mul)
 
     def maxCoeff(self):
-        return _redux(list(self._storage()), _max)
+        return _tree(list(self._storage()), _max)
 
     def minCoeff(self):
-        return _redux(list(self._storage()), _min)
+        return _tree(list(self._storage()), _min)
 
     def maxAbsCoeff(self):
-        return _redux([abs(x) for x in self._storage()], _max, 2)
+        return _tree([abs(x) for x in self._storage()], _max)
 
     def mean(self):
         s = self.sum()
@@ -504,13 +493,6 @@ class _VecBase(_Redux, _Dense):
             return _conv_seq(o, cls._N, cls._scal)
         except OverflowError:
             return None
-
-    @classmethod
-    def _coef(cls, x, meth, args):
-        c = cls._scal(x)
-        if c is None:
-            raise _argerr(cls.__name__, meth, args, cls._SIGS)
-        return c
 
     _SIGS = ()
 
@@ -1131,7 +1113,7 @@ class _MatBase(_Redux, _Dense):
     def trace(self):
         d = self._D
         a = self._r()
-        return _redux([a[i * d + i] for i in range(d)], _add)
+        return _tree([a[i * d + i] for i in range(d)], _add)
 
     def transpose(self):
         d = self._D
@@ -1402,7 +1384,7 @@ class Matrix6(_MatBase):
 
     def determinant(self):
         lu, perm, nt = self._lu()
-        d = _redux([lu[i][i] for i in range(6)], _mul)
+        d = _tree([lu[i][i] for i in range(6)], _mul)
         return (-1.0 if nt % 2 else 1.0) * d
 
     def inverse(self):

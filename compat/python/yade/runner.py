@@ -28,6 +28,17 @@ def _namespace(mod):
         if not k.startswith('_'):
             ns[k] = getattr(math, k)
     ns['O'] = yade.O
+    # the modules YADE's startup namespace holds (its utils has no __all__, and the yade launcher
+    # imports more); gts, mpmath and remote are not provided by ryade
+    import argparse, doctest, itertools, json as _json, os as _os, random, time, types as _types, warnings
+    ns.update({'math': math, 'random': random, 'argparse': argparse, 'doctest': doctest, 'itertools': itertools,
+               'json': _json, 'os': _os, 'sys': sys, 'time': time, 'types': _types, 'warnings': warnings,
+               'yade': yade})
+    try:
+        import numpy
+        ns['numpy'] = numpy
+    except ImportError:
+        pass
     ns['__ryade_script__'] = True
 
 

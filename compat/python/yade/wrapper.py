@@ -349,6 +349,33 @@ class NewtonIntegrator(GlobalEngine):
                 'dampGravity': self._values['dampGravity'], 'mask': self._values['mask']}
 
 
+class TimeStepper(GlobalEngine):
+    _attrs = {'active': True, 'timeStepUpdateInterval': 1}
+
+
+class GlobalStiffnessTimeStepper(TimeStepper):
+    """dt from the stiffest eigen-period of each body (the Rust core's `timestepper`)."""
+    _attrs = {'defaultDt': -1.0, 'maxDt': 1.7976931348623157e308, 'previousDt': 1.7976931348623157e308,
+              'timestepSafetyCoefficient': 0.8, 'densityScaling': False, 'viscEl': False, 'targetDt': 1.0,
+              'parallelMode': False}
+    _live = ('active', 'timeStepUpdateInterval', 'defaultDt', 'maxDt', 'timestepSafetyCoefficient', 'previousDt')
+
+    def _read(self, k):
+        if k in ('previousDt', 'defaultDt', 'active') and self._owner is not None:
+            omega, index = self._owner
+            return json.loads(omega._sim.engine_get(index, k))
+        return self._values[k]
+
+    def _json(self):
+        v = self._values
+        for k in ('densityScaling', 'viscEl', 'parallelMode'):
+            if v[k]:
+                unsupported('GlobalStiffnessTimeStepper.%s=True' % k)
+        return {'class': 'GlobalStiffnessTimeStepper', 'active': bool(v['active']),
+                'timeStepUpdateInterval': int(v['timeStepUpdateInterval']), 'defaultDt': float(v['defaultDt']),
+                'maxDt': float(v['maxDt']), 'timestepSafetyCoefficient': float(v['timestepSafetyCoefficient'])}
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -474,6 +501,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
+    TimeStepper, GlobalStiffnessTimeStepper,
     ElastMat, FrictMat]}
 
 
