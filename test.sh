@@ -5,6 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 export OMP_NUM_THREADS=1
 cargo build --release
+echo "== yade Python package (compat layer)"
+python3 -m maturin --version >/dev/null 2>&1 || python3 -m pip install -q maturin
+python3 -m pip install -q --no-build-isolation ./compat
 if command -v yade >/dev/null 2>&1; then
   echo "== YADE regenerates the committed goldens bit for bit"
   yade_ref/check_goldens.sh
@@ -19,3 +22,7 @@ echo "== compat diff micro"
 ./target/release/compat diff micro
 echo "== compat diff meso"
 ./target/release/compat diff meso
+echo "== unmodified YADE scripts under compat run reproduce YADE's files"
+yade_ref/check_compat.sh
+echo "== Python tests (compat layer)"
+python3 -m pytest compat/tests -q

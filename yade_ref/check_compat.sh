@@ -22,6 +22,9 @@ for kind in micro meso pack examples; do
     printf '%-6s %-14s %6.2fs\n' "$kind" "$name" "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{print b-a}')"
   done
   if [[ $kind == examples ]]; then
+    if [[ ! -d "${YADE_EXAMPLES:-/usr/share/doc/yade/examples}" && "${CI:-}" != "true" ]]; then
+      echo "SKIPPED  examples/ (YADE's example scripts are not installed here; CI installs them)"; continue
+    fi
     "$HERE/examples/run_all.sh" compat "$TMP/examples" || bad=1
   fi
   for g in "$ROOT/golden/$kind"/*; do

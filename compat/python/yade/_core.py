@@ -159,10 +159,14 @@ class State(Serializable):
             return v
         omega, bid = self._owner
         sim = omega._sim
+        if k == 'pos':
+            # YADE quirk kept on purpose: pos and ori are computed properties (se3), so
+            # `b.state.pos[1] = 3` changes a temporary copy and leaves the body where it was
+            return Vector3(*sim.get_vec3(bid, 'pos'))
         if k in _STATE_VEC:
             return Vector3._view(lambda: sim.get_vec3(bid, k), lambda t: sim.set_vec3(bid, k, tuple(t)))
         if k == 'ori':
-            return Quaternion._view(lambda: sim.get_ori(bid), lambda t: sim.set_ori(bid, tuple(t)))
+            return Quaternion(*sim.get_ori(bid))
         if k == 'mass':
             return sim.get_scalar(bid, 'mass')
         if k == 'blockedDOFs':
