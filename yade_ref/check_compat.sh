@@ -10,7 +10,7 @@ TMP="$(mktemp -d "${TMPDIR:-/tmp}/ryade_check_compat.XXXXXX")"
 trap 'rm -rf "$TMP"' EXIT
 content() { case "$1" in *.gz) gzip -dc -- "$1" ;; *) cat -- "$1" ;; esac; }
 bad=0; n=0
-for kind in micro meso pack examples; do
+for kind in micro meso pack export examples; do
   mkdir -p "$TMP/$kind"
   for s in "$HERE/$kind"/*.py; do
     [[ $kind == examples ]] && break

@@ -16,6 +16,7 @@ globals().update(_wrapper.all_classes())
 
 from ._core import (Body, Box, Cell, Facet, Interaction, Omega, Shape, Sphere, State, Wall)  # noqa: E402,F401
 from ._errors import UnsupportedError  # noqa: E402,F401
+from .export import VTKRecorder  # noqa: E402,F401  (a YADE engine class implemented in Python)
 
 O = Omega()
 from . import _table as _tbl  # noqa: E402
