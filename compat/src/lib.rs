@@ -60,7 +60,11 @@ impl Sim {
 impl Sim {
     #[new]
     fn new() -> Self {
-        Sim { scene: Scene::default(), saved: HashMap::new(), cursor: None }
+        Sim {
+            scene: Scene::default(),
+            saved: HashMap::new(),
+            cursor: None,
+        }
     }
 
     /// `O.reset()`: empty scene, no engines, dt = 1e-8.
@@ -129,7 +133,12 @@ impl Sim {
             "poisson" => m.poisson = value,
             "frictionAngle" => m.friction_angle = value,
             "density" => m.density = value,
-            _ => return Err(PyKeyError::new_err(format!("FrictMat has no attribute '{}' in ryade", key))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "FrictMat has no attribute '{}' in ryade",
+                    key
+                )))
+            }
         }
         Ok(())
     }
@@ -158,7 +167,12 @@ impl Sim {
             "vel" => v3(&b.vel[id]),
             "angVel" => v3(&b.ang_vel[id]),
             "inertia" => v3(&b.inertia[id]),
-            _ => return Err(PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "State has no vector attribute '{}' in ryade",
+                    field
+                )))
+            }
         })
     }
     fn set_vec3(&mut self, id: usize, field: &str, v: V3) -> PyResult<()> {
@@ -169,7 +183,12 @@ impl Sim {
             "vel" => b.vel[id] = vec(v),
             "angVel" => b.ang_vel[id] = vec(v),
             "inertia" => b.inertia[id] = vec(v),
-            _ => return Err(PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "State has no vector attribute '{}' in ryade",
+                    field
+                )))
+            }
         }
         Ok(())
     }
@@ -189,10 +208,19 @@ impl Sim {
         let b = &self.scene.bodies;
         Ok(match field {
             "mass" => b.mass[id],
-            "radius" => b.shape[id]
-                .sphere_radius()
-                .ok_or_else(|| PyKeyError::new_err(format!("body #{} is a {}, not a Sphere", id, b.shape[id].class_name())))?,
-            _ => return Err(PyKeyError::new_err(format!("no scalar attribute '{}' in ryade", field))),
+            "radius" => b.shape[id].sphere_radius().ok_or_else(|| {
+                PyKeyError::new_err(format!(
+                    "body #{} is a {}, not a Sphere",
+                    id,
+                    b.shape[id].class_name()
+                ))
+            })?,
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "no scalar attribute '{}' in ryade",
+                    field
+                )))
+            }
         })
     }
     fn set_scalar(&mut self, id: usize, field: &str, v: f64) -> PyResult<()> {
@@ -202,9 +230,20 @@ impl Sim {
             "mass" => b.mass[id] = v,
             "radius" => match &mut b.shape[id] {
                 Shape::Sphere { radius } => *radius = v,
-                s => return Err(PyKeyError::new_err(format!("body #{} is a {}, not a Sphere", id, s.class_name()))),
+                s => {
+                    return Err(PyKeyError::new_err(format!(
+                        "body #{} is a {}, not a Sphere",
+                        id,
+                        s.class_name()
+                    )))
+                }
             },
-            _ => return Err(PyKeyError::new_err(format!("no scalar attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "no scalar attribute '{}' in ryade",
+                    field
+                )))
+            }
         }
         Ok(())
     }
@@ -216,7 +255,12 @@ impl Sim {
             "mask" => b.mask[id] as i64,
             "isDamped" => b.is_damped[id] as i64,
             "bounded" => b.bounded[id] as i64,
-            _ => return Err(PyKeyError::new_err(format!("no integer attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "no integer attribute '{}' in ryade",
+                    field
+                )))
+            }
         })
     }
     fn set_int(&mut self, id: usize, field: &str, v: i64) -> PyResult<()> {
@@ -232,7 +276,12 @@ impl Sim {
             "mask" => b.mask[id] = v as i32,
             "isDamped" => b.is_damped[id] = v != 0,
             "bounded" => b.bounded[id] = v != 0,
-            _ => return Err(PyKeyError::new_err(format!("no integer attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "no integer attribute '{}' in ryade",
+                    field
+                )))
+            }
         }
         Ok(())
     }
@@ -258,7 +307,11 @@ impl Sim {
     fn get_cell(&self) -> Option<[[f64; 3]; 3]> {
         self.scene.cell.as_ref().map(|c| {
             let h = c.hsize;
-            [[h[(0, 0)], h[(0, 1)], h[(0, 2)]], [h[(1, 0)], h[(1, 1)], h[(1, 2)]], [h[(2, 0)], h[(2, 1)], h[(2, 2)]]]
+            [
+                [h[(0, 0)], h[(0, 1)], h[(0, 2)]],
+                [h[(1, 0)], h[(1, 1)], h[(1, 2)]],
+                [h[(2, 0)], h[(2, 1)], h[(2, 2)]],
+            ]
         })
     }
     fn cell_size(&self) -> Option<V3> {
@@ -268,7 +321,11 @@ impl Sim {
         self.scene.cell.as_ref().map(|c| c.volume())
     }
     fn cell_wrap(&self, p: V3) -> PyResult<V3> {
-        let c = self.scene.cell.as_ref().ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
+        let c = self
+            .scene
+            .cell
+            .as_ref()
+            .ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
         Ok(v3(&c.wrap_pt(&vec(p))))
     }
 
@@ -277,8 +334,14 @@ impl Sim {
     /// `{"class": "External", "id": k}`).
     fn set_engines(&mut self, json: &str) -> PyResult<()> {
         let v: Value = serde_json::from_str(json).map_err(err)?;
-        let arr = v.as_array().ok_or_else(|| PyValueError::new_err("engines must be a list"))?;
-        let engines: Vec<Engine> = arr.iter().map(scene_json::engine).collect::<Result<_, _>>().map_err(err)?;
+        let arr = v
+            .as_array()
+            .ok_or_else(|| PyValueError::new_err("engines must be a list"))?;
+        let engines: Vec<Engine> = arr
+            .iter()
+            .map(scene_json::engine)
+            .collect::<Result<_, _>>()
+            .map_err(err)?;
         self.scene.engine_dead = vec![false; engines.len()];
         self.scene.engines = engines;
         Ok(())
@@ -287,17 +350,34 @@ impl Sim {
         if idx >= self.scene.engines.len() {
             return Err(PyIndexError::new_err(format!("no engine #{}", idx)));
         }
-        self.scene.engine_dead.resize(self.scene.engines.len(), false);
+        self.scene
+            .engine_dead
+            .resize(self.scene.engines.len(), false);
         self.scene.engine_dead[idx] = dead;
         Ok(())
     }
     /// Change one attribute of a built-in engine (value as JSON) without resetting its state.
     fn engine_set(&mut self, idx: usize, key: &str, json: &str) -> PyResult<()> {
         let v: Value = serde_json::from_str(json).map_err(err)?;
-        let num = || v.as_f64().ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)));
-        let boolean = || v.as_bool().ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)));
-        let e = self.scene.engines.get_mut(idx).ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
-        let unsupported = |cls: &str| PyKeyError::new_err(format!("changing {}.{} during a run is not supported by ryade yet", cls, key));
+        let num = || {
+            v.as_f64()
+                .ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)))
+        };
+        let boolean = || {
+            v.as_bool()
+                .ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)))
+        };
+        let e = self
+            .scene
+            .engines
+            .get_mut(idx)
+            .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let unsupported = |cls: &str| {
+            PyKeyError::new_err(format!(
+                "changing {}.{} during a run is not supported by ryade yet",
+                cls, key
+            ))
+        };
         match e {
             Engine::Newton(n) => match key {
                 "damping" => n.damping = num()?,
@@ -329,17 +409,29 @@ impl Sim {
     }
     /// Read an attribute of a built-in engine (JSON).
     fn engine_get(&self, idx: usize, key: &str) -> PyResult<String> {
-        let e = self.scene.engines.get(idx).ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let e = self
+            .scene
+            .engines
+            .get(idx)
+            .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
         let v = match (e, key) {
             (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
-            (Engine::Newton(n), "gravity") => serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]]),
+            (Engine::Newton(n), "gravity") => {
+                serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
+            }
             (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
             (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
             (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
             (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
             (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
             (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
-            _ => return Err(PyKeyError::new_err(format!("{} has no readable attribute '{}' in ryade", e.class_name(), key))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "{} has no readable attribute '{}' in ryade",
+                    e.class_name(),
+                    key
+                )))
+            }
         };
         Ok(v.to_string())
     }
@@ -379,7 +471,9 @@ impl Sim {
     /// Run `n` whole steps in Rust; fails if a live Python engine is in the list.
     fn run_steps(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
         if self.cursor.is_some() {
-            return Err(PyRuntimeError::new_err("run_steps called in the middle of a step"));
+            return Err(PyRuntimeError::new_err(
+                "run_steps called in the middle of a step",
+            ));
         }
         let scene = &mut self.scene;
         py.allow_threads(|| {
@@ -394,11 +488,23 @@ impl Sim {
     // ---- forces ----
     fn force(&self, id: usize) -> PyResult<V3> {
         self.check_id(id)?;
-        Ok(self.scene.forces.force.get(id).map(v3).unwrap_or((0.0, 0.0, 0.0)))
+        Ok(self
+            .scene
+            .forces
+            .force
+            .get(id)
+            .map(v3)
+            .unwrap_or((0.0, 0.0, 0.0)))
     }
     fn torque(&self, id: usize) -> PyResult<V3> {
         self.check_id(id)?;
-        Ok(self.scene.forces.torque.get(id).map(v3).unwrap_or((0.0, 0.0, 0.0)))
+        Ok(self
+            .scene
+            .forces
+            .torque
+            .get(id)
+            .map(v3)
+            .unwrap_or((0.0, 0.0, 0.0)))
     }
     fn add_force(&mut self, id: usize, f: V3) -> PyResult<()> {
         self.check_id(id)?;
@@ -447,14 +553,27 @@ impl Sim {
     /// One attribute of an interaction's geometry or physics, as a float or a 3-tuple.
     fn intr_get(&self, py: Python<'_>, a: u32, b: u32, field: &str) -> PyResult<PyObject> {
         let it = &self.scene.interactions.list[self.intr_index(a, b)?];
-        let no = |what: &str| PyKeyError::new_err(format!("interaction #{}+#{} has no {} (it is not real)", a, b, what));
+        let no = |what: &str| {
+            PyKeyError::new_err(format!(
+                "interaction #{}+#{} has no {} (it is not real)",
+                a, b, what
+            ))
+        };
         Ok(match field {
             "id1" => it.id1.into_pyobject(py)?.into_any().unbind(),
             "id2" => it.id2.into_pyobject(py)?.into_any().unbind(),
-            "isReal" => it.is_real().into_pyobject(py)?.to_owned().into_any().unbind(),
+            "isReal" => it
+                .is_real()
+                .into_pyobject(py)?
+                .to_owned()
+                .into_any()
+                .unbind(),
             "iterMadeReal" => it.iter_made_real.into_pyobject(py)?.into_any().unbind(),
             "iterBorn" => it.iter_born.into_pyobject(py)?.into_any().unbind(),
-            "cellDist" => (it.cell_dist[0], it.cell_dist[1], it.cell_dist[2]).into_pyobject(py)?.into_any().unbind(),
+            "cellDist" => (it.cell_dist[0], it.cell_dist[1], it.cell_dist[2])
+                .into_pyobject(py)?
+                .into_any()
+                .unbind(),
             "normal" | "penetrationDepth" | "contactPoint" | "shearInc" | "refR1" | "refR2" => {
                 let g = it.geom.as_ref().ok_or_else(|| no("geom"))?;
                 match field {
@@ -476,17 +595,30 @@ impl Sim {
                     _ => p.tan_phi.into_pyobject(py)?.into_any().unbind(),
                 }
             }
-            _ => return Err(PyKeyError::new_err(format!("interactions have no attribute '{}' in ryade", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "interactions have no attribute '{}' in ryade",
+                    field
+                )))
+            }
         })
     }
     fn intr_set_vec3(&mut self, a: u32, b: u32, field: &str, v: V3) -> PyResult<()> {
         let k = self.intr_index(a, b)?;
         let it = &mut self.scene.interactions.list[k];
-        let p = it.phys.as_mut().ok_or_else(|| PyKeyError::new_err("the interaction is not real"))?;
+        let p = it
+            .phys
+            .as_mut()
+            .ok_or_else(|| PyKeyError::new_err("the interaction is not real"))?;
         match field {
             "normalForce" => p.normal_force = vec(v),
             "shearForce" => p.shear_force = vec(v),
-            _ => return Err(PyKeyError::new_err(format!("setting interaction attribute '{}' is not supported by ryade yet", field))),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "setting interaction attribute '{}' is not supported by ryade yet",
+                    field
+                )))
+            }
         }
         Ok(())
     }
@@ -517,10 +649,9 @@ impl Sim {
         self.saved.insert(name.to_string(), self.scene.clone());
     }
     fn load_tmp(&mut self, name: &str) -> PyResult<()> {
-        let s = self
-            .saved
-            .get(name)
-            .ok_or_else(|| PyKeyError::new_err(format!("no scene saved with O.saveTmp('{}')", name)))?;
+        let s = self.saved.get(name).ok_or_else(|| {
+            PyKeyError::new_err(format!("no scene saved with O.saveTmp('{}')", name))
+        })?;
         self.scene = s.clone();
         self.cursor = None;
         Ok(())
@@ -544,7 +675,8 @@ fn box_porosity(spheres: Vec<(V3, f64)>, lo: V3, hi: V3, periodic_xy: Option<(f6
 /// `utils.voxelPorosity` (dynamic spheres only, as YADE).
 #[pyfunction]
 fn voxel_porosity(spheres: Vec<(V3, f64)>, resolution: i32, start: V3, end: V3) -> PyResult<f64> {
-    ryade::porosity::voxel_porosity(&spheres_of(spheres), resolution, &vec(start), &vec(end)).map_err(err)
+    ryade::porosity::voxel_porosity(&spheres_of(spheres), resolution, &vec(start), &vec(end))
+        .map_err(err)
 }
 
 /// Result of `make_cloud`: (count, spheres, cell_size, is_periodic, applied_psd_scaling, warnings).
@@ -590,7 +722,9 @@ fn make_cloud(
         seed,
         h_size: h_size.map(|h| ryade::math::Mat3::from_fn(|i, j| h[i][j])),
     };
-    let n = sp.make_cloud(&p).map_err(|e| PyValueError::new_err(format!("makeCloud: {:#}", e)))?;
+    let n = sp
+        .make_cloud(&p)
+        .map_err(|e| PyValueError::new_err(format!("makeCloud: {:#}", e)))?;
     Ok((
         n,
         sp.spheres.iter().map(|(c, r)| (v3(c), *r)).collect(),
@@ -604,7 +738,11 @@ fn make_cloud(
 /// `Shop::inscribedCircleCenter`, in YADE's evaluation order.
 #[pyfunction]
 fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
-    v3(&ryade::utils::inscribed_circle_center(&vec(v0), &vec(v1), &vec(v2)))
+    v3(&ryade::utils::inscribed_circle_center(
+        &vec(v0),
+        &vec(v1),
+        &vec(v2),
+    ))
 }
 
 #[pymodule]

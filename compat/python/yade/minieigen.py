@@ -672,7 +672,32 @@ class _VecBase(_Redux, _Dense):
     Identity = _ClassConst(lambda cls: cls._new([cls._one] + [cls._zero] * (cls._N - 1)))
 
 
-class _VecF(_VecBase):
+class _Normed:
+    """`norm`, `normalized`, `normalize` shared by float vectors and matrices (Eigen divides each
+    coefficient by sqrt(squaredNorm), leaving a zero value untouched)."""
+    __slots__ = ()
+
+    def norm(self):
+        return math.sqrt(self.squaredNorm())
+
+    __abs__ = norm
+
+    def normalized(self):
+        a = self._r()
+        n2 = self.squaredNorm()
+        if n2 > 0:
+            n = math.sqrt(n2)
+            return self._new([_div(x, n) for x in a])
+        return self._new(list(a))
+
+    def normalize(self):
+        n2 = self.squaredNorm()
+        if n2 > 0:
+            n = math.sqrt(n2)
+            self._w([_div(x, n) for x in self._r()])
+
+
+class _VecF(_Normed, _VecBase):
     """Real-valued vector."""
     __slots__ = ()
     _zero = 0.0
@@ -697,24 +722,6 @@ class _VecF(_VecBase):
             return a[0] * a[0] + (a[1] * a[1] + a[2] * a[2])
         return _sqnorm(a)
 
-    def norm(self):
-        return math.sqrt(self.squaredNorm())
-
-    __abs__ = norm
-
-    def normalized(self):
-        a = self._r()
-        n2 = self.squaredNorm()
-        if n2 > 0:
-            n = math.sqrt(n2)
-            return self._new([_div(x, n) for x in a])
-        return self._new(list(a))
-
-    def normalize(self):
-        n2 = self.squaredNorm()
-        if n2 > 0:
-            n = math.sqrt(n2)
-            self._w([_div(x, n) for x in self._r()])
 
 
 class _VecI(_VecBase):
@@ -918,7 +925,7 @@ class Vector6i(_Vec6Mixin, _VecI):
 # matrices (stored row-major; reductions run in Eigen's column-major order)
 # ----------------------------------------------------------------------------
 
-class _MatBase(_Redux, _Dense):
+class _MatBase(_Normed, _Redux, _Dense):
     __slots__ = ()
     _D = 3          # dimension
     _zero = 0.0
@@ -1123,24 +1130,6 @@ class _MatBase(_Redux, _Dense):
     def squaredNorm(self):
         return _sqnorm(self._storage())
 
-    def norm(self):
-        return math.sqrt(self.squaredNorm())
-
-    __abs__ = norm
-
-    def normalized(self):
-        n2 = self.squaredNorm()
-        a = self._r()
-        if n2 > 0:
-            n = math.sqrt(n2)
-            return self._new([_div(x, n) for x in a])
-        return self._new(list(a))
-
-    def normalize(self):
-        n2 = self.squaredNorm()
-        if n2 > 0:
-            n = math.sqrt(n2)
-            self._w([_div(x, n) for x in self._r()])
 
     def __repr__(self):
         a = self._r()
