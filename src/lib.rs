@@ -9,6 +9,7 @@ pub mod bound;
 pub mod cell;
 pub mod collider;
 pub mod forces;
+pub mod geogrid;
 pub mod geom;
 pub mod harness;
 pub mod integrator;
