@@ -19,6 +19,7 @@ trap cleanup EXIT
 
 "$HERE/regen.sh" "$TMP"
 "$HERE/examples/run_all.sh" yade "$TMP/examples"
+"$HERE/micro_grid/regen.sh" "$TMP/micro_grid" >/dev/null
 
 content() {  # print the (decompressed) content of a file
     case "$1" in
@@ -28,7 +29,7 @@ content() {  # print the (decompressed) content of a file
 }
 
 bad=0; n=0
-for kind in micro meso pack export examples; do
+for kind in micro meso pack export examples micro_grid; do
     names="$( { [[ -d "$GOLD/$kind" ]] && ls -1 "$GOLD/$kind"; ls -1 "$TMP/$kind"; } | grep -v '\.tmp[0-9]*$' | sort -u )"
     if [[ -z "$names" ]]; then echo "MISSING  $kind/ (no files at all)"; bad=1; continue; fi
     while IFS= read -r f; do

@@ -17,6 +17,11 @@ Under ``yade -x`` the name ``__file__`` is /usr/bin/yade, so the script path is 
   <name>.bodies.csv.gz    every step, or only ``keep_steps``
   <name>.intrs.csv.gz     if ``intrs`` (every step)
   <name>.digest.csv       if ``digest`` (SHA-256 per step)
+  <name>.intrs6d.csv.gz   if ``grid`` (every step; golden/FORMAT_GRID.md)
+
+``grid=True`` selects the grid extension (golden/FORMAT_GRID.md): the scene JSON gets the format id
+``ryade-scene-grid-1``, the extra shape/material/functor classes and the top-level ``interactions`` array.
+With ``grid=False`` (the default) the output is exactly golden/FORMAT.md.
 """
 
 import gzip
@@ -29,6 +34,7 @@ import sys
 from yade import O  # noqa: F401  (the YADE scene singleton)
 
 FORMAT_ID = 'ryade-scene-1'
+GRID_FORMAT_ID = 'ryade-scene-grid-1'
 SOURCE = 'yade 2023.02a'
 
 BODY_HEADER = ('step,id,pos_x,pos_y,pos_z,vel_x,vel_y,vel_z,angVel_x,angVel_y,angVel_z,'
@@ -37,6 +43,13 @@ INTR_HEADER = ('step,ord,id1,id2,normal_x,normal_y,normal_z,pen,cp_x,cp_y,cp_z,'
                'shearInc_x,shearInc_y,shearInc_z,fn_x,fn_y,fn_z,fs_x,fs_y,fs_z,kn,ks')
 BODY_FMT = '%d,%d,' + ','.join(['%.17g'] * 19) + '\n'
 INTR_FMT = '%d,%d,%d,%d,' + ','.join(['%.17g'] * 18) + '\n'
+INTR6D_HEADER = ('step,ord,id1,id2,twist,bending_x,bending_y,bending_z,mtw_x,mtw_y,mtw_z,mb_x,mb_y,mb_z,'
+                 'unp,cohesionBroken,relPos,isDuplicate,trueInt')
+
+# grid extension (golden/FORMAT_GRID.md): geometry / physics classes that may appear in interactions
+GEOM6D_CLASSES = ('ScGeom6D', 'GridNodeGeom6D', 'ScGridCoGeom')
+GEOM_CLASSES = ('ScGeom', 'GridCoGridCoGeom') + GEOM6D_CLASSES
+PHYS_CLASSES = ('FrictPhys', 'CohFrictPhys')
 
 DOF_BITS = {'x': 1, 'y': 2, 'z': 4, 'X': 8, 'Y': 16, 'Z': 32}
 
@@ -109,9 +122,18 @@ def _is_zero_m3(m):
 # ----------------------------------------------------------------------------------------
 # scene introspection
 
-def _shape(b):
+def _shape(b, grid=False):
     s = b.shape
     c = _cls(s)
+    if grid and c == 'GridNode':
+        _require(len(s.getPFacets()) == 0, 'body %d: GridNode with PFacets is not supported' % b.id)
+        return {'class': c, 'radius': float(s.radius), 'connections': [int(x.id) for x in s.getConnections()]}
+    if grid and c == 'GridConnection':
+        _require(len(s.getPFacets()) == 0, 'body %d: GridConnection with PFacets is not supported' % b.id)
+        _require(s.node1 is not None and s.node2 is not None, 'body %d: GridConnection without nodes' % b.id)
+        cd = s.cellDist
+        return {'class': c, 'radius': float(s.radius), 'node1': int(s.node1.id), 'node2': int(s.node2.id),
+                'periodic': bool(s.periodic), 'cellDist': [int(cd[0]), int(cd[1]), int(cd[2])]}
     if c == 'Sphere':
         return {'class': 'Sphere', 'radius': float(s.radius)}
     if c == 'Facet':
@@ -123,32 +145,44 @@ def _shape(b):
     raise UnsupportedScene('body %d: shape class %s is not supported by golden/FORMAT.md' % (b.id, c))
 
 
-def _material(b):
+def _material(b, grid=False):
     m = b.material
     c = _cls(m)
+    if grid and c == 'CohFrictMat':
+        return {'id': int(m.id), 'class': c, 'young': float(m.young), 'poisson': float(m.poisson),
+                'frictionAngle': float(m.frictionAngle), 'density': float(m.density),
+                'isCohesive': bool(m.isCohesive), 'alphaKr': float(m.alphaKr), 'alphaKtw': float(m.alphaKtw),
+                'etaRoll': float(m.etaRoll), 'etaTwist': float(m.etaTwist),
+                'normalCohesion': float(m.normalCohesion), 'shearCohesion': float(m.shearCohesion),
+                'fragile': bool(m.fragile), 'momentRotationLaw': bool(m.momentRotationLaw), 'label': str(m.label)}
     if c != 'FrictMat':
         raise UnsupportedScene('body %d: material class %s is not supported (only FrictMat)' % (b.id, c))
     return {'id': int(m.id), 'class': 'FrictMat', 'young': float(m.young), 'poisson': float(m.poisson),
             'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label)}
 
 
-def _body(b):
+def _body(b, grid=False):
     _require(b is not None, 'erased body (None) in O.bodies: ids must be dense')
     _require(not b.isClump and not b.isClumpMember, 'body %d: clumps are not supported' % b.id)
     st = b.state
     _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
-    shape = _shape(b)
-    if shape['class'] == 'Sphere':
-        _require(not b.aspherical, 'body %d: aspherical sphere' % b.id)
-    return {'id': int(b.id), 'shape': shape, 'material': _material(b),
-            'mask': int(b.mask), 'bounded': bool(b.bounded),
-            'pos': _v3(st.pos), 'vel': _v3(st.vel), 'angVel': _v3(st.angVel), 'ori': _quat_wxyz(st.ori),
-            'mass': float(st.mass), 'inertia': _v3(st.inertia), 'blockedDOFs': dof_bits(st.blockedDOFs),
-            'isDamped': bool(st.isDamped)}
+    shape = _shape(b, grid)
+    if shape['class'] in ('Sphere', 'GridNode', 'GridConnection'):
+        _require(not b.aspherical, 'body %d: aspherical %s' % (b.id, shape['class'].lower()))
+    d = {'id': int(b.id), 'shape': shape, 'material': _material(b, grid),
+         'mask': int(b.mask), 'bounded': bool(b.bounded),
+         'pos': _v3(st.pos), 'vel': _v3(st.vel), 'angVel': _v3(st.angVel), 'ori': _quat_wxyz(st.ori),
+         'mass': float(st.mass), 'inertia': _v3(st.inertia), 'blockedDOFs': dof_bits(st.blockedDOFs),
+         'isDamped': bool(st.isDamped)}
+    if grid:
+        d['aspherical'] = bool(b.aspherical)
+    return d
 
 
-def _bound_functor(f):
+def _bound_functor(f, grid=False):
     c = _cls(f)
+    if grid and c == 'Bo1_GridConnection_Aabb':
+        return {'class': c, 'aabbEnlargeFactor': float(f.aabbEnlargeFactor)}
     if c == 'Bo1_Sphere_Aabb':
         return {'class': c, 'aabbEnlargeFactor': float(f.aabbEnlargeFactor)}
     if c in ('Bo1_Facet_Aabb', 'Bo1_Wall_Aabb', 'Bo1_Box_Aabb'):
@@ -156,8 +190,16 @@ def _bound_functor(f):
     raise UnsupportedScene('bound functor class %s is not supported' % c)
 
 
-def _geom_functor(f):
+def _geom_functor(f, grid=False):
     c = _cls(f)
+    if grid and c in ('Ig2_GridNode_GridNode_GridNodeGeom6D', 'Ig2_Sphere_Sphere_ScGeom6D'):
+        return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor),
+                'avoidGranularRatcheting': bool(f.avoidGranularRatcheting),
+                'updateRotations': bool(f.updateRotations), 'creep': bool(f.creep)}
+    if grid and c == 'Ig2_Sphere_GridConnection_ScGridCoGeom':
+        return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
+    if grid and c == 'Ig2_GridConnection_GridConnection_GridCoGridCoGeom':
+        return {'class': c}
     if c == 'Ig2_Sphere_Sphere_ScGeom':
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor),
                 'avoidGranularRatcheting': bool(f.avoidGranularRatcheting)}
@@ -172,8 +214,13 @@ def _geom_functor(f):
     raise UnsupportedScene('geometry functor class %s is not supported' % c)
 
 
-def _phys_functor(f):
+def _phys_functor(f, grid=False):
     c = _cls(f)
+    if grid and c == 'Ip2_CohFrictMat_CohFrictMat_CohFrictPhys':
+        for a in ('normalCohesion', 'shearCohesion', 'frictAngle'):
+            _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
+        return {'class': c, 'setCohesionNow': bool(f.setCohesionNow),
+                'setCohesionOnNewContacts': bool(f.setCohesionOnNewContacts)}
     if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
         for a in ('kn', 'ks', 'frictAngle'):
             _require(getattr(f, a) is None, 'Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker) is not supported' % a)
@@ -181,33 +228,47 @@ def _phys_functor(f):
     raise UnsupportedScene('physics functor class %s is not supported' % c)
 
 
-def _law_functor(f):
+def _law_functor(f, grid=False):
     c = _cls(f)
+    if grid and c == 'Law2_ScGeom6D_CohFrictPhys_CohesionMoment':
+        return {'class': c, 'neverErase': bool(f.neverErase), 'always_use_moment_law': bool(f.always_use_moment_law),
+                'shear_creep': bool(f.shear_creep), 'twist_creep': bool(f.twist_creep),
+                'traceEnergy': bool(f.traceEnergy), 'useIncrementalForm': bool(f.useIncrementalForm),
+                'creep_viscosity': float(f.creep_viscosity)}
+    if grid and c == 'Law2_ScGridCoGeom_FrictPhys_CundallStrack':
+        return {'class': c, 'neverErase': bool(f.neverErase)}
+    if grid and c == 'Law2_GridCoGridCoGeom_FrictPhys_CundallStrack':
+        return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies),
+                'traceEnergy': bool(f.traceEnergy)}
     if c == 'Law2_ScGeom_FrictPhys_CundallStrack':
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
     raise UnsupportedScene('law functor class %s is not supported' % c)
 
 
-def _engine(e):
+def _engine(e, grid=False):
     c = _cls(e)
     _require(not e.dead, 'engine %s is dead=True (not supported)' % c)
     if c == 'ForceResetter':
         return {'class': c}
     if c == 'InsertionSortCollider':
-        _require(e.avoidSelfInteractionMask == 0, 'InsertionSortCollider.avoidSelfInteractionMask != 0')
+        if not grid:
+            _require(e.avoidSelfInteractionMask == 0, 'InsertionSortCollider.avoidSelfInteractionMask != 0')
         _require(not e.smartInsertErase, 'InsertionSortCollider.smartInsertErase=True is not supported')
         _require(not e.keepListsShort, 'InsertionSortCollider.keepListsShort=True is not supported')
-        return {'class': c, 'bounds': [_bound_functor(f) for f in e.boundDispatcher.functors],
-                'verletDist': float(e.verletDist), 'allowBiggerThanPeriod': bool(e.allowBiggerThanPeriod),
-                'targetInterv': int(e.targetInterv), 'minSweepDistFactor': float(e.minSweepDistFactor),
-                'sortAxis': int(e.sortAxis), 'sortThenCollide': bool(e.sortThenCollide)}
+        d = {'class': c, 'bounds': [_bound_functor(f, grid) for f in e.boundDispatcher.functors],
+             'verletDist': float(e.verletDist), 'allowBiggerThanPeriod': bool(e.allowBiggerThanPeriod),
+             'targetInterv': int(e.targetInterv), 'minSweepDistFactor': float(e.minSweepDistFactor),
+             'sortAxis': int(e.sortAxis), 'sortThenCollide': bool(e.sortThenCollide)}
+        if grid:
+            d['avoidSelfInteractionMask'] = int(e.avoidSelfInteractionMask)
+        return d
     if c == 'InteractionLoop':
         _require(len(e.callbacks) == 0, 'InteractionLoop.callbacks are not supported')
         _require(not e.loopOnSortedInteractions, 'InteractionLoop.loopOnSortedInteractions=True is not supported')
         return {'class': c,
-                'geom': [_geom_functor(f) for f in e.geomDispatcher.functors],
-                'phys': [_phys_functor(f) for f in e.physDispatcher.functors],
-                'law': [_law_functor(f) for f in e.lawDispatcher.functors]}
+                'geom': [_geom_functor(f, grid) for f in e.geomDispatcher.functors],
+                'phys': [_phys_functor(f, grid) for f in e.physDispatcher.functors],
+                'law': [_law_functor(f, grid) for f in e.lawDispatcher.functors]}
     if c == 'NewtonIntegrator':
         _require(not e.densityScaling, 'NewtonIntegrator.densityScaling=True is not supported')
         _require(e.mask == -1, 'NewtonIntegrator.mask != -1 is not supported')
@@ -217,21 +278,92 @@ def _engine(e):
     raise UnsupportedScene('engine class %s is not supported by golden/FORMAT.md' % c)
 
 
-def scene_dict(steps, script=None):
+def _geom_dict(g):
+    c = _cls(g)
+    if c not in GEOM_CLASSES:
+        raise UnsupportedScene('interaction geometry class %s is not supported by golden/FORMAT_GRID.md' % c)
+    d = {'class': c, 'normal': _v3(g.normal), 'penetrationDepth': float(g.penetrationDepth),
+         'contactPoint': _v3(g.contactPoint), 'shearInc': _v3(g.shearInc),
+         'refR1': float(g.refR1), 'refR2': float(g.refR2)}
+    if c in GEOM6D_CLASSES:
+        d['initialOrientation1'] = _quat_wxyz(g.initialOrientation1)
+        d['initialOrientation2'] = _quat_wxyz(g.initialOrientation2)
+        d['twistCreep'] = _quat_wxyz(g.twistCreep)
+        d['twist'] = float(g.twist)
+        d['bending'] = _v3(g.bending)
+    if c == 'GridNodeGeom6D':
+        d['connectionBody'] = -1 if g.connectionBody is None else int(g.connectionBody.id)
+    if c == 'ScGridCoGeom':
+        d['isDuplicate'] = int(g.isDuplicate)
+        d['trueInt'] = int(g.trueInt)
+        d['id3'] = int(g.id3)
+        d['id4'] = int(g.id4)
+        d['id5'] = int(g.id5)
+        d['weight'] = _v3(g.weight)
+        d['relPos'] = float(g.relPos)
+    if c == 'GridCoGridCoGeom':
+        d['relPos1'] = float(g.relPos1)
+        d['relPos2'] = float(g.relPos2)
+    return d
+
+
+def _phys_dict(p):
+    c = _cls(p)
+    if c not in PHYS_CLASSES:
+        raise UnsupportedScene('interaction physics class %s is not supported by golden/FORMAT_GRID.md' % c)
+    d = {'class': c, 'kn': float(p.kn), 'ks': float(p.ks)}
+    if c == 'CohFrictPhys':
+        d['kr'] = float(p.kr)
+        d['ktw'] = float(p.ktw)
+    d['tangensOfFrictionAngle'] = float(p.tangensOfFrictionAngle)
+    d['normalForce'] = _v3(p.normalForce)
+    d['shearForce'] = _v3(p.shearForce)
+    if c == 'CohFrictPhys':
+        for a in ('cohesionBroken', 'fragile', 'initCohesion'):
+            d[a] = bool(getattr(p, a))
+        for a in ('normalAdhesion', 'shearAdhesion', 'unp', 'unpMax'):
+            d[a] = float(getattr(p, a))
+        d['momentRotationLaw'] = bool(p.momentRotationLaw)
+        d['maxRollPl'] = float(p.maxRollPl)
+        d['maxTwistPl'] = float(p.maxTwistPl)
+        d['moment_twist'] = _v3(p.moment_twist)
+        d['moment_bending'] = _v3(p.moment_bending)
+        d['cohesionDisablesFriction'] = bool(p.cohesionDisablesFriction)
+        d['creep_viscosity'] = float(p.creep_viscosity)
+    return d
+
+
+def _interaction_dict(I):
+    cd = I.cellDist
+    d = {'id1': int(I.id1), 'id2': int(I.id2), 'isReal': bool(I.isReal),
+         'cellDist': [int(cd[0]), int(cd[1]), int(cd[2])],
+         'iterMadeReal': int(I.iterMadeReal), 'iterBorn': int(I.iterBorn)}
+    d['geom'] = None if I.geom is None else _geom_dict(I.geom)
+    d['phys'] = None if I.phys is None else _phys_dict(I.phys)
+    return d
+
+
+def scene_dict(steps, script=None, grid=False):
     """The scene as YADE holds it now (call before the first step)."""
-    d = {'format': FORMAT_ID, 'source': SOURCE, 'script': script if script is not None else script_rel(),
+    d = {'format': GRID_FORMAT_ID if grid else FORMAT_ID, 'source': SOURCE,
+         'script': script if script is not None else script_rel(),
          'steps': int(steps), 'dt': float(O.dt), 'periodic': bool(O.periodic)}
+    if grid:
+        _require(not O.trackEnergy, 'O.trackEnergy=True is not supported')
     if O.periodic:
         c = O.cell
         _require(_is_zero_m3(c.velGrad) and _is_zero_m3(c.nextVelGrad) and _is_zero_m3(c.prevVelGrad),
                  'periodic cell with velGrad != 0 is not supported')
         h = c.hSize
         d['cell_hsize'] = [[float(h[i][j]) for j in range(3)] for i in range(3)]
-    bodies = [_body(b) for b in O.bodies]
+    bodies = [_body(b, grid) for b in O.bodies]
     for i, b in enumerate(bodies):
         _require(b['id'] == i, 'body ids are not dense 0..n-1')
     d['bodies'] = bodies
-    d['engines'] = [_engine(e) for e in O.engines]
+    d['engines'] = [_engine(e, grid) for e in O.engines]
+    if grid:
+        # every interaction in container order (O.interactions.all(False)), real and potential
+        d['interactions'] = [_interaction_dict(I) for I in O.interactions.all(False)]
     return d
 
 
@@ -239,6 +371,8 @@ def scene_dict(steps, script=None):
 # JSON writer: floats as '%.17g' (FORMAT.md), one body / engine per line
 
 def _js(v):
+    if v is None:
+        return 'null'
     if isinstance(v, bool):
         return 'true' if v else 'false'
     if isinstance(v, int):
@@ -263,7 +397,7 @@ def scene_json(d):
     for k in keys:
         v = d[k]
         last = (k == keys[-1])
-        if k in ('bodies', 'engines'):
+        if k in ('bodies', 'engines', 'interactions'):
             out.append('  %s: [' % _js(k))
             for i, x in enumerate(v):
                 out.append('    ' + _js(x) + (',' if i + 1 < len(v) else ''))
@@ -379,19 +513,53 @@ def _write_intrs(out, step, intrs):
                               fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], ph.kn, ph.ks))
 
 
+def _write_intrs6d(out, step, intrs):
+    for k, I in enumerate(intrs):
+        g = I.geom
+        ph = I.phys
+        gc = _cls(g)
+        pc = _cls(ph)
+        _require(gc in GEOM_CLASSES, 'step %d: interaction %d+%d: geometry class %s is not supported'
+                 % (step, I.id1, I.id2, gc))
+        _require(pc in PHYS_CLASSES, 'step %d: interaction %d+%d: physics class %s is not supported'
+                 % (step, I.id1, I.id2, pc))
+        f = ['%d' % step, '%d' % k, '%d' % I.id1, '%d' % I.id2]
+        if gc in GEOM6D_CLASSES:
+            bb = g.bending
+            f += ['%.17g' % g.twist, '%.17g' % bb[0], '%.17g' % bb[1], '%.17g' % bb[2]]
+        else:
+            f += ['nan'] * 4
+        if pc == 'CohFrictPhys':
+            mt = ph.moment_twist
+            mb = ph.moment_bending
+            f += ['%.17g' % x for x in (mt[0], mt[1], mt[2], mb[0], mb[1], mb[2], ph.unp)]
+            f.append('%d' % (1 if ph.cohesionBroken else 0))
+        else:
+            f += ['nan'] * 8
+        if gc == 'ScGridCoGeom':
+            f += ['%.17g' % g.relPos, '%d' % g.isDuplicate, '%d' % g.trueInt]
+        else:
+            f += ['nan'] * 3
+        out.write(','.join(f) + '\n')
+
+
 def _say(msg):
     print('[ryade_record] ' + msg, flush=True)
     sys.stderr.flush()
 
 
 def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, keep_steps=None, digest=False,
-           min_contacts_check=None, final_check=None):
+           min_contacts_check=None, final_check=None, grid=False, step_hook=None):
     """Record scene ``name`` for ``steps`` steps (see module docstring).
 
     keep_steps: None = every step 0..steps in the bodies file, else an iterable of steps to keep.
     digest:     also write <name>.digest.csv (SHA-256 of 19 little-endian doubles per body, id order).
     min_contacts_check: (k, n) -> fail unless at least n dynamic bodies have >= k real contacts at the end.
     final_check: callable run after the last step; returns None or an error message (-> failure).
+    grid:       grid extension (golden/FORMAT_GRID.md): format id ryade-scene-grid-1, grid classes allowed,
+                the ``interactions`` array in the scene JSON and <name>.intrs6d.csv.gz (needs ``intrs``).
+    step_hook:  callable(step) run after every recorded step (step 0 included, after the rows are written);
+                for script-side checks and statistics. It must not change the scene.
     Returns a dict of statistics.
     """
     if outdir is None:
@@ -400,7 +568,8 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
     _require(O.iter == 0, 'record() must be called before the first step (O.iter=%d)' % O.iter)
     _require(O.numThreads == 1, 'YADE must run with one thread (O.numThreads=%d)' % O.numThreads)
 
-    scene = scene_dict(steps)
+    _require(not grid or intrs, 'grid=True needs intrs=True')
+    scene = scene_dict(steps, grid=grid)
     text = scene_json(scene)
     nb = len(scene['bodies'])
     dynamic = [b['blockedDOFs'] != 63 for b in scene['bodies']]
@@ -419,6 +588,11 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
             fi = _AtomicGz(os.path.join(outdir, name + '.intrs.csv.gz'))
             files.append(fi)
             fi.write(INTR_HEADER + '\n')
+        fi6 = None
+        if grid:
+            fi6 = _AtomicGz(os.path.join(outdir, name + '.intrs6d.csv.gz'))
+            files.append(fi6)
+            fi6.write(INTR6D_HEADER + '\n')
         fd = None
         if digest:
             fd = _AtomicText(os.path.join(outdir, name + '.digest.csv'))
@@ -448,6 +622,10 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
             real = _real_intrs()
             if fi is not None:
                 _write_intrs(fi, step, real)
+            if fi6 is not None:
+                _write_intrs6d(fi6, step, real)
+            if step_hook is not None:
+                step_hook(step)
             counts = [0] * nb
             for I in real:
                 counts[I.id1] += 1
