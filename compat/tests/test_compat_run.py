@@ -64,3 +64,11 @@ def test_batch_runs_four_lines_and_summarises(tmp_path):
     assert vals['low'][1] < vals['none'][1]
     summary = open(tmp_path / 'batch.logs' / 'summary.csv').read()
     assert summary.count('\n') >= 5 and 'high' in summary
+
+
+def test_stop_at_iter_semantics_match_yade():
+    # expected lines printed by Debian YADE 2023.02a for the same script
+    p = run('run', os.path.join(SCRIPTS, 'stop_at_iter.py'))
+    assert p.returncode == 0, p.stderr
+    got = [l for l in p.stdout.splitlines() if l[:2] in ('A ', 'B ', 'C ', 'D ', 'E ')]
+    assert got == ['A 0', 'B -1 10', 'C -1 20', 'D -1 21', 'E -1 31']

@@ -790,28 +790,25 @@ class Omega(object):
     def step(self):
         self._one_step()
 
-    def _stop_reached(self, target):
-        if self._paused:
-            return True
-        if target is not None and self.iter >= target:
-            return True
-        if self.stopAtIter > 0 and self.iter >= self.stopAtIter:
-            return True
-        if self.stopAtTime > 0 and self.time >= self.stopAtTime:
-            return True
-        return False
-
     def _run(self, n):
+        """YADE's run loop: `O.run(n)` sets `stopAtIter = iter + n` (a PyRunner may move it), the run ends
+        at stopAtIter, stopAtTime or O.pause(), and stopAtIter is then reset to -1 (as YADE does)."""
         self._paused = False
-        target = self.iter + n if n > 0 else None
-        if not self._external and not self._pending_engines and target is not None and self.stopAtIter <= 0 \
-                and self.stopAtTime <= 0:
+        if n > 0:
+            self.stopAtIter = self.iter + n
+        if not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0:
             self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
+            self.stopAtIter = -1
             return
-        if target is None and self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
+        if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
             raise RuntimeError('O.run() without a step count and nothing that can stop it (no PyRunner, no '
                                'O.stopAtIter): it would never return; give O.run(nSteps, True)')
-        while not self._stop_reached(target):
+        while not self._paused:
+            if self.stopAtIter > 0 and self.iter >= self.stopAtIter:
+                self.stopAtIter = -1
+                break
+            if self.stopAtTime > 0 and self.time >= self.stopAtTime:
+                break
             self._one_step()
 
     def run(self, nSteps=-1, wait=False):
