@@ -14,6 +14,8 @@ pub struct BoundFunctors {
     pub facet: bool,
     pub wall: bool,
     pub box_: bool,
+    /// `Bo1_GridConnection_Aabb` (its aabbEnlargeFactor is declared but unused by YADE).
+    pub grid_connection: bool,
 }
 
 impl Default for BoundFunctors {
@@ -24,6 +26,7 @@ impl Default for BoundFunctors {
             facet: true,
             wall: false,
             box_: true,
+            grid_connection: false,
         }
     }
 }
@@ -38,7 +41,30 @@ pub fn aabb(
 ) -> Result<Option<(Vec3, Vec3)>, String> {
     let pos = bodies.pos[id];
     Ok(match shape {
-        Shape::Sphere { radius } => {
+        Shape::GridConnection(gc) if f.grid_connection => {
+            // Bo1_GridConnection_Aabb::go (pkg/common/Grid.cpp)
+            let mut o1 = bodies.pos[gc.node1 as usize];
+            let mut o2 = bodies.pos[gc.node2 as usize];
+            if let Some(c) = cell {
+                if c.has_shear() {
+                    return Err("sheared periodic cells are not supported yet".into());
+                }
+                o1 = c.unshear_pt(&o1);
+                o2 = c.unshear_pt(&o2);
+                o2 += crate::math::mat_vec_i(&c.hsize, &gc.cell_dist);
+            }
+            let r = gc.radius;
+            let mut mn = Vec3::zeros();
+            let mut mx = Vec3::zeros();
+            for k in 0..3 {
+                mn[k] = cxx_min(o1[k], o2[k]) - r;
+                mx[k] = cxx_max(o1[k], o2[k]) + r;
+            }
+            Some((mn, mx))
+        }
+        // the grid shapes are Spheres for Bo1_Sphere_Aabb when no more specific functor exists
+        Shape::Sphere { .. } | Shape::GridNode(_) | Shape::GridConnection(_) => {
+            let radius = shape.sphere_radius().unwrap();
             let Some(enlarge) = f.sphere else {
                 return Ok(None);
             };

@@ -5,8 +5,8 @@
 //! kept exactly because they set the force summation order: new pairs are appended, an erased pair
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
-use crate::geom::ScGeom;
-use crate::phys::FrictPhys;
+use crate::geom::{GeomClass, GeomExt, ScGeom};
+use crate::phys::{CohFrictPhys, FrictPhys};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -20,6 +20,20 @@ pub enum GeomFunctor {
     FacetSphere,
     WallSphere,
     BoxSphere,
+    SphereSphere6D,
+    GridNodeGridNode,
+    SphereGridConnection,
+    GridConnectionGridConnection,
+}
+
+/// The class-specific parts of an interaction's geometry and physics beyond `ScGeom`/`FrictPhys`
+/// (6-D rotations, grid data, cohesive physics). Interactions of plain sphere/facet/wall/box contacts
+/// never allocate one; the others get it when their geometry or physics is created.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct IntrExt {
+    pub geom: Option<GeomExt>,
+    /// `Some` when the physics is a `CohFrictPhys`.
+    pub coh: Option<CohFrictPhys>,
 }
 
 #[derive(Clone, Debug)]
@@ -31,6 +45,8 @@ pub struct Interaction {
     pub cell_dist: [i32; 3],
     pub geom: Option<ScGeom>,
     pub phys: Option<FrictPhys>,
+    /// The non-ScGeom / non-FrictPhys parts (see `IntrExt`); None for plain contacts.
+    pub ext: Option<Box<IntrExt>>,
     pub functor: GeomFunctor,
     pub iter_made_real: i64,
     pub iter_born: i64,
@@ -44,6 +60,7 @@ impl Interaction {
             cell_dist,
             geom: None,
             phys: None,
+            ext: None,
             functor: GeomFunctor::Unresolved,
             iter_made_real: -1,
             iter_born: iter,
@@ -60,8 +77,32 @@ impl Interaction {
     pub fn reset(&mut self) {
         self.geom = None;
         self.phys = None;
+        self.ext = None;
         self.functor = GeomFunctor::Unresolved;
         self.iter_made_real = -1;
+    }
+
+    /// The geometry extension, if any.
+    #[inline(always)]
+    pub fn geom_ext(&self) -> Option<&GeomExt> {
+        self.ext.as_ref().and_then(|e| e.geom.as_ref())
+    }
+
+    /// The cohesive physics part, if the physics is a `CohFrictPhys`.
+    #[inline(always)]
+    pub fn coh(&self) -> Option<&CohFrictPhys> {
+        self.ext.as_ref().and_then(|e| e.coh.as_ref())
+    }
+
+    /// The extension, allocated on first use.
+    pub fn ext_mut(&mut self) -> &mut IntrExt {
+        self.ext.get_or_insert_with(Default::default)
+    }
+
+    /// YADE's class of the geometry (None without geometry).
+    pub fn geom_class(&self) -> Option<GeomClass> {
+        self.geom.as_ref()?;
+        Some(self.geom_ext().map_or(GeomClass::ScGeom, |g| g.class()))
     }
 
     /// `Interaction::swapOrder`: swap the ids and negate the period.
@@ -85,6 +126,10 @@ pub struct Interactions {
     index: FxHashMap<u64, u32>,
     /// Set when the container was cleared; forces the collider to re-initialise.
     pub dirty: bool,
+    /// Sphere-connection geometry/physics objects that YADE shares between interactions (a sliding
+    /// sphere handed over to the next connection): share id -> the pairs holding a copy.
+    shared: FxHashMap<u32, Vec<(u32, u32)>>,
+    next_share: u32,
 }
 
 impl Interactions {
@@ -131,7 +176,71 @@ impl Interactions {
     pub fn clear(&mut self) {
         self.list.clear();
         self.index.clear();
+        self.shared.clear();
         self.dirty = true;
+    }
+
+    /// A new identity for a shared sphere-connection geometry object.
+    pub fn new_share_id(&mut self) -> u32 {
+        self.next_share += 1;
+        self.next_share
+    }
+
+    /// Record that the interaction of `pair` holds a copy of shared object `share`.
+    pub fn register_share(&mut self, share: u32, pair: (u32, u32)) {
+        let v = self.shared.entry(share).or_default();
+        if !v.contains(&pair) {
+            v.push(pair);
+        }
+    }
+
+    /// The share id of the sphere-connection geometry of interaction `k` (0: not shared).
+    pub fn share_of(&self, k: usize) -> u32 {
+        match self.list[k].geom_ext() {
+            Some(GeomExt::ScGridCo(x)) => x.share,
+            _ => 0,
+        }
+    }
+
+    /// Interaction `k` changed a shared object: copy its geometry and physics to every other
+    /// interaction still holding that object (all copies then stand for YADE's single C++ object).
+    /// Holders that were reset or erased since are dropped from the group.
+    pub fn sync_shared(&mut self, k: usize) {
+        let share = self.share_of(k);
+        if share == 0 {
+            return;
+        }
+        let Some(members) = self.shared.get(&share).cloned() else {
+            return;
+        };
+        let (geom, phys) = (self.list[k].geom, self.list[k].phys);
+        let ext = self.list[k].ext.as_ref().map(|e| (e.geom, e.coh));
+        let mut alive = Vec::with_capacity(members.len());
+        for pair in members {
+            let Some(j) = self.find(pair.0, pair.1) else {
+                continue;
+            };
+            if self.share_of(j) != share {
+                continue;
+            }
+            alive.push(pair);
+            if j == k {
+                continue;
+            }
+            let it = &mut self.list[j];
+            it.geom = geom;
+            it.phys = phys;
+            if let Some((g, c)) = ext {
+                let e = it.ext_mut();
+                e.geom = g;
+                e.coh = c;
+            }
+        }
+        if alive.len() <= 1 {
+            self.shared.remove(&share);
+        } else {
+            self.shared.insert(share, alive);
+        }
     }
 
     pub fn count_real(&self) -> usize {

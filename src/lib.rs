@@ -4,10 +4,12 @@
 //! contact geometry (`geom`) -> contact physics (`phys`) -> law (`law`) -> integrator (`integrator`).
 //! Floating-point reductions follow Eigen's order (`math`).
 
+pub mod bench;
 pub mod body;
 pub mod bound;
 pub mod cell;
 pub mod collider;
+pub mod dispatch;
 pub mod forces;
 pub mod geogrid;
 pub mod geom;

@@ -1,5 +1,7 @@
 //! Materials. `FrictMat` mirrors YADE `pkg/common/ElastMat.hpp` (young, poisson, frictionAngle) on top
-//! of `core/Material.hpp` (density).
+//! of `core/Material.hpp` (density). A `CohFrictMat` (pkg/dem/CohesiveFrictionalContactLaw.hpp) is a
+//! FrictMat whose `coh` holds the cohesive and rotational parameters; plain FrictMat scenes carry a
+//! null pointer there and nothing else.
 
 use serde::{Deserialize, Serialize};
 
@@ -14,6 +16,39 @@ pub struct FrictMat {
     /// Radians.
     pub friction_angle: f64,
     pub density: f64,
+    /// `Some` for a `CohFrictMat`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coh: Option<Box<CohFrictParams>>,
+}
+
+/// The fields `CohFrictMat` adds to `FrictMat`, with YADE's class defaults in `Default`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CohFrictParams {
+    pub is_cohesive: bool,
+    pub alpha_kr: f64,
+    pub alpha_ktw: f64,
+    pub eta_roll: f64,
+    pub eta_twist: f64,
+    pub normal_cohesion: f64,
+    pub shear_cohesion: f64,
+    pub fragile: bool,
+    pub moment_rotation_law: bool,
+}
+
+impl Default for CohFrictParams {
+    fn default() -> Self {
+        CohFrictParams {
+            is_cohesive: true,
+            alpha_kr: 2.0,
+            alpha_ktw: 2.0,
+            eta_roll: -1.0,
+            eta_twist: -1.0,
+            normal_cohesion: -1.0,
+            shear_cohesion: -1.0,
+            fragile: true,
+            moment_rotation_law: false,
+        }
+    }
 }
 
 impl Default for FrictMat {
@@ -26,6 +61,7 @@ impl Default for FrictMat {
             poisson: 0.25,
             friction_angle: 0.5,
             density: 1000.0,
+            coh: None,
         }
     }
 }
@@ -37,6 +73,50 @@ impl FrictMat {
             young: 1e7,
             poisson: 0.3,
             ..FrictMat::default()
+        }
+    }
+
+    /// `CohFrictMat()` with its C++ class defaults (those of FrictMat plus `CohFrictParams::default`).
+    pub fn coh_frict_default() -> Self {
+        FrictMat {
+            coh: Some(Box::default()),
+            ..FrictMat::default()
+        }
+    }
+
+    pub fn class(&self) -> MatClass {
+        if self.coh.is_some() {
+            MatClass::CohFrictMat
+        } else {
+            MatClass::FrictMat
+        }
+    }
+
+    pub fn class_name(&self) -> &'static str {
+        if self.coh.is_some() {
+            "CohFrictMat"
+        } else {
+            "FrictMat"
+        }
+    }
+}
+
+/// Material classes for physics dispatch (Material <- ElastMat <- FrictMat <- CohFrictMat).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MatClass {
+    Material,
+    ElastMat,
+    FrictMat,
+    CohFrictMat,
+}
+
+impl crate::dispatch::Hierarchy for MatClass {
+    fn parent(self) -> Option<Self> {
+        match self {
+            MatClass::Material => None,
+            MatClass::ElastMat => Some(MatClass::Material),
+            MatClass::FrictMat => Some(MatClass::ElastMat),
+            MatClass::CohFrictMat => Some(MatClass::FrictMat),
         }
     }
 }

@@ -7,27 +7,47 @@
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderCtx};
+use crate::dispatch::{self, Entry};
 use crate::forces::Forces;
-use crate::geom::{self, GeomCtx, Kin, Pair};
+use crate::geom::{self, GeomClass, GeomCtx, Kin, Pair};
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
-use crate::law::{self, LawBodies, LawEnergy};
-use crate::material::FrictMat;
+use crate::law::{self, LawBodies, LawEnergy, LawFunctor};
+use crate::material::{FrictMat, MatClass};
 use crate::math::Vec3;
-use crate::phys;
-use crate::shape::Shape;
+use crate::phys::{self, PhysClass};
+use crate::shape::{Shape, ShapeClass};
 
-/// The functor lists of an `InteractionLoop`.
+/// The functor lists of an `InteractionLoop` (each functor at most once; when two geometry functors
+/// claim the same shape pair, only the later one is kept, as YADE's dispatch matrix does).
 #[derive(Clone, Debug, PartialEq)]
 pub struct InteractionLoop {
     pub sphere_sphere: Option<geom::sphere_sphere::Params>,
+    /// `Ig2_Sphere_Sphere_ScGeom6D`
+    pub sphere_sphere_6d: Option<geom::grid::SixDParams>,
     pub facet_sphere: Option<geom::facet_sphere::Params>,
     pub wall_sphere: Option<geom::wall_sphere::Params>,
     pub box_sphere: Option<geom::box_sphere::Params>,
+    /// `Ig2_GridNode_GridNode_GridNodeGeom6D`
+    pub gridnode_gridnode: Option<geom::grid::SixDParams>,
+    /// `Ig2_Sphere_GridConnection_ScGridCoGeom` (its `interactionDetectionFactor`, unused by YADE)
+    pub sphere_gridco: Option<f64>,
+    /// `Ig2_GridConnection_GridConnection_GridCoGridCoGeom`
+    pub gridco_gridco: bool,
     /// `Ip2_FrictMat_FrictMat_FrictPhys` present.
     pub frict_phys: bool,
+    /// `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` and its state.
+    pub cohfrict_phys: Option<phys::CohFrictIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
     pub cundall_strack: Option<law::Params>,
+    /// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`
+    pub cohesion_moment: Option<law::cohesion_moment::Params>,
+    /// `Law2_ScGridCoGeom_FrictPhys_CundallStrack`
+    pub scgridco_frict: Option<law::grid::ScGridCoParams>,
+    /// `Law2_ScGridCoGeom_CohFrictPhys_CundallStrack`
+    pub scgridco_cohfrict: Option<law::grid::ScGridCoParams>,
+    /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
+    pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
 }
 
 impl Default for InteractionLoop {
@@ -35,13 +55,170 @@ impl Default for InteractionLoop {
     fn default() -> Self {
         InteractionLoop {
             sphere_sphere: Some(Default::default()),
-            facet_sphere: Some(Default::default()),
-            wall_sphere: None,
             box_sphere: Some(Default::default()),
+            facet_sphere: Some(Default::default()),
             frict_phys: true,
             cundall_strack: Some(Default::default()),
+            ..InteractionLoop::empty()
         }
     }
+}
+
+impl InteractionLoop {
+    /// No functor at all.
+    pub fn empty() -> Self {
+        InteractionLoop {
+            sphere_sphere: None,
+            sphere_sphere_6d: None,
+            facet_sphere: None,
+            wall_sphere: None,
+            box_sphere: None,
+            gridnode_gridnode: None,
+            sphere_gridco: None,
+            gridco_gridco: false,
+            frict_phys: false,
+            cohfrict_phys: None,
+            cundall_strack: None,
+            cohesion_moment: None,
+            scgridco_frict: None,
+            scgridco_cohfrict: None,
+            gridco_gridco_frict: None,
+        }
+    }
+
+    /// The geometry functors with their declared shape classes.
+    fn geom_entries(&self) -> Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>> {
+        use ShapeClass as S;
+        let mut v = Vec::with_capacity(8);
+        let mut add = |on: bool, a, b, f| {
+            if on {
+                v.push(Entry { a, b, f });
+            }
+        };
+        add(
+            self.sphere_sphere.is_some(),
+            S::Sphere,
+            S::Sphere,
+            GeomFunctor::SphereSphere,
+        );
+        add(
+            self.sphere_sphere_6d.is_some(),
+            S::Sphere,
+            S::Sphere,
+            GeomFunctor::SphereSphere6D,
+        );
+        add(
+            self.facet_sphere.is_some(),
+            S::Facet,
+            S::Sphere,
+            GeomFunctor::FacetSphere,
+        );
+        add(
+            self.wall_sphere.is_some(),
+            S::Wall,
+            S::Sphere,
+            GeomFunctor::WallSphere,
+        );
+        add(
+            self.box_sphere.is_some(),
+            S::Box,
+            S::Sphere,
+            GeomFunctor::BoxSphere,
+        );
+        add(
+            self.gridnode_gridnode.is_some(),
+            S::GridNode,
+            S::GridNode,
+            GeomFunctor::GridNodeGridNode,
+        );
+        add(
+            self.sphere_gridco.is_some(),
+            S::Sphere,
+            S::GridConnection,
+            GeomFunctor::SphereGridConnection,
+        );
+        add(
+            self.gridco_gridco,
+            S::GridConnection,
+            S::GridConnection,
+            GeomFunctor::GridConnectionGridConnection,
+        );
+        v
+    }
+
+    /// The physics functor for a material pair (None: no functor can handle it).
+    fn phys_functor(&self, a: MatClass, b: MatClass) -> Result<Option<PhysFunctor>, String> {
+        if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
+            return Ok(Some(PhysFunctor::Frict));
+        }
+        let mut v = Vec::with_capacity(2);
+        if self.frict_phys {
+            v.push(Entry {
+                a: MatClass::FrictMat,
+                b: MatClass::FrictMat,
+                f: PhysFunctor::Frict,
+            });
+        }
+        if self.cohfrict_phys.is_some() {
+            v.push(Entry {
+                a: MatClass::CohFrictMat,
+                b: MatClass::CohFrictMat,
+                f: PhysFunctor::CohFrict,
+            });
+        }
+        Ok(dispatch::resolve(&v, true, a, b, Some, Some)?.map(|(f, _)| f))
+    }
+
+    /// The law functor for a geometry/physics class pair.
+    fn law_functor(&self, g: GeomClass, p: PhysClass) -> Result<Option<LawFunctor>, String> {
+        if g == GeomClass::ScGeom && p == PhysClass::FrictPhys && self.cundall_strack.is_some() {
+            return Ok(Some(LawFunctor::CundallStrack));
+        }
+        let mut v = Vec::with_capacity(5);
+        let mut add = |on: bool, a, b, f| {
+            if on {
+                v.push(Entry { a, b, f });
+            }
+        };
+        add(
+            self.cundall_strack.is_some(),
+            GeomClass::ScGeom,
+            PhysClass::FrictPhys,
+            LawFunctor::CundallStrack,
+        );
+        add(
+            self.cohesion_moment.is_some(),
+            GeomClass::ScGeom6D,
+            PhysClass::CohFrictPhys,
+            LawFunctor::CohesionMoment,
+        );
+        add(
+            self.scgridco_frict.is_some(),
+            GeomClass::ScGridCoGeom,
+            PhysClass::FrictPhys,
+            LawFunctor::ScGridCoFrict,
+        );
+        add(
+            self.scgridco_cohfrict.is_some(),
+            GeomClass::ScGridCoGeom,
+            PhysClass::CohFrictPhys,
+            LawFunctor::ScGridCoCohFrict,
+        );
+        add(
+            self.gridco_gridco_frict.is_some(),
+            GeomClass::GridCoGridCoGeom,
+            PhysClass::FrictPhys,
+            LawFunctor::GridCoGridCoFrict,
+        );
+        Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
+    }
+}
+
+/// Which Ip2 functor builds an interaction's physics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PhysFunctor {
+    Frict,
+    CohFrict,
 }
 
 #[derive(Clone, Debug)]
@@ -89,6 +266,9 @@ pub enum StepError {
 pub struct Energy {
     pub plast_dissip: f64,
     pub elast_potential: f64,
+    pub shear_dissip: f64,
+    pub bending_dissip: f64,
+    pub twist_dissip: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -266,14 +446,109 @@ impl Scene {
         }
     }
 
-    /// `InteractionLoop::action` (core/InteractionLoop.cpp): every interaction in container order,
-    /// geometry, then physics on first contact, then the law.
+    /// `utils.createInteraction(id1, id2)` (`InteractionLoop::createExplicitInteraction`,
+    /// core/InteractionLoop.cpp, with `IGeomDispatcher::explicitAction`): the geometry is forced with
+    /// the first InteractionLoop's functors, the physics created, `iterMadeReal = iter`, and the
+    /// interaction appended to the container. In a periodic scene the period is the nearest image
+    /// `-(int)((x2-x1)/size + 0.5)` per axis. Returns the interaction's index.
+    pub fn create_interaction(&mut self, id1: usize, id2: usize) -> Result<usize, String> {
+        let n = self.bodies.len();
+        if id1 >= n || id2 >= n {
+            return Err(format!("No body #{}", if id1 >= n { id1 } else { id2 }));
+        }
+        if let Some(k) = self.interactions.find(id1 as u32, id2 as u32) {
+            if self.interactions.list[k].is_real() {
+                return Err(format!("Interaction #{}+#{} already exists.", id1, id2));
+            }
+            self.interactions.erase_at(k);
+        }
+        let Some(ke) = self
+            .engines
+            .iter()
+            .position(|e| matches!(e, Engine::InteractionLoop(_)))
+        else {
+            return Err("No IGeomDispatcher in engines or inside InteractionLoop.".into());
+        };
+        let mut cell_dist = [0i32; 3];
+        if let Some(c) = &self.cell {
+            let size = c.size();
+            for (i, cd) in cell_dist.iter_mut().enumerate() {
+                // a C++ cast to int truncates toward zero
+                *cd =
+                    -(((self.bodies.pos[id2][i] - self.bodies.pos[id1][i]) / size[i] + 0.5) as i32);
+            }
+        }
+        let mut e = std::mem::replace(&mut self.engines[ke], Engine::External(u32::MAX));
+        let Engine::InteractionLoop(il) = &mut e else {
+            unreachable!()
+        };
+        let r = self.create_interaction_with(il, id1, id2, cell_dist);
+        self.engines[ke] = e;
+        r
+    }
+
+    fn create_interaction_with(
+        &mut self,
+        il: &mut InteractionLoop,
+        id1: usize,
+        id2: usize,
+        cell_dist: [i32; 3],
+    ) -> Result<usize, String> {
+        let (s1, s2) = (&self.bodies.shape[id1], &self.bodies.shape[id2]);
+        let found =
+            dispatch::resolve(&il.geom_entries(), true, s1.class(), s2.class(), Some, Some)?;
+        let Some((functor, swap)) = found else {
+            return Err(format!(
+                "IGeomDispatcher::explicitAction could not dispatch for given types ({},{}).",
+                s1.class_name(),
+                s2.class_name()
+            ));
+        };
+        let mut it =
+            crate::interaction::Interaction::new(id1 as u32, id2 as u32, cell_dist, self.iter);
+        it.functor = functor;
+        if swap {
+            it.swap_order();
+        }
+        let (a, b) = (it.id1 as usize, it.id2 as usize);
+        self.interactions.insert(it);
+        let k = self.interactions.find(a as u32, b as u32).unwrap();
+        // YADE computes shift2 from the period before a functor swap negates it (kept)
+        let shift2 = match &self.cell {
+            Some(c) => c.shift_pos(&cell_dist),
+            None => Vec3::zeros(),
+        };
+        let ctx = GeomCtx {
+            dt: self.dt,
+            shift_vel: match &self.cell {
+                Some(c) => c.shift_vel(&cell_dist_of(&self.interactions, k)),
+                None => Vec3::zeros(),
+            },
+        };
+        // `force = true`: the functors skip their distance checks exactly as for a real interaction
+        let created = self.geometry(il, k, functor, a, b, true, &shift2, &ctx)?;
+        if !created {
+            self.interactions.erase_at(k);
+            return Err(format!(
+                "Functor {:?} returned false, even if asked to force IGeom creation.",
+                functor
+            ));
+        }
+        self.physics(il, k, a, b)?;
+        self.interactions.list[k].iter_made_real = self.iter;
+        Ok(k)
+    }
+
+    /// `InteractionLoop::action` (core/InteractionLoop.cpp): every interaction in container order:
+    /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
+    /// then the law.
     fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
         let ctx0 = GeomCtx {
             dt: self.dt,
             shift_vel: Vec3::zeros(),
         };
         let mut energy = LawEnergy::default();
+        let mut geom_entries = None;
         let n = self.interactions.list.len();
         for k in 0..n {
             let (id1_raw, id2_raw) = {
@@ -284,155 +559,589 @@ impl Scene {
                 continue;
             }
             if self.interactions.list[k].functor == GeomFunctor::Unresolved {
-                let (f, swap) =
-                    dispatch(il, &self.bodies.shape[id1_raw], &self.bodies.shape[id2_raw]);
+                let entries = geom_entries.get_or_insert_with(|| il.geom_entries());
+                let found = dispatch::resolve(
+                    entries,
+                    true,
+                    self.bodies.shape[id1_raw].class(),
+                    self.bodies.shape[id2_raw].class(),
+                    Some,
+                    Some,
+                )
+                .map_err(|e| {
+                    format!(
+                        "{} for {}+{} (#{}+#{})",
+                        e,
+                        self.bodies.shape[id1_raw].class_name(),
+                        self.bodies.shape[id2_raw].class_name(),
+                        id1_raw,
+                        id2_raw
+                    )
+                })?;
                 let it = &mut self.interactions.list[k];
-                it.functor = f;
-                if f == GeomFunctor::Missing {
-                    continue;
-                }
-                if swap {
-                    it.swap_order();
+                match found {
+                    None => {
+                        it.functor = GeomFunctor::Missing;
+                        continue;
+                    }
+                    Some((f, swap)) => {
+                        it.functor = f;
+                        if swap {
+                            it.swap_order();
+                        }
+                    }
                 }
             }
-            let it = &mut self.interactions.list[k];
-            let (id1, id2) = (it.id1 as usize, it.id2 as usize);
-            let was_real = it.is_real();
+            let (id1, id2, was_real, functor, cell_dist) = {
+                let it = &self.interactions.list[k];
+                (
+                    it.id1 as usize,
+                    it.id2 as usize,
+                    it.is_real(),
+                    it.functor,
+                    it.cell_dist,
+                )
+            };
             let shift2 = match &self.cell {
-                Some(c) => c.shift_pos(&it.cell_dist),
+                Some(c) => c.shift_pos(&cell_dist),
                 None => Vec3::zeros(),
             };
             let ctx = match &self.cell {
                 Some(c) => GeomCtx {
-                    shift_vel: c.shift_vel(&it.cell_dist),
+                    shift_vel: c.shift_vel(&cell_dist),
                     ..ctx0
                 },
                 None => ctx0,
             };
-            let b = &self.bodies;
-            let kin = |id: usize| Kin {
-                pos: b.pos[id],
-                vel: b.vel[id],
-                ang_vel: b.ang_vel[id],
-                ori: b.ori[id],
-            };
-            let pr = Pair {
-                s1: kin(id1),
-                s2: kin(id2),
-                shift2,
-                is_real: was_real,
-                ctx,
-            };
-            let g = &mut it.geom;
-            let created = match (it.functor, &b.shape[id1], &b.shape[id2]) {
+            // fast path for the common sphere-sphere contact; every other functor goes through
+            // `geometry`
+            let created = match (functor, &self.bodies.shape[id1], &self.bodies.shape[id2]) {
                 (
                     GeomFunctor::SphereSphere,
                     Shape::Sphere { radius: r1 },
                     Shape::Sphere { radius: r2 },
-                ) => geom::sphere_sphere::go(il.sphere_sphere.as_ref().unwrap(), *r1, *r2, &pr, g),
-                (GeomFunctor::FacetSphere, Shape::Facet(f), Shape::Sphere { radius }) => {
-                    geom::facet_sphere::go(il.facet_sphere.as_mut().unwrap(), f, *radius, &pr, g)
+                ) if !was_real
+                    && !geom::sphere_sphere::within_reach(
+                        il.sphere_sphere.as_ref().unwrap(),
+                        *r1,
+                        *r2,
+                        &self.bodies.pos[id1],
+                        &self.bodies.pos[id2],
+                        &shift2,
+                    ) =>
+                {
+                    false
                 }
                 (
-                    GeomFunctor::WallSphere,
-                    Shape::Wall { axis, sense },
-                    Shape::Sphere { radius },
-                ) => geom::wall_sphere::go(
-                    il.wall_sphere.as_ref().unwrap(),
-                    *axis,
-                    *sense,
-                    *radius,
-                    &pr,
-                    g,
-                ),
-                (GeomFunctor::BoxSphere, Shape::Box { extents }, Shape::Sphere { radius }) => {
-                    geom::box_sphere::go(il.box_sphere.as_ref().unwrap(), extents, *radius, &pr, g)
+                    GeomFunctor::SphereSphere,
+                    Shape::Sphere { radius: r1 },
+                    Shape::Sphere { radius: r2 },
+                ) => {
+                    let b = &self.bodies;
+                    let kin = |id: usize| Kin {
+                        pos: b.pos[id],
+                        vel: b.vel[id],
+                        ang_vel: b.ang_vel[id],
+                        ori: b.ori[id],
+                    };
+                    let pr = Pair {
+                        s1: kin(id1),
+                        s2: kin(id2),
+                        shift2,
+                        is_real: was_real,
+                        ctx,
+                    };
+                    geom::sphere_sphere::go(
+                        il.sphere_sphere.as_ref().unwrap(),
+                        *r1,
+                        *r2,
+                        &pr,
+                        &mut self.interactions.list[k].geom,
+                    )
                 }
-                (f, s1, s2) => {
-                    return Err(format!(
-                        "internal: functor {:?} cannot handle {}+{} (#{}+#{})",
-                        f,
-                        s1.class_name(),
-                        s2.class_name(),
-                        id1,
-                        id2
-                    ))
-                }
+                _ => self.geometry(il, k, functor, id1, id2, was_real, &shift2, &ctx)?,
             };
             if !created {
                 if was_real {
-                    it.reset();
+                    self.interactions.list[k].reset();
                 }
                 continue;
             }
-            if it.phys.is_none() {
-                if !il.frict_phys {
-                    return Err(format!(
-                        "Undefined IPhys dispatch for materials of #{} and #{}: add Ip2_FrictMat_FrictMat_FrictPhys()",
-                        id1, id2
-                    ));
-                }
-                let m1 = &self.materials[b.material[id1]];
-                let m2 = &self.materials[b.material[id2]];
-                it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
+            // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
+            // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
+            let plain = {
+                let it = &self.interactions.list[k];
+                it.ext.is_none() && it.phys.is_some() && il.cundall_strack.is_some()
+            };
+            if !plain {
+                self.physics(il, k, id1, id2)?;
             }
+            let it = &mut self.interactions.list[k];
             if !was_real {
                 it.iter_made_real = self.iter;
             }
-            let Some(lp) = il.cundall_strack.as_ref() else {
-                return Err(format!(
-                    "None of the given Law2 functors can handle interaction #{}+#{} (ScGeom, FrictPhys): add Law2_ScGeom_FrictPhys_CundallStrack()",
-                    id1, id2
-                ));
+            let energy_arg = if self.track_energy {
+                Some(&mut energy)
+            } else {
+                None
             };
-            let lb = LawBodies {
-                pos1: &b.pos[id1],
-                pos2_shifted: b.pos[id2] + shift2,
+            let keep = if plain {
+                let b = &self.bodies;
+                let lb = LawBodies {
+                    pos1: &b.pos[id1],
+                    pos2_shifted: b.pos[id2] + shift2,
+                };
+                let g = *it.geom.as_ref().unwrap();
+                law::go(
+                    il.cundall_strack.as_ref().unwrap(),
+                    &g,
+                    it.phys.as_mut().unwrap(),
+                    id1,
+                    id2,
+                    &lb,
+                    &mut self.forces,
+                    energy_arg,
+                )
+            } else {
+                let keep = self.law(il, k, id1, id2, &shift2, energy_arg)?;
+                if self.interactions.share_of(k) != 0 {
+                    self.interactions.sync_shared(k);
+                }
+                keep
             };
-            let g = *it.geom.as_ref().unwrap();
-            let ph = it.phys.as_mut().unwrap();
-            let keep = law::go(
-                lp,
-                &g,
-                ph,
-                id1,
-                id2,
-                &lb,
-                &mut self.forces,
-                if self.track_energy {
-                    Some(&mut energy)
-                } else {
-                    None
-                },
-            );
             if !keep {
-                it.reset();
+                self.interactions.list[k].reset();
             }
         }
         if self.track_energy {
             self.energy.plast_dissip += energy.plast_dissip;
             self.energy.elast_potential += energy.elast_potential;
+            self.energy.shear_dissip += energy.shear_dissip;
+            self.energy.bending_dissip += energy.bending_dissip;
+            self.energy.twist_dissip += energy.twist_dissip;
         }
         Ok(())
     }
+
+    /// The geometry functor of interaction `k` (`IGeomFunctor::go`); true when a geometry exists now.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn geometry(
+        &mut self,
+        il: &mut InteractionLoop,
+        k: usize,
+        functor: GeomFunctor,
+        id1: usize,
+        id2: usize,
+        was_real: bool,
+        shift2: &Vec3,
+        ctx: &GeomCtx,
+    ) -> Result<bool, String> {
+        let b = &self.bodies;
+        let radius = |id: usize| -> Result<f64, String> {
+            b.shape[id].sphere_radius().ok_or_else(|| {
+                format!(
+                    "internal: functor {:?} needs a sphere, #{} is a {}",
+                    functor,
+                    id,
+                    b.shape[id].class_name()
+                )
+            })
+        };
+        if functor == GeomFunctor::SphereGridConnection {
+            return geom::grid::sphere_gridco(
+                k,
+                &mut self.interactions,
+                b,
+                self.cell.as_ref(),
+                ctx,
+                shift2,
+            );
+        }
+        let kin = |id: usize| Kin {
+            pos: b.pos[id],
+            vel: b.vel[id],
+            ang_vel: b.ang_vel[id],
+            ori: b.ori[id],
+        };
+        let pr = Pair {
+            s1: kin(id1),
+            s2: kin(id2),
+            shift2: *shift2,
+            is_real: was_real,
+            ctx: *ctx,
+        };
+        let it = &mut self.interactions.list[k];
+        let g = &mut it.geom;
+        let mut conn_sync = None;
+        let created = match (functor, &b.shape[id1], &b.shape[id2]) {
+            (GeomFunctor::SphereSphere, _, _) => geom::sphere_sphere::go(
+                il.sphere_sphere.as_ref().unwrap(),
+                radius(id1)?,
+                radius(id2)?,
+                &pr,
+                g,
+            ),
+            (GeomFunctor::FacetSphere, Shape::Facet(f), _) => {
+                geom::facet_sphere::go(il.facet_sphere.as_mut().unwrap(), f, radius(id2)?, &pr, g)
+            }
+            (GeomFunctor::WallSphere, Shape::Wall { axis, sense }, _) => geom::wall_sphere::go(
+                il.wall_sphere.as_ref().unwrap(),
+                *axis,
+                *sense,
+                radius(id2)?,
+                &pr,
+                g,
+            ),
+            (GeomFunctor::BoxSphere, Shape::Box { extents }, _) => geom::box_sphere::go(
+                il.box_sphere.as_ref().unwrap(),
+                extents,
+                radius(id2)?,
+                &pr,
+                g,
+            ),
+            (GeomFunctor::SphereSphere6D, _, _) => geom::grid::six_d(
+                il.sphere_sphere_6d.as_ref().unwrap(),
+                radius(id1)?,
+                radius(id2)?,
+                &pr,
+                g,
+                &mut it.ext,
+                false,
+                &mut conn_sync,
+            ),
+            (GeomFunctor::GridNodeGridNode, _, _) => geom::grid::six_d(
+                il.gridnode_gridnode.as_ref().unwrap(),
+                radius(id1)?,
+                radius(id2)?,
+                &pr,
+                g,
+                &mut it.ext,
+                true,
+                &mut conn_sync,
+            ),
+            (
+                GeomFunctor::GridConnectionGridConnection,
+                Shape::GridConnection(c1),
+                Shape::GridConnection(c2),
+            ) => geom::grid::gridco_gridco(b, c1, c2, ctx, shift2, g, &mut it.ext),
+            (f, s1, s2) => {
+                return Err(format!(
+                    "internal: functor {:?} cannot handle {}+{} (#{}+#{})",
+                    f,
+                    s1.class_name(),
+                    s2.class_name(),
+                    id1,
+                    id2
+                ))
+            }
+        };
+        // GridNodeGeom6D.connectionBody follows node 1 (the only thing that moves a connection)
+        if let Some((cb, pos)) = conn_sync {
+            self.bodies.pos[cb as usize] = pos;
+        }
+        Ok(created)
+    }
+
+    /// The physics functor (`IPhysFunctor::go`), dispatched on the material classes.
+    #[inline(never)]
+    fn physics(
+        &mut self,
+        il: &mut InteractionLoop,
+        k: usize,
+        id1: usize,
+        id2: usize,
+    ) -> Result<(), String> {
+        let b = &self.bodies;
+        let m1 = &self.materials[b.material[id1]];
+        let m2 = &self.materials[b.material[id2]];
+        let it = &mut self.interactions.list[k];
+        match il.phys_functor(m1.class(), m2.class())? {
+            Some(PhysFunctor::Frict) => {
+                if it.phys.is_none() {
+                    it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
+                }
+            }
+            Some(PhysFunctor::CohFrict) => {
+                let ip2 = il.cohfrict_phys.as_mut().unwrap();
+                let g = it.geom.as_ref().unwrap();
+                let (r1, r2) = (g.radius1, g.radius2);
+                let e = it.ext.get_or_insert_with(Default::default);
+                let act = ip2.go(self.iter, m1, m2, r1, r2, &mut it.phys, &mut e.coh);
+                if act == phys::CohAction::InitRotations {
+                    if let Some(rot) = e.geom.as_mut().and_then(|g| g.rot_mut()) {
+                        rot.init_rotations(&b.ori[id1], &b.ori[id2]);
+                    }
+                }
+            }
+            None => {
+                return Err(format!(
+                    "Undefined IPhys dispatch for materials of #{} and #{} ({} and {}): add {}",
+                    id1,
+                    id2,
+                    m1.class_name(),
+                    m2.class_name(),
+                    if m1.class() == MatClass::CohFrictMat && m2.class() == MatClass::CohFrictMat {
+                        "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys()"
+                    } else {
+                        "Ip2_FrictMat_FrictMat_FrictPhys()"
+                    }
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// The law functor (`LawFunctor::go`), dispatched on the geometry and physics classes; false
+    /// when the interaction must be erased.
+    #[inline(never)]
+    fn law(
+        &mut self,
+        il: &mut InteractionLoop,
+        k: usize,
+        id1: usize,
+        id2: usize,
+        shift2: &Vec3,
+        energy: Option<&mut LawEnergy>,
+    ) -> Result<bool, String> {
+        let b = &self.bodies;
+        let it = &mut self.interactions.list[k];
+        let gc = it.geom_class().unwrap();
+        let pc = if it.coh().is_some() {
+            PhysClass::CohFrictPhys
+        } else {
+            PhysClass::FrictPhys
+        };
+        let Some(lf) = il.law_functor(gc, pc)? else {
+            return Err(format!(
+                "None of the given Law2 functors can handle interaction #{}+#{} ({}, {:?}): add {}",
+                id1,
+                id2,
+                gc.name(),
+                pc,
+                match (gc, pc) {
+                    (GeomClass::ScGridCoGeom, PhysClass::FrictPhys) =>
+                        "Law2_ScGridCoGeom_FrictPhys_CundallStrack()",
+                    (GeomClass::GridCoGridCoGeom, _) =>
+                        "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack()",
+                    (_, PhysClass::CohFrictPhys) => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment()",
+                    _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
+                }
+            ));
+        };
+        let g = *it.geom.as_ref().unwrap();
+        let fresh = it.iter_made_real == self.iter;
+        let ph = it.phys.as_mut().unwrap();
+        let bad = |what: &str| format!("internal: {} without {}", lf.class_name(), what);
+        Ok(match lf {
+            LawFunctor::CundallStrack => {
+                let lb = LawBodies {
+                    pos1: &b.pos[id1],
+                    pos2_shifted: b.pos[id2] + shift2,
+                };
+                law::go(
+                    il.cundall_strack.as_ref().unwrap(),
+                    &g,
+                    ph,
+                    id1,
+                    id2,
+                    &lb,
+                    &mut self.forces,
+                    energy,
+                )
+            }
+            LawFunctor::CohesionMoment => {
+                let e = it.ext.as_mut().ok_or_else(|| bad("extension"))?;
+                let rot = e
+                    .geom
+                    .as_mut()
+                    .and_then(|g| g.rot_mut())
+                    .ok_or_else(|| bad("ScGeom6D"))?;
+                let cp = e.coh.as_mut().ok_or_else(|| bad("CohFrictPhys"))?;
+                let lb = law::cohesion_moment::Bodies2 {
+                    pos1: b.pos[id1],
+                    pos2_shifted: b.pos[id2] + shift2,
+                    ang_vel1: b.ang_vel[id1],
+                    ang_vel2: b.ang_vel[id2],
+                };
+                law::cohesion_moment::go(
+                    il.cohesion_moment.as_ref().unwrap(),
+                    self.dt,
+                    fresh,
+                    &g,
+                    rot,
+                    ph,
+                    cp,
+                    id1,
+                    id2,
+                    &lb,
+                    &mut self.forces,
+                    energy,
+                )?
+            }
+            LawFunctor::ScGridCoFrict | LawFunctor::ScGridCoCohFrict => {
+                let e = it.ext.as_mut().ok_or_else(|| bad("extension"))?;
+                let Some(geom::GeomExt::ScGridCo(x)) = e.geom else {
+                    return Err(bad("ScGridCoGeom"));
+                };
+                if lf == LawFunctor::ScGridCoFrict {
+                    law::grid::scgridco_frict(
+                        il.scgridco_frict.as_ref().unwrap(),
+                        &g,
+                        &x,
+                        ph,
+                        id1,
+                        id2,
+                        &mut self.forces,
+                        energy,
+                    )
+                } else {
+                    let cp = e.coh.as_mut().ok_or_else(|| bad("CohFrictPhys"))?;
+                    law::grid::scgridco_cohfrict(
+                        fresh,
+                        &g,
+                        &x,
+                        ph,
+                        cp,
+                        id1,
+                        id2,
+                        &mut self.forces,
+                        energy,
+                    )
+                }
+            }
+            LawFunctor::GridCoGridCoFrict => {
+                let Some(geom::GeomExt::GridCoGridCo(x)) = it.geom_ext().copied() else {
+                    return Err(bad("GridCoGridCoGeom"));
+                };
+                let nodes = |id: usize| match &b.shape[id] {
+                    Shape::GridConnection(c) => Ok((c.node1 as usize, c.node2 as usize)),
+                    s => Err(format!(
+                        "body #{} is a {}, not a GridConnection",
+                        id,
+                        s.class_name()
+                    )),
+                };
+                let (n1, n2) = (nodes(id1)?, nodes(id2)?);
+                let ph = it.phys.as_mut().unwrap();
+                law::grid::gridco_gridco_frict(
+                    il.gridco_gridco_frict.as_ref().unwrap(),
+                    &g,
+                    &x,
+                    ph,
+                    n1,
+                    n2,
+                    &mut self.forces,
+                    energy,
+                )
+            }
+        })
+    }
 }
 
-/// `IGeomDispatcher::getFunctor2D`: the functor for a shape pair and whether the ids must be swapped
-/// so that the facet/wall/box is body 1.
-fn dispatch(il: &InteractionLoop, s1: &Shape, s2: &Shape) -> (GeomFunctor, bool) {
-    use Shape::*;
-    match (s1, s2) {
-        (Sphere { .. }, Sphere { .. }) if il.sphere_sphere.is_some() => {
-            (GeomFunctor::SphereSphere, false)
-        }
-        (Facet(_), Sphere { .. }) if il.facet_sphere.is_some() => (GeomFunctor::FacetSphere, false),
-        (Sphere { .. }, Facet(_)) if il.facet_sphere.is_some() => (GeomFunctor::FacetSphere, true),
-        (Wall { .. }, Sphere { .. }) if il.wall_sphere.is_some() => {
-            (GeomFunctor::WallSphere, false)
-        }
-        (Sphere { .. }, Wall { .. }) if il.wall_sphere.is_some() => (GeomFunctor::WallSphere, true),
-        (Box { .. }, Sphere { .. }) if il.box_sphere.is_some() => (GeomFunctor::BoxSphere, false),
-        (Sphere { .. }, Box { .. }) if il.box_sphere.is_some() => (GeomFunctor::BoxSphere, true),
-        _ => (GeomFunctor::Missing, false),
+fn cell_dist_of(intrs: &Interactions, k: usize) -> [i32; 3] {
+    intrs.list[k].cell_dist
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn geom(il: &InteractionLoop, a: ShapeClass, b: ShapeClass) -> Option<(GeomFunctor, bool)> {
+        dispatch::resolve(&il.geom_entries(), true, a, b, Some, Some).unwrap()
+    }
+
+    /// The dispatch facts of grid-pid-api.md 1.1/1.13: the grid shapes are Spheres for dispatch.
+    #[test]
+    fn grid_shapes_dispatch_through_the_sphere_hierarchy() {
+        use ShapeClass::*;
+        let mut il = InteractionLoop {
+            gridnode_gridnode: Some(Default::default()),
+            sphere_gridco: Some(1.0),
+            gridco_gridco: true,
+            ..InteractionLoop::default()
+        };
+        assert_eq!(
+            geom(&il, GridConnection, Sphere),
+            Some((GeomFunctor::SphereGridConnection, true))
+        );
+        assert_eq!(
+            geom(&il, Sphere, GridConnection),
+            Some((GeomFunctor::SphereGridConnection, false))
+        );
+        assert_eq!(
+            geom(&il, GridNode, GridNode),
+            Some((GeomFunctor::GridNodeGridNode, false))
+        );
+        // pitfall 2: a facet takes a connection for a sphere
+        assert_eq!(
+            geom(&il, Facet, GridConnection),
+            Some((GeomFunctor::FacetSphere, false))
+        );
+        assert_eq!(
+            geom(&il, GridConnection, Facet),
+            Some((GeomFunctor::FacetSphere, true))
+        );
+        // pitfall 1: without the GC-GC functor, GC-GC pairs go to the sphere-connection one
+        il.gridco_gridco = false;
+        assert_eq!(
+            geom(&il, GridConnection, GridConnection),
+            Some((GeomFunctor::SphereGridConnection, false))
+        );
+        // without the sphere-connection functor, a sphere meets a connection as a sphere
+        il.sphere_gridco = None;
+        assert_eq!(
+            geom(&il, Sphere, GridConnection),
+            Some((GeomFunctor::SphereSphere, false))
+        );
+        assert_eq!(geom(&il, Wall, Box), None);
+    }
+
+    #[test]
+    fn physics_and_laws_fall_back_to_their_bases() {
+        let il = InteractionLoop {
+            cohfrict_phys: Some(Default::default()),
+            cohesion_moment: Some(Default::default()),
+            scgridco_frict: Some(Default::default()),
+            ..InteractionLoop::default()
+        };
+        use MatClass::*;
+        assert_eq!(
+            il.phys_functor(CohFrictMat, CohFrictMat).unwrap(),
+            Some(PhysFunctor::CohFrict)
+        );
+        assert_eq!(
+            il.phys_functor(CohFrictMat, FrictMat).unwrap(),
+            Some(PhysFunctor::Frict)
+        );
+        assert_eq!(
+            il.phys_functor(FrictMat, CohFrictMat).unwrap(),
+            Some(PhysFunctor::Frict)
+        );
+        use GeomClass as G;
+        use PhysClass as P;
+        assert_eq!(
+            il.law_functor(G::GridNodeGeom6D, P::CohFrictPhys).unwrap(),
+            Some(LawFunctor::CohesionMoment)
+        );
+        assert_eq!(
+            il.law_functor(G::ScGeom6D, P::FrictPhys).unwrap(),
+            Some(LawFunctor::CundallStrack)
+        );
+        assert_eq!(
+            il.law_functor(G::ScGeom, P::CohFrictPhys).unwrap(),
+            Some(LawFunctor::CundallStrack)
+        );
+        assert_eq!(
+            il.law_functor(G::ScGridCoGeom, P::FrictPhys).unwrap(),
+            Some(LawFunctor::ScGridCoFrict)
+        );
+        // a cohesive sphere-connection contact without its own law: the 6-D cohesive law is nearer
+        assert_eq!(
+            il.law_functor(G::ScGridCoGeom, P::CohFrictPhys).unwrap(),
+            Some(LawFunctor::CohesionMoment)
+        );
+        let bare = InteractionLoop::empty();
+        assert_eq!(bare.law_functor(G::ScGeom, P::FrictPhys).unwrap(), None);
     }
 }

@@ -1,4 +1,6 @@
-//! Body shapes: Sphere, Facet, Wall, Box (YADE `pkg/common/{Sphere,Facet,Wall,Box}.hpp`).
+//! Body shapes: Sphere, Facet, Wall, Box (YADE `pkg/common/{Sphere,Facet,Wall,Box}.hpp`) and the grid
+//! shapes GridNode and GridConnection (`pkg/common/Grid.hpp`), which both derive from Sphere in YADE:
+//! functor dispatch, `PWaveTimeStep` and the collider's minimum radius treat them as spheres.
 
 use crate::math::{cross, norm, normalized, Vec3};
 
@@ -69,6 +71,25 @@ impl Facet {
     }
 }
 
+/// `GridNode` (pkg/common/Grid.hpp): a sphere-like vertex of a grid, with the list of the
+/// GridConnection bodies attached to it (`ConnList`, in `addConnection` order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridNode {
+    pub radius: f64,
+    pub conn_list: Vec<u32>,
+}
+
+/// `GridConnection` (pkg/common/Grid.hpp): a cylinder between two GridNode bodies. `cell_dist` is
+/// the period of node 2 relative to node 1 when `periodic`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridConnection {
+    pub radius: f64,
+    pub node1: u32,
+    pub node2: u32,
+    pub periodic: bool,
+    pub cell_dist: [i32; 3],
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     Sphere {
@@ -84,6 +105,8 @@ pub enum Shape {
     Box {
         extents: Vec3,
     },
+    GridNode(Box<GridNode>),
+    GridConnection(Box<GridConnection>),
 }
 
 impl Shape {
@@ -93,13 +116,62 @@ impl Shape {
             Shape::Facet(_) => "Facet",
             Shape::Wall { .. } => "Wall",
             Shape::Box { .. } => "Box",
+            Shape::GridNode(_) => "GridNode",
+            Shape::GridConnection(_) => "GridConnection",
         }
     }
 
+    /// The radius of a shape that "is a" Sphere in YADE's class hierarchy (`dynamic_cast<Sphere*>`):
+    /// Sphere, GridNode and GridConnection.
     pub fn sphere_radius(&self) -> Option<f64> {
         match self {
             Shape::Sphere { radius } => Some(*radius),
+            Shape::GridNode(n) => Some(n.radius),
+            Shape::GridConnection(c) => Some(c.radius),
             _ => None,
+        }
+    }
+
+    /// The radius of a plain `Sphere` only.
+    pub fn plain_sphere_radius(&self) -> Option<f64> {
+        match self {
+            Shape::Sphere { radius } => Some(*radius),
+            _ => None,
+        }
+    }
+}
+
+/// Shape classes for functor dispatch (YADE's `Shape` hierarchy: the grid shapes derive from Sphere).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShapeClass {
+    Shape,
+    Sphere,
+    GridNode,
+    GridConnection,
+    Facet,
+    Wall,
+    Box,
+}
+
+impl crate::dispatch::Hierarchy for ShapeClass {
+    fn parent(self) -> Option<Self> {
+        match self {
+            ShapeClass::Shape => None,
+            ShapeClass::GridNode | ShapeClass::GridConnection => Some(ShapeClass::Sphere),
+            _ => Some(ShapeClass::Shape),
+        }
+    }
+}
+
+impl Shape {
+    pub fn class(&self) -> ShapeClass {
+        match self {
+            Shape::Sphere { .. } => ShapeClass::Sphere,
+            Shape::Facet(_) => ShapeClass::Facet,
+            Shape::Wall { .. } => ShapeClass::Wall,
+            Shape::Box { .. } => ShapeClass::Box,
+            Shape::GridNode(_) => ShapeClass::GridNode,
+            Shape::GridConnection(_) => ShapeClass::GridConnection,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! YADE's `utils` helpers that belong to the engine: time step, unbalanced force, porosity, and the
-//! body builders `sphere`, `facet`, `box_`, `wall` (py/utils.py, preprocessing/dem/Shop_01.cpp).
+//! body builders `sphere`, `facet`, `box_`, `wall` (py/utils.py, preprocessing/dem/Shop_01.cpp) and
+//! `grid_node`, `grid_connection` (py/gridpfacet.py).
 
 use crate::body::{BodySpec, DOF_ALL};
 use crate::math::{norm, norm2, Quat, Vec3};
@@ -13,7 +14,8 @@ pub fn pwave_time_step(scene: &Scene) -> Option<f64> {
     let mut dt = f64::INFINITY;
     let mut found = false;
     for id in 0..b.len() {
-        if let Shape::Sphere { radius } = b.shape[id] {
+        // every Sphere-derived shape counts, grid nodes and connections included (YADE's dynamic_cast)
+        if let Some(radius) = b.shape[id].sphere_radius() {
             let density = b.mass[id] / ((4.0 / 3.0) * std::f64::consts::PI * radius.powf(3.0));
             let young = scene.materials[b.material[id]].young;
             let d = radius / (young / density).sqrt();
@@ -170,6 +172,136 @@ pub fn wall(position: f64, axis: usize, sense: i32, material: usize) -> BodySpec
     )
 }
 
+/// `gridpfacet.gridNode(center, radius, fixed, material)` (py/gridpfacet.py): volume 0, so mass and
+/// inertia start at 0 (the connections add theirs); unbounded and mask 0, so the node never
+/// collides (node-node bonds are created explicitly by `grid_connection`).
+pub fn grid_node(center: Vec3, radius: f64, material: usize, fixed: bool) -> BodySpec {
+    let mut b = at_rest(
+        Shape::GridNode(Box::new(crate::shape::GridNode {
+            radius,
+            conn_list: Vec::new(),
+        })),
+        material,
+        center,
+        0.0,
+        Vec3::zeros(),
+        if fixed { DOF_ALL } else { 0 },
+    );
+    // V = 0: mass 0*density and inertia (2/5*0*r**2)*density, both +0
+    b.bounded = false;
+    b.mask = 0;
+    b
+}
+
+/// `gridpfacet.gridConnection(id1, id2, radius, material, mask, cellDist)` (py/gridpfacet.py), in
+/// its order of operations and Python's evaluation order: `createInteraction(id1, id2)`, the
+/// connection body (fixed, at node 1, mass `V·ρ` of its own material with `V = ½·L·π·r²`), each
+/// node's mass `+= V·ρ` and inertia `+= (2/5)·V·r²·ρ` with ρ, E and ν of node 1's material, then
+/// the bond overrides `unp = -L + r1 + r2`, `kn = E·π·r²/L`, `kr = E·I/L`, `ks = 12·E·I/L³`,
+/// `ktw = 2·I·G/L` (`I = π(2r)⁴/64`, `G = E/(2(1+ν))`), `connectionBody` and the mask. Python's `**`
+/// is libm `pow`. Returns the connection's body id.
+pub fn grid_connection(
+    scene: &mut Scene,
+    id1: usize,
+    id2: usize,
+    radius: f64,
+    material: usize,
+    mask: i32,
+    cell_dist: Option<[i32; 3]>,
+) -> Result<usize, String> {
+    use crate::geom::GeomExt;
+    let pi = std::f64::consts::PI;
+    for id in [id1, id2] {
+        if !matches!(scene.bodies.shape.get(id), Some(Shape::GridNode(_))) {
+            return Err(format!("gridConnection: body #{} is not a GridNode", id));
+        }
+    }
+    let k = scene.create_interaction(id1, id2)?;
+    let node_mat = scene.materials[scene.bodies.material[id1]].clone();
+    let conn_id = scene.bodies.len();
+    for id in [id1, id2] {
+        if let Shape::GridNode(n) = &mut scene.bodies.shape[id] {
+            n.conn_list.push(conn_id as u32);
+        }
+    }
+    let b = &scene.bodies;
+    let (p1, p2) = (b.pos[id1], b.pos[id2]);
+    let periodic = scene.cell.is_some();
+    if periodic {
+        if let Some(cd) = cell_dist {
+            scene.interactions.list[k].cell_dist = cd;
+        }
+    }
+    let cd = scene.interactions.list[k].cell_dist;
+    let rel = match &scene.cell {
+        Some(c) => (p2 + crate::math::mat_vec_i(&c.hsize, &cd)) - p1,
+        None => p2 - p1,
+    };
+    let l = norm(&rel);
+    let v = 0.5 * l * pi * radius.powf(2.0);
+    let geom_inert = (2.0 / 5.0) * v * radius.powf(2.0);
+    let conn_density = scene.materials[material].density;
+    let mut spec = at_rest(
+        Shape::GridConnection(Box::new(crate::shape::GridConnection {
+            radius,
+            node1: id1 as u32,
+            node2: id2 as u32,
+            periodic,
+            cell_dist: if periodic { cd } else { [0; 3] },
+        })),
+        material,
+        p1,
+        v * conn_density,
+        Vec3::repeat(geom_inert * conn_density),
+        DOF_ALL,
+    );
+    spec.mask = mask;
+    let b = &mut scene.bodies;
+    for id in [id1, id2] {
+        b.mass[id] += v * node_mat.density;
+    }
+    for kk in 0..3 {
+        for id in [id1, id2] {
+            b.inertia[id][kk] += geom_inert * node_mat.density;
+        }
+    }
+    let r1 = b.shape[id1].sphere_radius().unwrap();
+    let r2 = b.shape[id2].sphere_radius().unwrap();
+    let cid = b.push(spec);
+    scene.forces.resize(scene.bodies.len());
+    let unp = -l + r1 + r2;
+    let i_ = pi * (2.0 * radius).powf(4.0) / 64.0;
+    let e = node_mat.young;
+    let it = &mut scene.interactions.list[k];
+    let ph = it
+        .phys
+        .as_mut()
+        .ok_or("gridConnection: the interaction has no physics")?;
+    ph.kn = e * pi * radius.powf(2.0) / l;
+    ph.ks = 12.0 * e * i_ / l.powf(3.0);
+    let g = e / (2.0 * (1.0 + node_mat.poisson));
+    let ext = it.ext_mut();
+    let coh = ext
+        .coh
+        .as_mut()
+        .ok_or("gridConnection: the bond physics is not a CohFrictPhys (add Ip2_CohFrictMat_CohFrictMat_CohFrictPhys and use a CohFrictMat for the nodes)")?;
+    coh.unp = unp;
+    coh.kr = e * i_ / l;
+    coh.ktw = 2.0 * i_ * g / l;
+    match ext.geom.as_mut() {
+        Some(GeomExt::GridNode {
+            connection_body, ..
+        }) => *connection_body = Some(cid as u32),
+        _ => {
+            return Err(
+                "gridConnection: the bond geometry is not a GridNodeGeom6D (add Ig2_GridNode_GridNode_GridNodeGeom6D)"
+                    .into(),
+            )
+        }
+    }
+    Ok(cid)
+}
+
 /// A body at rest with identity orientation, mask 1, bounded, damped.
 fn at_rest(
     shape: Shape,
@@ -218,7 +350,7 @@ pub fn critical_time_step(scene: &Scene) -> Option<f64> {
     (0..b.len())
         .filter(|&id| b.is_dynamic(id))
         .filter_map(|id| {
-            let r = b.shape[id].sphere_radius()?;
+            let r = b.shape[id].plain_sphere_radius()?;
             let kn = scene.materials[b.material[id]].young * r;
             Some(2.0 * (b.mass[id] / (2.0 * kn)).sqrt())
         })

@@ -20,9 +20,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Compare ryade with YADE's golden records. Targets: `micro` (bit for bit, every step), `meso`.
+    /// Compare ryade with YADE's golden records. Targets: `micro` and `micro_grid` (bit for bit,
+    /// every step), `meso`.
     Diff {
-        /// What to compare: micro | meso
+        /// What to compare: micro | micro_grid | meso
         target: String,
         /// Golden directory (default: golden/<target>)
         #[arg(long)]
@@ -48,6 +49,23 @@ enum Cmd {
         /// TABLE script.py [-j N] [--log DIR] [--lines ...] [--dry-run] [--emit-slurm FILE] ...
         #[arg(allow_hyphen_values = true)]
         args: Vec<String>,
+    },
+    /// Time the same scene in YADE and ryade, alternating repetitions; ratio with min/median/max.
+    Bench {
+        /// Scene files (*.scene.json; e.g. bench/scenes/dense8000.scene.json)
+        scenes: Vec<PathBuf>,
+        #[arg(long, default_value_t = 2000)]
+        steps: u64,
+        #[arg(long, default_value_t = 50)]
+        warmup: u64,
+        #[arg(long, default_value_t = 3)]
+        reps: usize,
+        /// Time ryade only
+        #[arg(long)]
+        no_yade: bool,
+        /// Append the report (JSON lines) to this log file
+        #[arg(long)]
+        log: Option<PathBuf>,
     },
     /// Run a scene file (*.scene.json) and record every step in the golden format.
     Scene {
@@ -124,9 +142,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ExitCode::from(1)
                 });
             }
-            if target != "micro" {
+            if target != "micro" && target != "micro_grid" {
                 bail!(
-                    "unknown diff target '{}': available targets are: micro, meso",
+                    "unknown diff target '{}': available targets are: micro, micro_grid, meso",
                     target
                 );
             }
@@ -166,13 +184,62 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 ExitCode::from(1)
             })
         }
+        Cmd::Bench {
+            scenes,
+            steps,
+            warmup,
+            reps,
+            no_yade,
+            log,
+        } => {
+            if scenes.is_empty() {
+                bail!("give at least one scene file (e.g. bench/scenes/dense8000.scene.json)");
+            }
+            let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+            for sc in &scenes {
+                let r = ryade::bench::bench(&root, sc, steps, warmup, reps, !no_yade)?;
+                let b = r
+                    .samples
+                    .last()
+                    .map(|s| (s.bodies, s.contacts))
+                    .unwrap_or((0, 0));
+                println!(
+                    "{}: {} bodies, {} contacts, {} steps x {} reps",
+                    r.scene, b.0, b.1, steps, reps
+                );
+                let p = |s: &ryade::bench::Stats| {
+                    format!(
+                        "min {:.4e} median {:.4e} max {:.4e}",
+                        s.min, s.median, s.max
+                    )
+                };
+                println!("  ryade particle-steps/s: {}", p(&r.ryade_particle_steps));
+                if let (Some(y), Some(q)) = (&r.yade_particle_steps, &r.ratio) {
+                    println!("  YADE  particle-steps/s: {}", p(y));
+                    println!(
+                        "  ratio ryade/YADE:       min {:.2} median {:.2} max {:.2}",
+                        q.min, q.median, q.max
+                    );
+                }
+                if let Some(l) = &log {
+                    use std::io::Write;
+                    let mut f = std::fs::OpenOptions::new()
+                        .create(true)
+                        .append(true)
+                        .open(l)?;
+                    writeln!(f, "{}", serde_json::to_string(&r)?)?;
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
         Cmd::Scene { file, steps, out } => {
             let sf = scene_json::load(&file)?;
             let steps = steps.unwrap_or(sf.steps);
             let name = sf.name.clone();
             let mut scene = sf.scene;
             ryade::utils::check_time_step(&scene).map_err(anyhow::Error::msg)?;
-            let mut rec = Recorder::create(&out, &name)?;
+            let grid = scene_json::to_value(&scene, 0)["format"] == scene_json::GRID_FORMAT_ID;
+            let mut rec = Recorder::create_with(&out, &name, grid)?;
             rec.record(&scene)?;
             let bar = indicatif::ProgressBar::new(steps);
             bar.set_style(

@@ -4,10 +4,162 @@
 
 pub mod box_sphere;
 pub mod facet_sphere;
+pub mod grid;
+pub mod six_d;
 pub mod sphere_sphere;
 pub mod wall_sphere;
 
 use crate::math::{cross, dot, Quat, Vec3};
+pub use six_d::Rot6D;
+
+/// A fictitious body state at a point of a grid connection (the C++-only `fictiousState` of
+/// `ScGridCoGeom`/`GridCoGridCoGeom`): position, interpolated velocity and angular velocity.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Fict {
+    pub pos: Vec3,
+    pub vel: Vec3,
+    pub ang_vel: Vec3,
+}
+
+impl Fict {
+    pub fn kin(&self) -> Kin {
+        Kin {
+            pos: self.pos,
+            vel: self.vel,
+            ang_vel: self.ang_vel,
+            ori: Quat::IDENTITY,
+        }
+    }
+}
+
+/// What `ScGridCoGeom` (pkg/common/Grid.hpp) adds to `ScGeom6D`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScGridCo {
+    pub rot: Rot6D,
+    pub is_duplicate: i32,
+    pub true_int: i32,
+    pub id3: i32,
+    pub id4: i32,
+    pub id5: i32,
+    pub weight: Vec3,
+    pub rel_pos: f64,
+    pub fict: Fict,
+    /// Identity of the geometry object when YADE shares it between two interactions (the hand-over
+    /// of a sliding sphere to the next connection): interactions holding copies with the same
+    /// non-zero `share` stand for one C++ object (see `Interactions::sync_shared`).
+    pub share: u32,
+}
+
+impl Default for ScGridCo {
+    /// The C++ defaults: isDuplicate 0, trueInt -1, id3 = id4 = 0, id5 -1, weight 0, relPos 0.
+    fn default() -> Self {
+        ScGridCo {
+            rot: Rot6D::default(),
+            is_duplicate: 0,
+            true_int: -1,
+            id3: 0,
+            id4: 0,
+            id5: -1,
+            weight: Vec3::zeros(),
+            rel_pos: 0.0,
+            fict: Fict::default(),
+            share: 0,
+        }
+    }
+}
+
+/// What `GridCoGridCoGeom` (pkg/common/Grid.hpp) adds to `ScGeom`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GridCoGridCo {
+    pub rel_pos1: f64,
+    pub rel_pos2: f64,
+    pub fict1: Fict,
+    pub fict2: Fict,
+}
+
+/// The geometry classes beyond plain `ScGeom`; only interactions made by the 6-D and grid functors
+/// carry one (boxed in the interaction's extension, allocated when the contact is created).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GeomExt {
+    /// `ScGeom6D`
+    Sc6D(Rot6D),
+    /// `GridNodeGeom6D`: `connection_body` is the GridConnection body whose position follows node 1.
+    GridNode {
+        rot: Rot6D,
+        connection_body: Option<u32>,
+    },
+    ScGridCo(ScGridCo),
+    GridCoGridCo(GridCoGridCo),
+}
+
+impl GeomExt {
+    /// The rotational part of the ScGeom6D-derived classes.
+    pub fn rot(&self) -> Option<&Rot6D> {
+        match self {
+            GeomExt::Sc6D(r) => Some(r),
+            GeomExt::GridNode { rot, .. } => Some(rot),
+            GeomExt::ScGridCo(g) => Some(&g.rot),
+            GeomExt::GridCoGridCo(_) => None,
+        }
+    }
+
+    pub fn rot_mut(&mut self) -> Option<&mut Rot6D> {
+        match self {
+            GeomExt::Sc6D(r) => Some(r),
+            GeomExt::GridNode { rot, .. } => Some(rot),
+            GeomExt::ScGridCo(g) => Some(&mut g.rot),
+            GeomExt::GridCoGridCo(_) => None,
+        }
+    }
+
+    pub fn class(&self) -> GeomClass {
+        match self {
+            GeomExt::Sc6D(_) => GeomClass::ScGeom6D,
+            GeomExt::GridNode { .. } => GeomClass::GridNodeGeom6D,
+            GeomExt::ScGridCo(_) => GeomClass::ScGridCoGeom,
+            GeomExt::GridCoGridCo(_) => GeomClass::GridCoGridCoGeom,
+        }
+    }
+}
+
+/// YADE's geometry classes that ryade builds (for law dispatch and the records), with their bases.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GeomClass {
+    IGeom,
+    GenericSpheresContact,
+    ScGeom,
+    ScGeom6D,
+    GridNodeGeom6D,
+    ScGridCoGeom,
+    GridCoGridCoGeom,
+}
+
+impl GeomClass {
+    pub fn name(&self) -> &'static str {
+        match self {
+            GeomClass::IGeom => "IGeom",
+            GeomClass::GenericSpheresContact => "GenericSpheresContact",
+            GeomClass::ScGeom => "ScGeom",
+            GeomClass::ScGeom6D => "ScGeom6D",
+            GeomClass::GridNodeGeom6D => "GridNodeGeom6D",
+            GeomClass::ScGridCoGeom => "ScGridCoGeom",
+            GeomClass::GridCoGridCoGeom => "GridCoGridCoGeom",
+        }
+    }
+}
+
+impl crate::dispatch::Hierarchy for GeomClass {
+    fn parent(self) -> Option<Self> {
+        use GeomClass::*;
+        match self {
+            IGeom => None,
+            GenericSpheresContact => Some(IGeom),
+            ScGeom => Some(GenericSpheresContact),
+            ScGeom6D | GridCoGridCoGeom => Some(ScGeom),
+            GridNodeGeom6D | ScGridCoGeom => Some(ScGeom6D),
+        }
+    }
+}
 
 /// Kinematic state of one body as the geometry functors see it.
 #[derive(Clone, Copy, Debug)]

@@ -18,6 +18,15 @@ impl Default for Params {
     }
 }
 
+/// The distance pre-check of `go` for a potential interaction, from positions alone (lets the
+/// interaction loop skip gathering both bodies' kinematics for pairs that do not touch).
+#[inline(always)]
+pub fn within_reach(p: &Params, r1: f64, r2: f64, pos1: &Vec3, pos2: &Vec3, shift2: &Vec3) -> bool {
+    let d = (pos2 + shift2) - pos1;
+    let f = p.interaction_detection_factor * (r1 + r2);
+    f * f - norm2(&d) >= 0.0
+}
+
 /// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
 /// interaction always gets its geometry updated, even when the spheres have separated.
 pub fn go(p: &Params, r1: f64, r2: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {

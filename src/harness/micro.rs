@@ -1,6 +1,7 @@
-//! `compat diff micro`: run each golden scene in ryade and compare every recorded double, every step.
+//! `compat diff micro` / `compat diff micro_grid`: run each golden scene in ryade and compare every
+//! recorded double, every step (bodies, interactions and, for grid scenes, the `intrs6d` file).
 
-use crate::io::golden::{self, BODY_COLS, INTR_COLS};
+use crate::io::golden::{self, BODY_COLS, INTR6D_COLS, INTR_COLS};
 use crate::io::scene_json::{self, SceneFile};
 use crate::scene::Scene;
 use anyhow::{Context, Result};
@@ -76,18 +77,43 @@ pub fn golden_paths(scene_json: &Path) -> (PathBuf, PathBuf) {
     )
 }
 
+/// The `intrs6d` golden file of a scene (grid extension; absent for FORMAT.md scenes).
+pub fn golden_path6d(scene_json: &Path) -> PathBuf {
+    let s = scene_json.to_string_lossy();
+    PathBuf::from(format!(
+        "{}.intrs6d.csv.gz",
+        s.trim_end_matches(".scene.json")
+    ))
+}
+
 /// Compare a ryade run of `sf` with the golden records next to `scene_json`.
 pub fn diff_scene(sf: SceneFile, scene_json: &Path) -> Result<DiffReport> {
     let (bp, ip) = golden_paths(scene_json);
     let bodies = golden::read_bodies(&bp)?;
     let intrs = golden::read_intrs(&ip)?;
-    Ok(diff_against(sf, &bodies, &intrs))
+    let p6 = golden_path6d(scene_json);
+    let intrs6d = if p6.exists() {
+        Some(golden::read_intrs6d(&p6)?)
+    } else {
+        None
+    };
+    Ok(diff_against_6d(sf, &bodies, &intrs, intrs6d.as_deref()))
 }
 
 pub fn diff_against(
     sf: SceneFile,
     bodies: &[golden::BodyRow],
     intrs: &[golden::IntrRow],
+) -> DiffReport {
+    diff_against_6d(sf, bodies, intrs, None)
+}
+
+/// As `diff_against`, also comparing the `intrs6d` rows when given.
+pub fn diff_against_6d(
+    sf: SceneFile,
+    bodies: &[golden::BodyRow],
+    intrs: &[golden::IntrRow],
+    intrs6d: Option<&[golden::Intr6dRow]>,
 ) -> DiffReport {
     let SceneFile {
         mut scene,
@@ -107,6 +133,10 @@ pub fn diff_against(
     for r in intrs {
         by_step_i.entry(r.step).or_default().push(r);
     }
+    let mut by_step_6: HashMap<u64, Vec<&golden::Intr6dRow>> = HashMap::new();
+    for r in intrs6d.unwrap_or(&[]) {
+        by_step_6.entry(r.step).or_default().push(r);
+    }
     for step in 0..=steps {
         if step > 0 {
             if let Err(e) = scene.step() {
@@ -122,8 +152,55 @@ pub fn diff_against(
             by_step_i.get(&step),
             &mut rep,
         );
+        if intrs6d.is_some() {
+            compare_step_6d(&scene, step, by_step_6.get(&step), &mut rep);
+        }
     }
     rep
+}
+
+/// The `intrs6d` rows of one step, matched by pair (the pair set itself is checked by
+/// `compare_step`; here a missing pair only counts once more as a mismatch).
+fn compare_step_6d(
+    scene: &Scene,
+    step: u64,
+    g6: Option<&Vec<&golden::Intr6dRow>>,
+    rep: &mut DiffReport,
+) {
+    let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
+    let ours: HashMap<(u32, u32), [f64; 15]> = golden::intr6d_values(scene)
+        .into_iter()
+        .map(|(a, b, v)| (key(a, b), v))
+        .collect();
+    let empty = Vec::new();
+    for row in g6.unwrap_or(&empty) {
+        match ours.get(&key(row.id1, row.id2)) {
+            None => {
+                rep.values += 1;
+                rep.mismatches += 1;
+                if rep.first.is_none() {
+                    rep.first = Some(FirstDiff {
+                        step,
+                        what: format!(
+                            "intrs6d: contact {}-{} exists in YADE only",
+                            row.id1, row.id2
+                        ),
+                        ..Default::default()
+                    });
+                }
+            }
+            Some(v) => {
+                for (k, (o, t)) in v.iter().zip(row.v.iter()).enumerate() {
+                    rep.note(
+                        step,
+                        || format!("contact {}-{} {}", row.id1, row.id2, INTR6D_COLS[k]),
+                        *o,
+                        *t,
+                    );
+                }
+            }
+        }
+    }
 }
 
 fn compare_step(

@@ -33,6 +33,36 @@ pub const INTR_COLS: [&str; 18] = [
     "ks",
 ];
 
+/// Columns of `*.intrs6d.csv.gz` after `step,ord,id1,id2` (golden/FORMAT_GRID.md): the ScGeom6D
+/// rotations, the CohFrictPhys moments/state and the ScGridCoGeom duplicate state; `nan` where the
+/// interaction's class has no such field.
+pub const INTR6D_COLS: [&str; 15] = [
+    "twist",
+    "bending_x",
+    "bending_y",
+    "bending_z",
+    "mtw_x",
+    "mtw_y",
+    "mtw_z",
+    "mb_x",
+    "mb_y",
+    "mb_z",
+    "unp",
+    "cohesionBroken",
+    "relPos",
+    "isDuplicate",
+    "trueInt",
+];
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Intr6dRow {
+    pub step: u64,
+    pub ord: u32,
+    pub id1: u32,
+    pub id2: u32,
+    pub v: [f64; 15],
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyRow {
     pub step: u64,
@@ -155,6 +185,66 @@ pub fn read_intrs(path: &Path) -> Result<Vec<IntrRow>> {
     )
 }
 
+pub fn read_intrs6d(path: &Path) -> Result<Vec<Intr6dRow>> {
+    Ok(
+        parse_rows(path, &["step", "ord", "id1", "id2"], &INTR6D_COLS)?
+            .into_iter()
+            .map(|(k, v)| Intr6dRow {
+                step: k[0],
+                ord: k[1] as u32,
+                id1: k[2] as u32,
+                id2: k[3] as u32,
+                v,
+            })
+            .collect(),
+    )
+}
+
+/// The `intrs6d` values of the real interactions in container order (INTR6D_COLS order).
+pub fn intr6d_values(scene: &Scene) -> Vec<(u32, u32, [f64; 15])> {
+    use crate::geom::GeomExt;
+    let mut out = Vec::new();
+    for it in &scene.interactions.list {
+        if !it.is_real() {
+            continue;
+        }
+        let mut v = [f64::NAN; 15];
+        if let Some(r) = it.geom_ext().and_then(|g| g.rot()) {
+            v[0] = r.twist;
+            v[1..4].copy_from_slice(&[r.bending[0], r.bending[1], r.bending[2]]);
+        }
+        if let Some(c) = it.coh() {
+            v[4..7].copy_from_slice(&[c.moment_twist[0], c.moment_twist[1], c.moment_twist[2]]);
+            v[7..10].copy_from_slice(&[
+                c.moment_bending[0],
+                c.moment_bending[1],
+                c.moment_bending[2],
+            ]);
+            v[10] = c.unp;
+            v[11] = if c.cohesion_broken { 1.0 } else { 0.0 };
+        }
+        if let Some(GeomExt::ScGridCo(x)) = it.geom_ext() {
+            v[12] = x.rel_pos;
+            v[13] = x.is_duplicate as f64;
+            v[14] = x.true_int as f64;
+        }
+        out.push((it.id1, it.id2, v));
+    }
+    out
+}
+
+/// Format an `intrs6d` cell as YADE's recorder does: integers for the flag/id columns, `nan` for
+/// missing values, `%.17g` otherwise.
+fn cell6d(col: usize, x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if col == 11 || col == 13 || col == 14 {
+        format!("{}", x as i64)
+    } else {
+        g17(x)
+    }
+}
+
 fn push3(out: &mut Vec<f64>, v: &Vec3) {
     out.extend_from_slice(&[v[0], v[1], v[2]]);
 }
@@ -253,10 +343,17 @@ pub fn g17(x: f64) -> String {
 pub struct Recorder {
     bodies: Box<dyn Write>,
     intrs: Box<dyn Write>,
+    /// `*.intrs6d.csv`, written for scenes that use the grid extension.
+    intrs6d: Option<Box<dyn Write>>,
 }
 
 impl Recorder {
     pub fn create(dir: &Path, name: &str) -> Result<Recorder> {
+        Recorder::create_with(dir, name, false)
+    }
+
+    /// As `create`, plus `<name>.intrs6d.csv` when `grid`.
+    pub fn create_with(dir: &Path, name: &str, grid: bool) -> Result<Recorder> {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let open = |suffix: &str| -> Result<Box<dyn Write>> {
             let p = dir.join(format!("{}.{}", name, suffix));
@@ -267,9 +364,17 @@ impl Recorder {
         let mut r = Recorder {
             bodies: open("bodies.csv")?,
             intrs: open("intrs.csv")?,
+            intrs6d: if grid {
+                Some(open("intrs6d.csv")?)
+            } else {
+                None
+            },
         };
         writeln!(r.bodies, "step,id,{}", BODY_COLS.join(","))?;
         writeln!(r.intrs, "step,ord,id1,id2,{}", INTR_COLS.join(","))?;
+        if let Some(w) = r.intrs6d.as_mut() {
+            writeln!(w, "step,ord,id1,id2,{}", INTR6D_COLS.join(","))?;
+        }
         Ok(r)
     }
 
@@ -291,6 +396,13 @@ impl Recorder {
                 b,
                 cells.join(",")
             )?;
+        }
+        if let Some(w) = self.intrs6d.as_mut() {
+            for (ord, (a, b, v)) in intr6d_values(scene).into_iter().enumerate() {
+                let cells: Vec<String> = v.iter().enumerate().map(|(c, x)| cell6d(c, *x)).collect();
+                writeln!(w, "{},{},{},{},{}", step, ord, a, b, cells.join(","))?;
+            }
+            w.flush()?;
         }
         self.bodies.flush()?;
         self.intrs.flush()?;

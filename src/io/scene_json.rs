@@ -1,4 +1,6 @@
-//! Import of a scene exported from YADE with 17 significant digits (`*.scene.json`, FORMAT.md).
+//! Import of a scene exported from YADE with 17 significant digits (`*.scene.json`, FORMAT.md; the
+//! grid extension `ryade-scene-grid-1` of FORMAT_GRID.md adds grid shapes, CohFrictMat, the grid and
+//! cohesive functors and the interactions that exist before the first step, with their full state).
 //!
 //! Everything is taken as YADE holds it (mass and inertia included, so no `pow(r,3)` rounding can
 //! differ); any class or attribute we do not implement is an error naming it.
@@ -7,12 +9,17 @@ use crate::body::BodySpec;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderParams};
 use crate::geom;
+use crate::geom::{Fict, GeomExt, GridCoGridCo, Rot6D, ScGeom, ScGridCo};
 use crate::integrator::Newton;
+use crate::interaction::{Interaction, IntrExt};
 use crate::law;
+use crate::material::CohFrictParams;
 use crate::material::FrictMat;
 use crate::math::{Mat3, Quat, Vec3};
+use crate::phys::{CohFrictPhys, FrictPhys};
 use crate::scene::{Engine, InteractionLoop, Scene};
 use crate::shape::{Facet, Shape};
+use crate::shape::{GridConnection, GridNode};
 use anyhow::{anyhow, bail, Context, Result};
 use serde_json::Value;
 use std::path::Path;
@@ -77,6 +84,189 @@ fn vec3_of(a: &Value) -> Result<Vec3> {
     Ok(Vec3::new(c(0)?, c(1)?, c(2)?))
 }
 
+fn ivec3(v: &Value, key: &str) -> Result<Option<[i32; 3]>> {
+    let Some(a) = v.get(key) else {
+        return Ok(None);
+    };
+    let a = a
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| anyhow!("'{}' must be 3 integers in {}", key, short(v)))?;
+    let c = |i: usize| {
+        a[i].as_i64()
+            .map(|x| x as i32)
+            .ok_or_else(|| anyhow!("'{}'[{}] is not an integer", key, i))
+    };
+    Ok(Some([c(0)?, c(1)?, c(2)?]))
+}
+
+fn quat(v: &Value, key: &str) -> Result<Quat> {
+    let a = v
+        .get(key)
+        .and_then(Value::as_array)
+        .filter(|a| a.len() == 4)
+        .ok_or_else(|| anyhow!("'{}' must be [w, x, y, z] in {}", key, short(v)))?;
+    let c = |i: usize| {
+        a[i].as_f64()
+            .ok_or_else(|| anyhow!("'{}'[{}] is not a number", key, i))
+    };
+    Ok(Quat::new(c(0)?, c(1)?, c(2)?, c(3)?))
+}
+
+fn int(v: &Value, key: &str, default: i64) -> Result<i64> {
+    match v.get(key) {
+        None => Ok(default),
+        Some(x) => x
+            .as_i64()
+            .ok_or_else(|| anyhow!("'{}' is not an integer in {}", key, short(v))),
+    }
+}
+
+/// One interaction of the `interactions` array (FORMAT_GRID.md) with its geometry and physics.
+pub fn interaction(i: &Value, nbodies: usize) -> Result<Interaction> {
+    let id = |k: &str| -> Result<u32> {
+        let x = i
+            .get(k)
+            .and_then(Value::as_u64)
+            .ok_or_else(|| anyhow!("interaction without an integer '{}'", k))?;
+        if x as usize >= nbodies {
+            bail!("interaction '{}' = {} is not a body id", k, x);
+        }
+        Ok(x as u32)
+    };
+    let mut it = Interaction::new(
+        id("id1")?,
+        id("id2")?,
+        ivec3(i, "cellDist")?.unwrap_or([0; 3]),
+        int(i, "iterBorn", 0)?,
+    );
+    it.iter_made_real = int(i, "iterMadeReal", -1)?;
+    let mut ext = IntrExt::default();
+    if let Some(g) = i.get("geom").filter(|g| !g.is_null()) {
+        it.geom = Some(ScGeom {
+            contact_point: vec3(g, "contactPoint")?,
+            pen: f(g, "penetrationDepth")?,
+            normal: vec3(g, "normal")?,
+            shear_inc: vec3(g, "shearInc")?,
+            orthonormal_axis: Vec3::zeros(),
+            twist_axis: Vec3::zeros(),
+            radius1: f(g, "refR1")?,
+            radius2: f(g, "refR2")?,
+        });
+        let rot = || -> Result<Rot6D> {
+            Ok(Rot6D {
+                initial_orientation1: quat(g, "initialOrientation1")?,
+                initial_orientation2: quat(g, "initialOrientation2")?,
+                twist_creep: quat(g, "twistCreep")?,
+                twist: f(g, "twist")?,
+                bending: vec3(g, "bending")?,
+            })
+        };
+        ext.geom = match class(g)? {
+            "ScGeom" => None,
+            "ScGeom6D" => Some(GeomExt::Sc6D(rot()?)),
+            "GridNodeGeom6D" => {
+                let cb = int(g, "connectionBody", -1)?;
+                if cb >= nbodies as i64 {
+                    bail!("connectionBody {} is not a body id", cb);
+                }
+                Some(GeomExt::GridNode {
+                    rot: rot()?,
+                    connection_body: (cb >= 0).then_some(cb as u32),
+                })
+            }
+            "ScGridCoGeom" => Some(GeomExt::ScGridCo(ScGridCo {
+                rot: rot()?,
+                is_duplicate: int(g, "isDuplicate", 0)? as i32,
+                true_int: int(g, "trueInt", -1)? as i32,
+                id3: int(g, "id3", 0)? as i32,
+                id4: int(g, "id4", 0)? as i32,
+                id5: int(g, "id5", -1)? as i32,
+                weight: if g.get("weight").is_some() {
+                    vec3(g, "weight")?
+                } else {
+                    Vec3::zeros()
+                },
+                rel_pos: fo(g, "relPos", 0.0)?,
+                fict: Fict::default(),
+                share: 0,
+            })),
+            "GridCoGridCoGeom" => Some(GeomExt::GridCoGridCo(GridCoGridCo {
+                rel_pos1: fo(g, "relPos1", 0.0)?,
+                rel_pos2: fo(g, "relPos2", 0.0)?,
+                ..Default::default()
+            })),
+            other => bail!(
+                "interaction geometry class '{}' is not supported by ryade yet",
+                other
+            ),
+        };
+    }
+    if let Some(p) = i.get("phys").filter(|p| !p.is_null()) {
+        it.phys = Some(FrictPhys {
+            kn: f(p, "kn")?,
+            ks: f(p, "ks")?,
+            tan_phi: f(p, "tangensOfFrictionAngle")?,
+            normal_force: vec3(p, "normalForce")?,
+            shear_force: vec3(p, "shearForce")?,
+        });
+        ext.coh = match class(p)? {
+            "FrictPhys" => None,
+            "CohFrictPhys" => {
+                let d = CohFrictPhys::default();
+                let v3o = |k: &str| -> Result<Vec3> {
+                    if p.get(k).is_some() {
+                        vec3(p, k)
+                    } else {
+                        Ok(Vec3::zeros())
+                    }
+                };
+                Some(CohFrictPhys {
+                    kr: fo(p, "kr", d.kr)?,
+                    ktw: fo(p, "ktw", d.ktw)?,
+                    cohesion_disables_friction: bo(
+                        p,
+                        "cohesionDisablesFriction",
+                        d.cohesion_disables_friction,
+                    )?,
+                    cohesion_broken: bo(p, "cohesionBroken", d.cohesion_broken)?,
+                    fragile: bo(p, "fragile", d.fragile)?,
+                    init_cohesion: bo(p, "initCohesion", d.init_cohesion)?,
+                    max_roll_pl: fo(p, "maxRollPl", d.max_roll_pl)?,
+                    max_twist_pl: fo(p, "maxTwistPl", d.max_twist_pl)?,
+                    normal_adhesion: fo(p, "normalAdhesion", d.normal_adhesion)?,
+                    shear_adhesion: fo(p, "shearAdhesion", d.shear_adhesion)?,
+                    unp: fo(p, "unp", d.unp)?,
+                    unp_max: fo(p, "unpMax", d.unp_max)?,
+                    moment_rotation_law: bo(p, "momentRotationLaw", d.moment_rotation_law)?,
+                    creep_viscosity: fo(p, "creep_viscosity", d.creep_viscosity)?,
+                    moment_twist: v3o("moment_twist")?,
+                    moment_bending: v3o("moment_bending")?,
+                })
+            }
+            other => bail!(
+                "interaction physics class '{}' is not supported by ryade yet",
+                other
+            ),
+        };
+    }
+    if ext != IntrExt::default() {
+        it.ext = Some(Box::new(ext));
+    }
+    if let Some(r) = i.get("isReal").and_then(Value::as_bool) {
+        if r != it.is_real() {
+            bail!(
+                "interaction {}+{}: isReal is {} but geom/phys say {}",
+                it.id1,
+                it.id2,
+                r,
+                it.is_real()
+            );
+        }
+    }
+    Ok(it)
+}
+
 fn short(v: &Value) -> String {
     let s = v.to_string();
     if s.len() > 120 {
@@ -106,9 +296,19 @@ pub fn load(path: &Path) -> Result<SceneFile> {
     from_value(&v, name).with_context(|| format!("in scene file {}", path.display()))
 }
 
+/// Format id of FORMAT.md scenes.
+pub const FORMAT_ID: &str = "ryade-scene-1";
+/// Format id of the grid extension (FORMAT_GRID.md).
+pub const GRID_FORMAT_ID: &str = "ryade-scene-grid-1";
+
 pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
-    if v.get("format").and_then(Value::as_str) != Some("ryade-scene-1") {
-        bail!("not a ryade scene file (expected \"format\": \"ryade-scene-1\")");
+    let fmt = v.get("format").and_then(Value::as_str);
+    if fmt != Some(FORMAT_ID) && fmt != Some(GRID_FORMAT_ID) {
+        bail!(
+            "not a ryade scene file (expected \"format\": \"{}\" or \"{}\")",
+            FORMAT_ID,
+            GRID_FORMAT_ID
+        );
     }
     let mut scene = Scene {
         dt: f(v, "dt")?,
@@ -152,6 +352,19 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
     for e in engines {
         scene.engines.push(engine(e)?);
     }
+    if let Some(intrs) = v.get("interactions") {
+        let intrs = intrs
+            .as_array()
+            .ok_or_else(|| anyhow!("'interactions' must be an array"))?;
+        for (k, i) in intrs.iter().enumerate() {
+            let it = interaction(i, scene.bodies.len())
+                .with_context(|| format!("interaction #{} of the scene file", k))?;
+            let (a, b) = (it.id1, it.id2);
+            if !scene.interactions.insert(it) {
+                bail!("interaction {}+{} is listed twice", a, b);
+            }
+        }
+    }
     scene.forces.resize(scene.bodies.len());
     let steps = v.get("steps").and_then(Value::as_u64).unwrap_or(0);
     Ok(SceneFile { scene, steps, name })
@@ -159,12 +372,27 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
 
 pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     let cls = class(m)?;
-    if cls != "FrictMat" {
-        bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat)",
+    let coh = match cls {
+        "FrictMat" => None,
+        "CohFrictMat" => {
+            let d = CohFrictParams::default();
+            Some(Box::new(CohFrictParams {
+                is_cohesive: bo(m, "isCohesive", d.is_cohesive)?,
+                alpha_kr: fo(m, "alphaKr", d.alpha_kr)?,
+                alpha_ktw: fo(m, "alphaKtw", d.alpha_ktw)?,
+                eta_roll: fo(m, "etaRoll", d.eta_roll)?,
+                eta_twist: fo(m, "etaTwist", d.eta_twist)?,
+                normal_cohesion: fo(m, "normalCohesion", d.normal_cohesion)?,
+                shear_cohesion: fo(m, "shearCohesion", d.shear_cohesion)?,
+                fragile: bo(m, "fragile", d.fragile)?,
+                moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
+            }))
+        }
+        _ => bail!(
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat)",
             cls
-        );
-    }
+        ),
+    };
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
         label: m
@@ -176,6 +404,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         poisson: f(m, "poisson")?,
         friction_angle: f(m, "frictionAngle")?,
         density: f(m, "density")?,
+        coh,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -222,8 +451,40 @@ pub fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
         "Box" => Shape::Box {
             extents: vec3(s, "extents")?,
         },
+        "GridNode" => Shape::GridNode(Box::new(GridNode {
+            radius: f(s, "radius")?,
+            conn_list: s
+                .get("connections")
+                .and_then(Value::as_array)
+                .map(|a| {
+                    a.iter()
+                        .map(|x| {
+                            x.as_u64()
+                                .map(|x| x as u32)
+                                .ok_or_else(|| anyhow!("GridNode connections must be body ids"))
+                        })
+                        .collect::<Result<Vec<u32>>>()
+                })
+                .transpose()?
+                .unwrap_or_default(),
+        })),
+        "GridConnection" => {
+            let id = |k: &str| -> Result<u32> {
+                s.get(k)
+                    .and_then(Value::as_u64)
+                    .map(|x| x as u32)
+                    .ok_or_else(|| anyhow!("GridConnection without an integer '{}'", k))
+            };
+            Shape::GridConnection(Box::new(GridConnection {
+                radius: f(s, "radius")?,
+                node1: id("node1")?,
+                node2: id("node2")?,
+                periodic: bo(s, "periodic", false)?,
+                cell_dist: ivec3(s, "cellDist")?.unwrap_or([0; 3]),
+            }))
+        }
         other => bail!(
-            "shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box)",
+            "shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box, GridNode, GridConnection)",
             other
         ),
     };
@@ -291,23 +552,18 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     "Bo1_Facet_Aabb" => p.bounds.facet = true,
                     "Bo1_Wall_Aabb" => p.bounds.wall = true,
                     "Bo1_Box_Aabb" => p.bounds.box_ = true,
+                    "Bo1_GridConnection_Aabb" => p.bounds.grid_connection = true,
                     other => bail!("bound functor '{}' is not supported by ryade yet", other),
                 }
             }
             Engine::Collider(Box::new(Collider::new(p)))
         }
         "InteractionLoop" => {
-            let mut il = InteractionLoop {
-                sphere_sphere: None,
-                facet_sphere: None,
-                wall_sphere: None,
-                box_sphere: None,
-                frict_phys: false,
-                cundall_strack: None,
-            };
+            let mut il = InteractionLoop::empty();
             for g in e.get("geom").and_then(Value::as_array).cloned().unwrap_or_default() {
                 match class(&g)? {
                     "Ig2_Sphere_Sphere_ScGeom" => {
+                        il.sphere_sphere_6d = None;
                         il.sphere_sphere = Some(geom::sphere_sphere::Params {
                             interaction_detection_factor: fo(&g, "interactionDetectionFactor", 1.0)?,
                             avoid_granular_ratcheting: bo(&g, "avoidGranularRatcheting", true)?,
@@ -328,12 +584,45 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             interaction_detection_factor: fo(&g, "interactionDetectionFactor", 1.0)?,
                         })
                     }
+                    c @ ("Ig2_Sphere_Sphere_ScGeom6D" | "Ig2_GridNode_GridNode_GridNodeGeom6D") => {
+                        let p = geom::grid::SixDParams {
+                            ss: geom::sphere_sphere::Params {
+                                interaction_detection_factor: fo(&g, "interactionDetectionFactor", 1.0)?,
+                                avoid_granular_ratcheting: bo(&g, "avoidGranularRatcheting", true)?,
+                            },
+                            update_rotations: bo(&g, "updateRotations", true)?,
+                            creep: bo(&g, "creep", false)?,
+                        };
+                        if c == "Ig2_Sphere_Sphere_ScGeom6D" {
+                            // one functor per shape pair: the later of the two sphere-sphere ones wins
+                            il.sphere_sphere = None;
+                            il.sphere_sphere_6d = Some(p);
+                        } else {
+                            il.gridnode_gridnode = Some(p);
+                        }
+                    }
+                    "Ig2_Sphere_GridConnection_ScGridCoGeom" => {
+                        il.sphere_gridco = Some(fo(&g, "interactionDetectionFactor", 1.0)?)
+                    }
+                    "Ig2_GridConnection_GridConnection_GridCoGridCoGeom" => il.gridco_gridco = true,
                     other => bail!("geometry functor '{}' is not supported by ryade yet", other),
                 }
             }
             for p in e.get("phys").and_then(Value::as_array).cloned().unwrap_or_default() {
                 match class(&p)? {
                     "Ip2_FrictMat_FrictMat_FrictPhys" => il.frict_phys = true,
+                    "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys" => {
+                        for mm in ["normalCohesion", "shearCohesion", "frictAngle"] {
+                            if p.get(mm).is_some_and(|x| !x.is_null()) {
+                                bail!("Ip2_CohFrictMat_CohFrictMat_CohFrictPhys.{} (MatchMaker) is not supported by ryade yet", mm);
+                            }
+                        }
+                        il.cohfrict_phys = Some(crate::phys::CohFrictIp2 {
+                            set_cohesion_now: bo(&p, "setCohesionNow", false)?,
+                            set_cohesion_on_new_contacts: bo(&p, "setCohesionOnNewContacts", false)?,
+                            cohesion_definition_iteration: -1,
+                        })
+                    }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -343,6 +632,34 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         il.cundall_strack = Some(law::Params {
                             never_erase: bo(&l, "neverErase", false)?,
                             spherical_bodies: bo(&l, "sphericalBodies", true)?,
+                        })
+                    }
+                    "Law2_ScGeom6D_CohFrictPhys_CohesionMoment" => {
+                        il.cohesion_moment = Some(law::cohesion_moment::Params {
+                            never_erase: bo(&l, "neverErase", false)?,
+                            always_use_moment_law: bo(&l, "always_use_moment_law", false)?,
+                            shear_creep: bo(&l, "shear_creep", false)?,
+                            twist_creep: bo(&l, "twist_creep", false)?,
+                            trace_energy: bo(&l, "traceEnergy", false)?,
+                            use_incremental_form: bo(&l, "useIncrementalForm", false)?,
+                            creep_viscosity: fo(&l, "creep_viscosity", 1.0)?,
+                        })
+                    }
+                    "Law2_ScGridCoGeom_FrictPhys_CundallStrack" => {
+                        il.scgridco_frict = Some(law::grid::ScGridCoParams {
+                            never_erase: bo(&l, "neverErase", false)?,
+                        })
+                    }
+                    "Law2_ScGridCoGeom_CohFrictPhys_CundallStrack" => {
+                        il.scgridco_cohfrict = Some(law::grid::ScGridCoParams {
+                            never_erase: bo(&l, "neverErase", false)?,
+                        })
+                    }
+                    "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack" => {
+                        il.gridco_gridco_frict = Some(law::grid::GridCoGridCoParams {
+                            never_erase: bo(&l, "neverErase", false)?,
+                            spherical_bodies: bo(&l, "sphericalBodies", true)?,
+                            trace_energy: bo(&l, "traceEnergy", false)?,
                         })
                     }
                     other => bail!("law functor '{}' is not supported by ryade yet", other),
@@ -387,13 +704,32 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 Shape::Facet(f) => json!({"class": "Facet", "vertices": [v3(&f.vertices[0]), v3(&f.vertices[1]), v3(&f.vertices[2])]}),
                 Shape::Wall { axis, sense } => json!({"class": "Wall", "axis": axis, "sense": sense}),
                 Shape::Box { extents } => json!({"class": "Box", "extents": v3(extents)}),
+                Shape::GridNode(n) => json!({"class": "GridNode", "radius": n.radius, "connections": n.conn_list}),
+                Shape::GridConnection(c) => json!({"class": "GridConnection", "radius": c.radius,
+                    "node1": c.node1, "node2": c.node2, "periodic": c.periodic, "cellDist": c.cell_dist}),
             };
             let m = &scene.materials[b.material[id]];
             let q = b.ori[id];
+            let mut mat = json!({"id": m.id, "class": m.class_name(), "young": m.young, "poisson": m.poisson,
+                             "frictionAngle": m.friction_angle, "density": m.density, "label": m.label});
+            if let Some(c) = &m.coh {
+                for (k, v) in [
+                    ("isCohesive", json!(c.is_cohesive)),
+                    ("alphaKr", json!(c.alpha_kr)),
+                    ("alphaKtw", json!(c.alpha_ktw)),
+                    ("etaRoll", json!(c.eta_roll)),
+                    ("etaTwist", json!(c.eta_twist)),
+                    ("normalCohesion", json!(c.normal_cohesion)),
+                    ("shearCohesion", json!(c.shear_cohesion)),
+                    ("fragile", json!(c.fragile)),
+                    ("momentRotationLaw", json!(c.moment_rotation_law)),
+                ] {
+                    mat[k] = v;
+                }
+            }
             json!({
                 "id": id, "shape": shape,
-                "material": {"id": m.id, "class": "FrictMat", "young": m.young, "poisson": m.poisson,
-                             "frictionAngle": m.friction_angle, "density": m.density, "label": m.label},
+                "material": mat,
                 "mask": b.mask[id], "bounded": b.bounded[id],
                 "pos": v3(&b.pos[id]), "vel": v3(&b.vel[id]), "angVel": v3(&b.ang_vel[id]),
                 "ori": [q.w, q.x, q.y, q.z], "mass": b.mass[id], "inertia": v3(&b.inertia[id]),
@@ -421,10 +757,17 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if p.bounds.box_ {
                     bounds.push(json!({"class": "Bo1_Box_Aabb"}));
                 }
-                json!({"class": "InsertionSortCollider", "bounds": bounds, "verletDist": p.verlet_dist,
+                if p.bounds.grid_connection {
+                    bounds.push(json!({"class": "Bo1_GridConnection_Aabb", "aabbEnlargeFactor": -1.0}));
+                }
+                let mut c = json!({"class": "InsertionSortCollider", "bounds": bounds, "verletDist": p.verlet_dist,
                        "allowBiggerThanPeriod": p.allow_bigger_than_period, "targetInterv": p.target_interv,
                        "minSweepDistFactor": p.min_sweep_dist_factor, "sortAxis": p.sort_axis,
-                       "sortThenCollide": p.sort_then_collide})
+                       "sortThenCollide": p.sort_then_collide});
+                if p.avoid_self_interaction_mask != 0 {
+                    c["avoidSelfInteractionMask"] = json!(p.avoid_self_interaction_mask);
+                }
+                c
             }
             Engine::InteractionLoop(il) => {
                 let mut geom = Vec::new();
@@ -440,12 +783,50 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if let Some(g) = &il.box_sphere {
                     geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
                 }
-                let phys: Vec<Value> = if il.frict_phys { vec![json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"})] } else { vec![] };
-                let law: Vec<Value> = il
-                    .cundall_strack
-                    .iter()
-                    .map(|l| json!({"class": "Law2_ScGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase, "sphericalBodies": l.spherical_bodies}))
-                    .collect();
+                let six_d = |c: &str, g: &geom::grid::SixDParams| json!({"class": c,
+                    "interactionDetectionFactor": g.ss.interaction_detection_factor,
+                    "avoidGranularRatcheting": g.ss.avoid_granular_ratcheting,
+                    "updateRotations": g.update_rotations, "creep": g.creep});
+                if let Some(g) = &il.sphere_sphere_6d {
+                    geom.push(six_d("Ig2_Sphere_Sphere_ScGeom6D", g));
+                }
+                if let Some(g) = &il.gridnode_gridnode {
+                    geom.push(six_d("Ig2_GridNode_GridNode_GridNodeGeom6D", g));
+                }
+                if let Some(f) = il.sphere_gridco {
+                    geom.push(json!({"class": "Ig2_Sphere_GridConnection_ScGridCoGeom", "interactionDetectionFactor": f}));
+                }
+                if il.gridco_gridco {
+                    geom.push(json!({"class": "Ig2_GridConnection_GridConnection_GridCoGridCoGeom"}));
+                }
+                let mut phys: Vec<Value> = Vec::new();
+                if let Some(p) = &il.cohfrict_phys {
+                    phys.push(json!({"class": "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys",
+                        "setCohesionNow": p.set_cohesion_now, "setCohesionOnNewContacts": p.set_cohesion_on_new_contacts}));
+                }
+                if il.frict_phys {
+                    phys.push(json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"}));
+                }
+                let mut law: Vec<Value> = Vec::new();
+                if let Some(l) = &il.cohesion_moment {
+                    law.push(json!({"class": "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "neverErase": l.never_erase,
+                        "always_use_moment_law": l.always_use_moment_law, "shear_creep": l.shear_creep,
+                        "twist_creep": l.twist_creep, "traceEnergy": l.trace_energy,
+                        "useIncrementalForm": l.use_incremental_form, "creep_viscosity": l.creep_viscosity}));
+                }
+                if let Some(l) = &il.cundall_strack {
+                    law.push(json!({"class": "Law2_ScGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase, "sphericalBodies": l.spherical_bodies}));
+                }
+                if let Some(l) = &il.scgridco_frict {
+                    law.push(json!({"class": "Law2_ScGridCoGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase}));
+                }
+                if let Some(l) = &il.scgridco_cohfrict {
+                    law.push(json!({"class": "Law2_ScGridCoGeom_CohFrictPhys_CundallStrack", "neverErase": l.never_erase}));
+                }
+                if let Some(l) = &il.gridco_gridco_frict {
+                    law.push(json!({"class": "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase,
+                        "sphericalBodies": l.spherical_bodies, "traceEnergy": l.trace_energy}));
+                }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
             Engine::Newton(n) => json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask}),
@@ -456,10 +837,21 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::External(id) => json!({"class": "External", "id": id}),
         })
         .collect();
+    let grid = uses_grid_format(scene);
     let mut out = json!({
-        "format": "ryade-scene-1", "source": "ryade", "steps": steps, "dt": scene.dt,
+        "format": if grid { GRID_FORMAT_ID } else { FORMAT_ID }, "source": "ryade", "steps": steps, "dt": scene.dt,
         "periodic": scene.cell.is_some(), "bodies": bodies, "engines": engines,
     });
+    if grid {
+        out["interactions"] = Value::Array(
+            scene
+                .interactions
+                .list
+                .iter()
+                .map(interaction_to_value)
+                .collect(),
+        );
+    }
     if let Some(c) = &scene.cell {
         let h = c.hsize;
         out["cell_hsize"] = json!([
@@ -469,4 +861,110 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
         ]);
     }
     out
+}
+
+/// Whether a scene needs the grid extension of the format (FORMAT_GRID.md) to be written.
+fn uses_grid_format(scene: &Scene) -> bool {
+    let b = &scene.bodies;
+    (0..b.len()).any(|id| matches!(b.shape[id], Shape::GridNode(_) | Shape::GridConnection(_)))
+        || scene.materials.iter().any(|m| m.coh.is_some())
+        || scene.interactions.list.iter().any(|i| i.ext.is_some())
+        || scene.engines.iter().any(|e| match e {
+            Engine::InteractionLoop(il) => {
+                il.sphere_sphere_6d.is_some()
+                    || il.gridnode_gridnode.is_some()
+                    || il.sphere_gridco.is_some()
+                    || il.gridco_gridco
+                    || il.cohfrict_phys.is_some()
+                    || il.cohesion_moment.is_some()
+                    || il.scgridco_frict.is_some()
+                    || il.scgridco_cohfrict.is_some()
+                    || il.gridco_gridco_frict.is_some()
+            }
+            Engine::Collider(c) => c.p.bounds.grid_connection,
+            _ => false,
+        })
+}
+
+/// One interaction in the `interactions` array format (the inverse of `interaction`).
+pub fn interaction_to_value(it: &Interaction) -> Value {
+    use serde_json::json;
+    let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
+    let q4 = |q: &Quat| json!([q.w, q.x, q.y, q.z]);
+    let geom = match &it.geom {
+        None => Value::Null,
+        Some(g) => {
+            let cls = it.geom_class().unwrap();
+            let mut d = json!({"class": cls.name(), "normal": v3(&g.normal), "penetrationDepth": g.pen,
+                "contactPoint": v3(&g.contact_point), "shearInc": v3(&g.shear_inc),
+                "refR1": g.radius1, "refR2": g.radius2});
+            if let Some(e) = it.geom_ext() {
+                if let Some(r) = e.rot() {
+                    d["initialOrientation1"] = q4(&r.initial_orientation1);
+                    d["initialOrientation2"] = q4(&r.initial_orientation2);
+                    d["twistCreep"] = q4(&r.twist_creep);
+                    d["twist"] = json!(r.twist);
+                    d["bending"] = v3(&r.bending);
+                }
+                match e {
+                    GeomExt::GridNode {
+                        connection_body, ..
+                    } => {
+                        d["connectionBody"] = json!(connection_body.map_or(-1, |x| x as i64));
+                    }
+                    GeomExt::ScGridCo(x) => {
+                        d["isDuplicate"] = json!(x.is_duplicate);
+                        d["trueInt"] = json!(x.true_int);
+                        d["id3"] = json!(x.id3);
+                        d["id4"] = json!(x.id4);
+                        d["id5"] = json!(x.id5);
+                        d["weight"] = v3(&x.weight);
+                        d["relPos"] = json!(x.rel_pos);
+                    }
+                    GeomExt::GridCoGridCo(x) => {
+                        d["relPos1"] = json!(x.rel_pos1);
+                        d["relPos2"] = json!(x.rel_pos2);
+                    }
+                    GeomExt::Sc6D(_) => {}
+                }
+            }
+            d
+        }
+    };
+    let phys = match &it.phys {
+        None => Value::Null,
+        Some(p) => {
+            let mut d = json!({"class": if it.coh().is_some() { "CohFrictPhys" } else { "FrictPhys" },
+                "kn": p.kn, "ks": p.ks, "tangensOfFrictionAngle": p.tan_phi,
+                "normalForce": v3(&p.normal_force), "shearForce": v3(&p.shear_force)});
+            if let Some(c) = it.coh() {
+                for (k, v) in [
+                    ("kr", json!(c.kr)),
+                    ("ktw", json!(c.ktw)),
+                    ("cohesionBroken", json!(c.cohesion_broken)),
+                    ("fragile", json!(c.fragile)),
+                    ("initCohesion", json!(c.init_cohesion)),
+                    ("normalAdhesion", json!(c.normal_adhesion)),
+                    ("shearAdhesion", json!(c.shear_adhesion)),
+                    ("unp", json!(c.unp)),
+                    ("unpMax", json!(c.unp_max)),
+                    ("momentRotationLaw", json!(c.moment_rotation_law)),
+                    ("maxRollPl", json!(c.max_roll_pl)),
+                    ("maxTwistPl", json!(c.max_twist_pl)),
+                    ("moment_twist", v3(&c.moment_twist)),
+                    ("moment_bending", v3(&c.moment_bending)),
+                    (
+                        "cohesionDisablesFriction",
+                        json!(c.cohesion_disables_friction),
+                    ),
+                    ("creep_viscosity", json!(c.creep_viscosity)),
+                ] {
+                    d[k] = v;
+                }
+            }
+            d
+        }
+    };
+    json!({"id1": it.id1, "id2": it.id2, "isReal": it.is_real(), "cellDist": it.cell_dist,
+        "iterMadeReal": it.iter_made_real, "iterBorn": it.iter_born, "geom": geom, "phys": phys})
 }

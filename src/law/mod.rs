@@ -1,5 +1,10 @@
-//! `Law2_ScGeom_FrictPhys_CundallStrack` (pkg/dem/ElasticContactLaw.cpp): linear normal spring,
-//! incremental shear spring with a Coulomb cap.
+//! Constitutive laws (Law2 functors). This file: `Law2_ScGeom_FrictPhys_CundallStrack`
+//! (pkg/dem/ElasticContactLaw.cpp): linear normal spring, incremental shear spring with a Coulomb
+//! cap. `cohesion_moment`: the cohesive law with moments (grid bonds, rolling resistance); `grid`:
+//! the sphere-connection and connection-connection laws that put the force on the grid nodes.
+
+pub mod cohesion_moment;
+pub mod grid;
 
 use crate::forces::Forces;
 use crate::geom::ScGeom;
@@ -26,6 +31,46 @@ impl Default for Params {
 pub struct LawEnergy {
     pub plast_dissip: f64,
     pub elast_potential: f64,
+    pub shear_dissip: f64,
+    pub bending_dissip: f64,
+    pub twist_dissip: f64,
+}
+
+/// Which Law2 functor handles an interaction (resolved from its geometry and physics classes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LawFunctor {
+    /// `Law2_ScGeom_FrictPhys_CundallStrack`
+    CundallStrack,
+    /// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`
+    CohesionMoment,
+    /// `Law2_ScGridCoGeom_FrictPhys_CundallStrack`
+    ScGridCoFrict,
+    /// `Law2_ScGridCoGeom_CohFrictPhys_CundallStrack`
+    ScGridCoCohFrict,
+    /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
+    GridCoGridCoFrict,
+}
+
+impl LawFunctor {
+    pub fn class_name(&self) -> &'static str {
+        match self {
+            LawFunctor::CundallStrack => "Law2_ScGeom_FrictPhys_CundallStrack",
+            LawFunctor::CohesionMoment => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment",
+            LawFunctor::ScGridCoFrict => "Law2_ScGridCoGeom_FrictPhys_CundallStrack",
+            LawFunctor::ScGridCoCohFrict => "Law2_ScGridCoGeom_CohFrictPhys_CundallStrack",
+            LawFunctor::GridCoGridCoFrict => "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack",
+        }
+    }
+}
+
+/// `std::max(a, b)`: `a < b ? b : a`.
+#[inline(always)]
+pub(crate) fn cxx_max(a: f64, b: f64) -> f64 {
+    if a < b {
+        b
+    } else {
+        a
+    }
 }
 
 /// Body data the law needs for the torque arm in the general (non-spherical) branch.

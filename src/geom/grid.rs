@@ -1,0 +1,458 @@
+//! Grid geometry functors (pkg/common/Grid.cpp) and the 6-D sphere-sphere functor
+//! (pkg/dem/Ig2_Sphere_Sphere_ScGeom.cpp): `Ig2_Sphere_Sphere_ScGeom6D`,
+//! `Ig2_GridNode_GridNode_GridNodeGeom6D`, `Ig2_Sphere_GridConnection_ScGridCoGeom` (with YADE's
+//! duplicate / hand-over logic at junctions) and `Ig2_GridConnection_GridConnection_GridCoGridCoGeom`.
+
+use super::{sphere_sphere, GeomCtx, GeomExt, GridCoGridCo, Kin, Pair, Rot6D, ScGeom, ScGridCo};
+use crate::body::Bodies;
+use crate::cell::Cell;
+use crate::interaction::{Interactions, IntrExt};
+use crate::math::{cross, dot, mat_vec_i, norm, Vec3};
+use crate::shape::{GridConnection, Shape};
+
+/// Parameters of `Ig2_Sphere_Sphere_ScGeom6D` and `Ig2_GridNode_GridNode_GridNodeGeom6D` (the latter
+/// derives from `Ig2_Sphere_Sphere_ScGeom` and adds the same two flags).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SixDParams {
+    pub ss: sphere_sphere::Params,
+    pub update_rotations: bool,
+    pub creep: bool,
+}
+
+impl Default for SixDParams {
+    fn default() -> Self {
+        SixDParams {
+            ss: Default::default(),
+            update_rotations: true,
+            creep: false,
+        }
+    }
+}
+
+/// `Ig2_Sphere_Sphere_ScGeom6D::go` and `Ig2_GridNode_GridNode_GridNodeGeom6D::go` (Grid.cpp): the
+/// sphere-sphere geometry, turned into a 6-D one on creation, then the relative rotations. For a
+/// node-node bond the contact point is the rib midpoint and pen = 2r - L (strongly negative): with
+/// `avoidGranularRatcheting` the translational shear increment is scaled by 2r/L and the rotational
+/// one uses the lever arm r; kept as YADE does. Returns the GridConnection body whose position must
+/// be set to body 1's (GridNodeGeom6D.connectionBody), if any, in `conn_sync`.
+#[allow(clippy::too_many_arguments)]
+pub fn six_d(
+    p: &SixDParams,
+    r1: f64,
+    r2: f64,
+    pr: &Pair,
+    geom: &mut Option<ScGeom>,
+    ext: &mut Option<Box<IntrExt>>,
+    grid_node: bool,
+    conn_sync: &mut Option<(u32, Vec3)>,
+) -> bool {
+    let is_new = geom.is_none();
+    if !sphere_sphere::go(&p.ss, r1, r2, pr, geom) {
+        return false;
+    }
+    let e = ext.get_or_insert_with(Default::default);
+    if is_new || e.geom.is_none() {
+        e.geom = Some(if grid_node {
+            GeomExt::GridNode {
+                rot: Rot6D::default(),
+                connection_body: None,
+            }
+        } else {
+            GeomExt::Sc6D(Rot6D::default())
+        });
+    }
+    let g = geom.as_ref().unwrap();
+    let ge = e.geom.as_mut().unwrap();
+    if p.update_rotations {
+        if let Some(rot) = ge.rot_mut() {
+            rot.precompute_rotations(&pr.s1.ori, &pr.s2.ori, &g.normal, is_new, p.creep);
+        }
+    }
+    if let GeomExt::GridNode {
+        connection_body: Some(cb),
+        ..
+    } = ge
+    {
+        *conn_sync = Some((*cb, pr.s1.pos));
+    }
+    true
+}
+
+/// `GridConnection::getSegment`: node 2 minus node 1, node 2 shifted by `hSize*cellDist` when the
+/// connection is periodic.
+pub fn segment(gc: &GridConnection, bodies: &Bodies, cell: Option<&Cell>) -> Vec3 {
+    let p1 = bodies.pos[gc.node1 as usize];
+    let p2 = bodies.pos[gc.node2 as usize];
+    match (gc.periodic, cell) {
+        (true, Some(c)) => (p2 + mat_vec_i(&c.hsize, &gc.cell_dist)) - p1,
+        _ => p2 - p1,
+    }
+}
+
+fn conn(bodies: &Bodies, id: u32) -> Result<&GridConnection, String> {
+    match &bodies.shape[id as usize] {
+        Shape::GridConnection(g) => Ok(g),
+        s => Err(format!(
+            "body #{} is a {}, not a GridConnection",
+            id,
+            s.class_name()
+        )),
+    }
+}
+
+fn node_conns(bodies: &Bodies, id: u32) -> Result<&[u32], String> {
+    match &bodies.shape[id as usize] {
+        Shape::GridNode(n) => Ok(&n.conn_list),
+        s => Err(format!(
+            "body #{} is a {}, not a GridNode",
+            id,
+            s.class_name()
+        )),
+    }
+}
+
+#[inline(always)]
+fn zero_tiny(v: &mut Vec3) {
+    for i in 0..3 {
+        if v[i].abs() < 1e-14 {
+            v[i] = 0.0;
+        }
+    }
+}
+
+/// Where the sphere-connection functor writes: its own geometry, a fresh one (new contact) or the
+/// geometry object of another interaction it took over.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Target {
+    Own,
+    Fresh,
+    Other(usize),
+}
+
+/// `Ig2_Sphere_GridConnection_ScGridCoGeom::go` (Grid.cpp) on interaction `k` (body 1 the sphere,
+/// body 2 the connection). Besides the geometry, this decides which of the connections meeting at a
+/// node handles a sphere near that node: a contact whose projection falls outside its connection is
+/// left to (or marked as a duplicate of) the neighbour's; a contact projecting inside takes over the
+/// neighbour's interaction (geometry object, physics and `iterMadeReal` when new) and orders that
+/// one's deletion (`isDuplicate = 2`). The taken-over objects are shared between the two
+/// interactions as in YADE (see `Interactions::sync_shared`).
+pub fn sphere_gridco(
+    k: usize,
+    intrs: &mut Interactions,
+    bodies: &Bodies,
+    cell: Option<&Cell>,
+    ctx: &GeomCtx,
+    shift2: &Vec3,
+) -> Result<bool, String> {
+    let (id1, id2) = (intrs.list[k].id1, intrs.list[k].id2);
+    let radius = bodies.shape[id1 as usize]
+        .sphere_radius()
+        .ok_or_else(|| format!("body #{} is not a sphere", id1))?;
+    let gc = conn(bodies, id2)?;
+    let (n1, n2) = (gc.node1, gc.node2);
+    let mut is_new = intrs.list[k].geom.is_none();
+    // the working copy of the geometry object
+    let (mut g, mut x, mut target) = if is_new {
+        (ScGeom::default(), ScGridCo::default(), Target::Fresh)
+    } else {
+        let it = &intrs.list[k];
+        let x = match it.geom_ext() {
+            Some(GeomExt::ScGridCo(x)) => *x,
+            _ => ScGridCo::default(),
+        };
+        (*it.geom.as_ref().unwrap(), x, Target::Own)
+    };
+    let segt = segment(gc, bodies, cell);
+    let len = norm(&segt);
+    let p_n1 = bodies.pos[n1 as usize];
+    let p_n2 = bodies.pos[n2 as usize];
+    let sphere_pos = bodies.pos[id1 as usize] - shift2;
+    let mut branch = sphere_pos - p_n1;
+    let mut branch_n = sphere_pos - p_n2;
+    zero_tiny(&mut branch);
+    zero_tiny(&mut branch_n);
+    let mut rel_pos = dot(&branch, &segt) / (len * len);
+    if x.is_duplicate == 2 && x.true_int != id2 as i32 {
+        // the law erases this one
+        return Ok(true);
+    }
+    x.is_duplicate = 0;
+    x.true_int = -1;
+
+    // relative position of the sphere along the neighbour `nb` of this connection at `node`
+    let nb_rel_pos = |nb: u32, node_pos: &Vec3, br: &Vec3| -> Result<f64, String> {
+        let c = conn(bodies, nb)?;
+        let cand1 = bodies.pos[c.node1 as usize] - node_pos;
+        let cand2 = bodies.pos[c.node2 as usize] - node_pos;
+        let mut s = if norm(&cand1) > norm(&cand2) {
+            cand1
+        } else {
+            cand2
+        };
+        zero_tiny(&mut s);
+        Ok(dot(br, &s) / (norm(&s) * norm(&s)))
+    };
+    let neighbour_is_duplicate = |intrs: &Interactions, j: usize| -> i32 {
+        match intrs.list[j].geom_ext() {
+            Some(GeomExt::ScGridCo(o)) => o.is_duplicate,
+            _ => 0,
+        }
+    };
+
+    let outside = rel_pos <= 0.0 || rel_pos >= 1.0;
+    if outside {
+        let (node, node_pos, br) = if rel_pos <= 0.0 {
+            (n1, p_n1, branch)
+        } else {
+            (n2, p_n2, branch_n)
+        };
+        let list = node_conns(bodies, node)?;
+        if list.len() > 1 {
+            for &nb in list {
+                if nb == id2 {
+                    continue;
+                }
+                let rp = nb_rel_pos(nb, &node_pos, &br)?;
+                if rp <= 0.0 {
+                    // outside this neighbour too: the first real interaction (not a duplicate)
+                    // keeps the contact
+                    if let Some(j) = intrs.find(id1, nb) {
+                        if intrs.list[j].is_real() && neighbour_is_duplicate(intrs, j) != 1 {
+                            if is_new {
+                                return Ok(false);
+                            }
+                            x.is_duplicate = 1;
+                        }
+                    }
+                } else {
+                    // inside the neighbour: the neighbour handles it
+                    if is_new {
+                        return Ok(false);
+                    }
+                    x.is_duplicate = 1;
+                    x.true_int = -1;
+                    write_back(intrs, k, target, &g, &x);
+                    return Ok(true);
+                }
+            }
+        }
+    } else {
+        let (node, node_pos, br) = if rel_pos <= 0.5 {
+            (n1, p_n1, branch)
+        } else {
+            (n2, p_n2, branch_n)
+        };
+        let list = node_conns(bodies, node)?;
+        if list.len() > 1 {
+            for &nb in list {
+                if nb == id2 {
+                    continue;
+                }
+                let rp = nb_rel_pos(nb, &node_pos, &br)?;
+                if rp <= 0.0 {
+                    let Some(j) = intrs.find(id1, nb) else {
+                        continue;
+                    };
+                    if !intrs.list[j].is_real() {
+                        continue;
+                    }
+                    // take over the neighbour's geometry object
+                    if target == Target::Own {
+                        write_back(intrs, k, target, &g, &x);
+                    }
+                    let other = &intrs.list[j];
+                    g = *other.geom.as_ref().unwrap();
+                    x = match other.geom_ext() {
+                        Some(GeomExt::ScGridCo(o)) => *o,
+                        _ => ScGridCo::default(),
+                    };
+                    let (phys, coh, imr) = (other.phys, other.coh().copied(), other.iter_made_real);
+                    let pj = (other.id1, other.id2);
+                    if x.share == 0 {
+                        x.share = intrs.new_share_id();
+                    }
+                    intrs.register_share(x.share, pj);
+                    if is_new {
+                        intrs.register_share(x.share, (id1, id2));
+                        let it = &mut intrs.list[k];
+                        it.geom = Some(g);
+                        it.phys = phys;
+                        let e = it.ext_mut();
+                        e.geom = Some(GeomExt::ScGridCo(x));
+                        e.coh = coh;
+                        it.iter_made_real = imr;
+                    }
+                    target = Target::Other(j);
+                    x.true_int = id2 as i32;
+                    x.is_duplicate = 2;
+                    is_new = false;
+                    break;
+                }
+            }
+        }
+    }
+
+    // relPos < 0 ? 0 : relPos, then relPos > 1 ? 1 : relPos (f64::clamp tests in the same order)
+    rel_pos = rel_pos.clamp(0.0, 1.0);
+    let fict_pos = p_n1 + segt * rel_pos;
+    let branch_f = fict_pos - sphere_pos;
+    let dist = norm(&branch_f);
+    if is_new && dist > radius + gc.radius {
+        return Ok(false);
+    }
+    g.radius1 = radius;
+    g.radius2 = gc.radius;
+    x.id3 = n1 as i32;
+    x.id4 = n2 as i32;
+    x.rel_pos = rel_pos;
+    let normal = Vec3::new(branch_f[0] / dist, branch_f[1] / dist, branch_f[2] / dist);
+    g.pen = radius + gc.radius - dist;
+    x.fict.pos = fict_pos;
+    g.contact_point = sphere_pos + normal * (g.radius1 - 0.5 * g.pen);
+    let (v1, v2) = (bodies.vel[n1 as usize], bodies.vel[n2 as usize]);
+    let (w1, w2) = (bodies.ang_vel[n1 as usize], bodies.ang_vel[n2 as usize]);
+    x.fict.vel = v1 * (1.0 - rel_pos) + v2 * rel_pos;
+    let t = Vec3::new(segt[0] / len, segt[1] / len, segt[2] / len);
+    let tw = dot(&(w1 * (1.0 - rel_pos) + w2 * rel_pos), &t);
+    // YADE quirk kept on purpose: the bending part seg × (v2 - v1) lacks the division by L²
+    // (dimensionally m²/s); the twist part is interpolated along the axis
+    let tws = segt * tw;
+    x.fict.ang_vel = Vec3::new(tws[0] / len, tws[1] / len, tws[2] / len) + cross(&segt, &(v2 - v1));
+    let s1 = Kin {
+        pos: bodies.pos[id1 as usize],
+        vel: bodies.vel[id1 as usize],
+        ang_vel: bodies.ang_vel[id1 as usize],
+        ori: bodies.ori[id1 as usize],
+    };
+    g.precompute(&s1, &x.fict.kin(), ctx, &normal, is_new, shift2, true);
+    write_back(intrs, k, target, &g, &x);
+    Ok(true)
+}
+
+/// Store the working copy of a sphere-connection geometry where YADE's pointer points.
+fn write_back(intrs: &mut Interactions, k: usize, target: Target, g: &ScGeom, x: &ScGridCo) {
+    let j = match target {
+        Target::Own | Target::Fresh => k,
+        Target::Other(j) => j,
+    };
+    let it = &mut intrs.list[j];
+    it.geom = Some(*g);
+    it.ext_mut().geom = Some(GeomExt::ScGridCo(*x));
+    if x.share != 0 {
+        intrs.sync_shared(j);
+    }
+}
+
+/// `Ig2_GridConnection_GridConnection_GridCoGridCoGeom::go` (Grid.cpp): closest points of the two
+/// segments (clamped, then each re-projected once), fictitious states there, and the ScGeom. Two
+/// connections sharing a node never touch.
+pub fn gridco_gridco(
+    bodies: &Bodies,
+    c1: &GridConnection,
+    c2: &GridConnection,
+    ctx: &GeomCtx,
+    shift2: &Vec3,
+    geom: &mut Option<ScGeom>,
+    ext: &mut Option<Box<IntrExt>>,
+) -> bool {
+    if c1.node1 == c2.node1 || c1.node1 == c2.node2 || c1.node2 == c2.node1 || c1.node2 == c2.node2
+    {
+        return false;
+    }
+    let is_new = geom.is_none();
+    let st = |id: u32| -> (Vec3, Vec3, Vec3) {
+        let i = id as usize;
+        (bodies.pos[i], bodies.vel[i], bodies.ang_vel[i])
+    };
+    let (p11, v11, w11) = st(c1.node1);
+    let (p12, v12, w12) = st(c1.node2);
+    let (p21, v21, w21) = st(c2.node1);
+    let (p22, v22, w22) = st(c2.node2);
+    let a_pt = p11;
+    let a = p12 - a_pt;
+    let mut b_pt = p21;
+    let b = p22 - b_pt;
+    b_pt += shift2;
+    let clamp01 = |v: f64| cxx_max(cxx_min(v, 1.0), 0.0);
+    let ab = dot(&a, &b);
+    let denom = dot(&a, &a) * dot(&b, &b) - ab * ab;
+    let (k, m);
+    if denom != 0.0 {
+        let bma = b_pt - a_pt;
+        let k0 = (dot(&a, &bma) * dot(&b, &b) - dot(&a, &b) * dot(&b, &bma)) / denom;
+        let k1 = clamp01(k0);
+        let nb = norm(&b);
+        let m1 = clamp01(dot(&((a_pt + a * k1) - b_pt), &b) / (nb * nb));
+        let na = norm(&a);
+        k = clamp01(dot(&((b_pt + b * m1) - a_pt), &a) / (na * na));
+        m = m1;
+    } else {
+        let nb = norm(&b);
+        let na = norm(&a);
+        let pa_ = cxx_min(1.0, cxx_max(0.0, dot(&(a_pt - b_pt), &b) / (nb * nb)));
+        let pa2 = cxx_min(1.0, cxx_max(0.0, dot(&((a_pt + a) - b_pt), &b) / (nb * nb)));
+        let pb_ = cxx_min(1.0, cxx_max(0.0, dot(&(b_pt - a_pt), &a) / (na * na)));
+        let pb2 = cxx_min(1.0, cxx_max(0.0, dot(&((b_pt + b) - a_pt), &a) / (na * na)));
+        k = (pb_ + pb2) / 2.0;
+        m = (pa_ + pa2) / 2.0;
+    }
+    let pen = c1.radius + c2.radius - norm(&((a_pt + a * k) - (b_pt + b * m)));
+    if is_new && pen < 0.0 {
+        return false;
+    }
+    let mut x = GridCoGridCo {
+        rel_pos1: k,
+        rel_pos2: m,
+        ..Default::default()
+    };
+    x.fict1.pos = a_pt + a * k;
+    x.fict2.pos = b_pt + b * m;
+    x.fict1.vel = v11 * (1.0 - k) + v12 * k;
+    x.fict2.vel = v21 * (1.0 - m) + v22 * m;
+    // YADE quirk kept on purpose: the non-twist part a × Δv lacks the division by |a|²
+    let na = norm(&a);
+    let dir = Vec3::new(a[0] / na, a[1] / na, a[2] / na);
+    x.fict1.ang_vel = dir * dot(&(w11 * (1.0 - k) + w12 * k), &dir) + cross(&a, &(v12 - v11));
+    let nb = norm(&b);
+    let dir = Vec3::new(b[0] / nb, b[1] / nb, b[2] / nb);
+    x.fict2.ang_vel = dir * dot(&(w21 * (1.0 - m) + w22 * m), &dir) + cross(&b, &(v22 - v21));
+    let d = x.fict2.pos - x.fict1.pos;
+    let nd = norm(&d);
+    let normal = Vec3::new(d[0] / nd, d[1] / nd, d[2] / nd);
+    let g = geom.get_or_insert_with(ScGeom::default);
+    g.radius1 = c1.radius;
+    g.radius2 = c2.radius;
+    g.contact_point = x.fict1.pos + normal * (g.radius1 - 0.5 * pen);
+    g.pen = pen;
+    g.precompute(
+        &x.fict1.kin(),
+        &x.fict2.kin(),
+        ctx,
+        &normal,
+        is_new,
+        shift2,
+        true,
+    );
+    ext.get_or_insert_with(Default::default).geom = Some(GeomExt::GridCoGridCo(x));
+    true
+}
+
+/// `std::min(a, b)`: `b < a ? b : a`.
+#[inline(always)]
+fn cxx_min(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}
+
+/// `std::max(a, b)`: `a < b ? b : a`.
+#[inline(always)]
+fn cxx_max(a: f64, b: f64) -> f64 {
+    if a < b {
+        b
+    } else {
+        a
+    }
+}

@@ -1,0 +1,188 @@
+//! `Law2_ScGeom6D_CohFrictPhys_CohesionMoment` (pkg/dem/CohesiveFrictionalContactLaw.cpp): normal
+//! spring with adhesion and plastic normal displacement `unp`, incremental shear with cohesion and
+//! friction, and bending/twisting moments (total form from the ScGeom6D rotations, or incremental).
+
+use super::{cxx_max, LawEnergy};
+use crate::forces::Forces;
+use crate::geom::{Rot6D, ScGeom};
+use crate::math::{cross, dot, norm, Quat, Vec3};
+use crate::phys::{CohFrictPhys, FrictPhys};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    /// Declared by YADE, not used by this law.
+    pub never_erase: bool,
+    pub always_use_moment_law: bool,
+    pub shear_creep: bool,
+    pub twist_creep: bool,
+    pub trace_energy: bool,
+    pub use_incremental_form: bool,
+    pub creep_viscosity: f64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            never_erase: false,
+            always_use_moment_law: false,
+            shear_creep: false,
+            twist_creep: false,
+            trace_energy: false,
+            use_incremental_form: false,
+            creep_viscosity: 1.0,
+        }
+    }
+}
+
+/// Body data the law reads: positions (body 2 shifted by its period) and angular velocities.
+pub struct Bodies2 {
+    pub pos1: Vec3,
+    pub pos2_shifted: Vec3,
+    pub ang_vel1: Vec3,
+    pub ang_vel2: Vec3,
+}
+
+/// Mirrors `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go`. `fresh` is `Interaction::isFresh`
+/// (made real this iteration). Returns Ok(false) when the bond breaks (or tension erases it).
+#[allow(clippy::too_many_arguments)]
+pub fn go(
+    p: &Params,
+    dt: f64,
+    fresh: bool,
+    g: &ScGeom,
+    rot: &mut Rot6D,
+    ph: &mut FrictPhys,
+    cp: &mut CohFrictPhys,
+    id1: usize,
+    id2: usize,
+    b: &Bodies2,
+    forces: &mut Forces,
+    energy: Option<&mut LawEnergy>,
+) -> Result<bool, String> {
+    if fresh {
+        ph.shear_force = Vec3::zeros();
+    }
+    let un = g.pen;
+    let mut fn_ = ph.kn * (un - cp.unp);
+    if cp.fragile && (-fn_) > cp.normal_adhesion {
+        // tensile break
+        return Ok(false);
+    }
+    if (-fn_) > cp.normal_adhesion {
+        // normal plasticity
+        fn_ = -cp.normal_adhesion;
+        cp.unp = un + cp.normal_adhesion / ph.kn;
+        if cp.unp_max >= 0.0 && -cp.unp > cp.unp_max {
+            return Ok(false);
+        }
+    }
+    ph.normal_force = g.normal * fn_;
+    if p.shear_creep {
+        let sf = ph.shear_force;
+        let d = Vec3::new(
+            ph.ks * ((sf[0] * dt) / p.creep_viscosity),
+            ph.ks * ((sf[1] * dt) / p.creep_viscosity),
+            ph.ks * ((sf[2] * dt) / p.creep_viscosity),
+        );
+        ph.shear_force -= d;
+    }
+    g.rotate(&mut ph.shear_force);
+    ph.shear_force -= g.shear_inc * ph.ks;
+    let fs = norm(&ph.shear_force);
+    let mut max_fs = cp.shear_adhesion;
+    if !cp.cohesion_disables_friction || max_fs == 0.0 {
+        max_fs += fn_ * ph.tan_phi;
+    }
+    max_fs = cxx_max(0.0, max_fs);
+    let mut energy = energy;
+    if fs > max_fs {
+        if cp.fragile && !cp.cohesion_broken {
+            cp.set_breaking_state();
+            max_fs = cxx_max(0.0, fn_ * ph.tan_phi);
+        }
+        max_fs /= fs;
+        let trial = ph.shear_force;
+        ph.shear_force *= max_fs;
+        if let Some(e) = energy.as_mut() {
+            let d = dot(&((trial - ph.shear_force) * (1.0 / ph.ks)), &ph.shear_force);
+            if d > 0.0 {
+                e.shear_dissip += d;
+            }
+        }
+        if fn_ < 0.0 {
+            ph.normal_force = Vec3::zeros();
+        }
+    }
+    // LawFunctor::applyForceAtContactPoint
+    let force = -ph.normal_force - ph.shear_force;
+    forces.add_force(id1, &force);
+    forces.add_torque(id1, &cross(&(g.contact_point - b.pos1), &force));
+    forces.add_force(id2, &(-force));
+    forces.add_torque(id2, &(-cross(&(g.contact_point - b.pos2_shifted), &force)));
+
+    if cp.moment_rotation_law && (!cp.cohesion_broken || p.always_use_moment_law) {
+        if !p.use_incremental_form {
+            if p.twist_creep {
+                let m = if g.radius2 < g.radius1 {
+                    g.radius2
+                } else {
+                    g.radius1
+                };
+                let viscosity_twist = p.creep_viscosity * ((2.0 * m) * (2.0 * m)) / 16.0;
+                let creeped = rot.twist * (1.0 - dt / viscosity_twist);
+                let q_twist = Quat::from_angle_axis(rot.twist, &g.normal);
+                let q_creeped = Quat::from_angle_axis(creeped, &g.normal);
+                let q_delta = q_creeped.mul(&q_twist.conjugate());
+                rot.twist_creep = rot.twist_creep.mul(&q_delta);
+            }
+            cp.moment_twist = g.normal * (rot.twist * cp.ktw);
+            cp.moment_bending = rot.bending * cp.kr;
+        } else {
+            if p.twist_creep {
+                return Err("Law2_ScGeom6D_CohFrictPhys_CohesionMoment: no twis creep is included if the incremental form for the rotations is used.".into());
+            }
+            let rel = b.ang_vel2 - b.ang_vel1;
+            let rel_bend = rel - g.normal * dot(&g.normal, &rel);
+            let rot_bend = rel_bend * dt;
+            g.rotate(&mut cp.moment_bending);
+            cp.moment_bending -= rot_bend * cp.kr;
+            let rel_twist = g.normal * dot(&g.normal, &rel);
+            let rot_twist = rel_twist * dt;
+            g.rotate(&mut cp.moment_twist);
+            cp.moment_twist -= rot_twist * cp.ktw;
+        }
+        // (YADE logs a warning here on every call when a limit is active with the total form)
+        if cp.max_roll_pl >= 0.0 {
+            let roll_max = cp.max_roll_pl * norm(&ph.normal_force);
+            let scalar_roll = norm(&cp.moment_bending);
+            if scalar_roll > roll_max {
+                let ratio = roll_max / scalar_roll;
+                cp.moment_bending *= ratio;
+                if let Some(e) = energy.as_mut() {
+                    let d = (1.0 / cp.kr) * (scalar_roll - roll_max) * roll_max;
+                    if d > 0.0 {
+                        e.bending_dissip += d;
+                    }
+                }
+            }
+        }
+        if cp.max_twist_pl >= 0.0 {
+            let twist_max = cp.max_twist_pl * norm(&ph.normal_force);
+            let scalar_twist = norm(&cp.moment_twist);
+            if scalar_twist > twist_max {
+                let ratio = twist_max / scalar_twist;
+                cp.moment_twist *= ratio;
+                if let Some(e) = energy.as_mut() {
+                    let d = (1.0 / cp.ktw) * (scalar_twist - twist_max) * twist_max;
+                    if d > 0.0 {
+                        e.twist_dissip += d;
+                    }
+                }
+            }
+        }
+        let moment = cp.moment_twist + cp.moment_bending;
+        forces.add_torque(id1, &(-moment));
+        forces.add_torque(id2, &moment);
+    }
+    Ok(true)
+}
