@@ -20,6 +20,8 @@ echo "== cargo test"
 cargo test --release
 echo "== compat diff micro"
 ./target/release/compat diff micro
+echo "== compat diff micro_grid"
+./target/release/compat diff micro_grid
 echo "== compat diff meso"
 ./target/release/compat diff meso
 echo "== unmodified YADE scripts under compat run reproduce YADE's files"
