@@ -80,6 +80,39 @@ class Facet(Shape):
         return {'class': 'Facet', 'vertices': [list(v) for v in self._values['vertices']]}
 
 
+class GridNode(Sphere):
+    """A grid vertex (carries mass; no bound, mask 0 when made by gridpfacet.gridNode)."""
+
+    def _json(self):
+        return {'class': 'GridNode', 'radius': float(self._values['radius']), 'connections': []}
+
+    def getConnections(self):
+        if self._owner is None:
+            return []
+        omega, bid = self._owner
+        d = json.loads(omega._sim.shape_json(bid))
+        return [omega.bodies[i] for i in d.get('connections', [])]
+
+
+class GridConnection(Sphere):
+    """A cylinder between two GridNodes (created by gridpfacet.gridConnection)."""
+    _attrs = {'node1': None, 'node2': None, 'periodic': False, 'cellDist': (0, 0, 0)}
+
+    def _json(self):
+        unsupported('appending a GridConnection body directly', 'use yade.gridpfacet.gridConnection')
+
+    def getLength(self):
+        return self.getSegment().norm()
+
+    def getSegment(self):
+        omega = self._owner[0]
+        seg = self.node2.state.pos - self.node1.state.pos
+        if omega.periodic:
+            h, c = omega.cell.hSize, self.cellDist
+            seg = seg + h * Vector3(c[0], c[1], c[2])
+        return seg
+
+
 class Wall(Shape):
     _attrs = {'axis': 0, 'sense': 0}
 
@@ -273,6 +306,12 @@ class BodyContainer(object):
             return [self.append(x) for x in b]
         if not isinstance(b, Body):
             raise TypeError('O.bodies.append takes a Body or a list of Bodies, not %s' % type(b).__name__)
+        if getattr(b, '_pending_append', False):
+            # a gridConnection body: the core created it (and its bond) already, with the next id
+            object.__setattr__(b, '_pending_append', False)
+            return b.id
+        if any(getattr(x, '_pending_append', False) for x in self._objs[-8:]):
+            unsupported('appending other bodies between gridConnection() and O.bodies.append() of its result')
         if b._owner is not None:
             raise IndexError('body already has id %d set; appending such body (for the second time) is not allowed' % b.id)
         o = self._o
@@ -298,6 +337,22 @@ class BodyContainer(object):
         b._values['timeBorn'] = o.time
         self._objs.append(b)
         return bid
+
+    def _adopt(self, bid, shape, material):
+        """A Python view for a body the Rust core created (gridConnection's connection body)."""
+        b = Body()
+        b._values['shape'] = shape
+        b._values['material'] = material
+        object.__setattr__(b, '_id', bid)
+        object.__setattr__(b, '_owner', (self._o, bid))
+        shape._bind(self._o, bid)
+        b._values['state']._bind(self._o, bid)
+        b._values['groupMask'] = self._o._sim.get_int(bid, 'mask')
+        b._values['bounded'] = bool(self._o._sim.get_int(bid, 'bounded'))
+        if len(self._objs) != bid:
+            raise RuntimeError('internal: body ids out of sync (%d vs %d)' % (len(self._objs), bid))
+        self._objs.append(b)
+        return b
 
     def __getitem__(self, i):
         if not isinstance(i, int):
@@ -368,7 +423,7 @@ class MaterialContainer(object):
 
 
 class _GeomView(object):
-    """`i.geom` of a real interaction: ScGeom attributes read live from the engine."""
+    """`i.geom` of a real interaction: ScGeom attributes (plus 6-D and grid ones) read live."""
     _fields = {'normal': 'v', 'penetrationDepth': 's', 'contactPoint': 'v', 'shearInc': 'v', 'refR1': 's', 'refR2': 's'}
     _cls = 'ScGeom'
 
@@ -380,6 +435,11 @@ class _GeomView(object):
             omega, a, b = self._k
             v = omega._sim.intr_get(a, b, k)
             return Vector3(*v) if self._fields[k] == 'v' else v
+        if k in ('twist', 'bending', 'relPos', 'isDuplicate', 'trueInt') and self._cls == 'ScGeom':
+            omega, a, b = self._k
+            v = omega._sim.intr_get_ext(a, b, k)
+            if v is not None:
+                return Vector3(*v) if k == 'bending' else v
         if k in YADE_CLASSES.get(self._cls, {}).get('attrs', ()):
             unsupported('%s.%s' % (self._cls, k))
         raise AttributeError("'%s' object has no attribute '%s'" % (self._cls, k))
@@ -398,13 +458,27 @@ class _GeomView(object):
 class _PhysView(_GeomView):
     _fields = {'normalForce': 'v', 'shearForce': 'v', 'kn': 's', 'ks': 's', 'tangensOfFrictionAngle': 's'}
     _cls = 'FrictPhys'
+    _ext = {'kr': 's', 'ktw': 's', 'unp': 's', 'unpMax': 's', 'normalAdhesion': 's', 'shearAdhesion': 's',
+            'cohesionBroken': 'b', 'momentRotationLaw': 'b', 'moment_twist': 'v', 'moment_bending': 'v'}
+
+    def __getattr__(self, k):
+        if k in self._ext:
+            omega, a, b = self._k
+            v = omega._sim.intr_get_ext(a, b, k)
+            if v is None:
+                raise AttributeError("'FrictPhys' object has no attribute '%s'" % k)
+            return Vector3(*v) if self._ext[k] == 'v' else v
+        return _GeomView.__getattr__(self, k)
 
     def __setattr__(self, k, v):
+        omega, a, b = self._k
         if k in ('normalForce', 'shearForce'):
-            omega, a, b = self._k
             omega._sim.intr_set_vec3(a, b, k, to_vec3(v, k))
             return
-        unsupported('setting FrictPhys.%s' % k)
+        if k in ('kn', 'ks', 'kr', 'ktw', 'unp', 'unpMax', 'momentRotationLaw'):
+            omega._sim.intr_set_scalar(a, b, k, float(v))
+            return
+        unsupported('setting the interaction attribute phys.%s' % k)
 
 
 _NAMED = {}

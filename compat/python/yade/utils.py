@@ -15,7 +15,7 @@ from ._table import (TableParamReader, loadVars, readParamsFromTable, runningInB
 __all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDim', 'defaultMaterial', 'PWaveTimeStep',
            'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor',
            'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
-           'boxPorosity', 'avgNumInteractions', 'sumForces', 'sumTorques']
+           'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques']
 
 
 def _O():
@@ -203,6 +203,16 @@ def sumForces(ids, direction):
     O = _O()
     d = Vector3(*to_vec3(direction, 'direction'))
     return sum(O.forces.f(i).dot(d) for i in ids)
+
+
+def createInteraction(id1, id2, virtualI=False):
+    """`utils.createInteraction`: geometry forced with the InteractionLoop's functors, physics created."""
+    if virtualI:
+        unsupported('createInteraction(virtualI=True)')
+    O = _O()
+    a, b = O._sim.create_interaction(int(id1), int(id2))
+    from ._core import Interaction
+    return Interaction(O, a, b)
 
 
 def sumTorques(ids, axis, axisPt):

@@ -167,8 +167,40 @@ class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0}
 
 
+class Bo1_GridConnection_Aabb(BoundFunctor):
+    _attrs = {'aabbEnlargeFactor': -1.0}
+
+
+class Ig2_Sphere_Sphere_ScGeom6D(Ig2_Sphere_Sphere_ScGeom):
+    _attrs = {'updateRotations': True, 'creep': False}
+
+
+class Ig2_GridNode_GridNode_GridNodeGeom6D(Ig2_Sphere_Sphere_ScGeom):
+    _attrs = {'updateRotations': True, 'creep': False}
+
+
+class Ig2_Sphere_GridConnection_ScGridCoGeom(IGeomFunctor):
+    _attrs = {'interactionDetectionFactor': 1.0}
+
+
+class Ig2_GridConnection_GridConnection_GridCoGridCoGeom(IGeomFunctor):
+    pass
+
+
 class IPhysFunctor(Functor):
     pass
+
+
+class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(IPhysFunctor):
+    _attrs = {'setCohesionNow': False, 'setCohesionOnNewContacts': False, 'normalCohesion': None,
+              'shearCohesion': None, 'frictAngle': None}
+
+    def _json(self):
+        for k in ('normalCohesion', 'shearCohesion', 'frictAngle'):
+            if self._values[k] is not None:
+                unsupported('Ip2_CohFrictMat_CohFrictMat_CohFrictPhys.%s (MatchMaker)' % k)
+        return {'class': 'Ip2_CohFrictMat_CohFrictMat_CohFrictPhys', 'setCohesionNow': bool(self._values['setCohesionNow']),
+                'setCohesionOnNewContacts': bool(self._values['setCohesionOnNewContacts'])}
 
 
 class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
@@ -193,6 +225,23 @@ class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
             unsupported('Law2_ScGeom_FrictPhys_CundallStrack.traceEnergy', 'use O.trackEnergy=True')
         return {'class': 'Law2_ScGeom_FrictPhys_CundallStrack', 'neverErase': self._values['neverErase'],
                 'sphericalBodies': self._values['sphericalBodies']}
+
+
+class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(LawFunctor):
+    _attrs = {'neverErase': False, 'always_use_moment_law': False, 'shear_creep': False, 'twist_creep': False,
+              'creep_viscosity': 1.0, 'traceEnergy': False, 'useIncrementalForm': False}
+
+
+class Law2_ScGridCoGeom_FrictPhys_CundallStrack(LawFunctor):
+    _attrs = {'neverErase': False}
+
+
+class Law2_ScGridCoGeom_CohFrictPhys_CundallStrack(LawFunctor):
+    _attrs = {'neverErase': False}
+
+
+class Law2_GridCoGridCoGeom_FrictPhys_CundallStrack(LawFunctor):
+    _attrs = {'neverErase': False, 'sphericalBodies': True, 'traceEnergy': False}
 
 
 class Engine(Serializable):
@@ -466,6 +515,24 @@ class FrictMat(ElastMat):
                 'poisson': float(v['poisson']), 'frictionAngle': float(v['frictionAngle']), 'density': float(v['density'])}
 
 
+class CohFrictMat(FrictMat):
+    _attrs = {'isCohesive': True, 'alphaKr': 2.0, 'alphaKtw': 2.0, 'etaRoll': -1.0, 'etaTwist': -1.0,
+              'normalCohesion': -1.0, 'shearCohesion': -1.0, 'fragile': True, 'momentRotationLaw': False}
+
+    def _json(self):
+        d = FrictMat._json(self)
+        d['class'] = 'CohFrictMat'
+        for k in CohFrictMat._attrs:
+            v = self._values[k]
+            d[k] = bool(v) if isinstance(CohFrictMat._attrs[k], bool) else float(v)
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in CohFrictMat._attrs:
+            unsupported('changing CohFrictMat.%s after the material is in use' % k)
+        FrictMat._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -501,7 +568,11 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
-    TimeStepper, GlobalStiffnessTimeStepper,
+    TimeStepper, GlobalStiffnessTimeStepper, CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
+    Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
+    Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
+    Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
+    Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
     ElastMat, FrictMat]}
 
 
