@@ -34,5 +34,21 @@ for kind in micro meso pack export examples; do
     else echo "DIFFERS  $kind/$f"; bad=1; fi
   done
 done
+# the study (r05 tiny seed 1, cases N, F, G: generation + 5 load cycles) and the tensile calibration
+for case in N F G; do
+  d="$TMP/study_$case"; n=$((n + 2))
+  if ! "$COMPAT" run "$HERE/study/study.py" -- --ratio 0.5 --case $case --size tiny --seed 1 --out "$d" >"$TMP/study_$case.log" 2>&1; then
+    echo "FAILED   study r05 $case under compat run:"; tail -n 15 "$TMP/study_$case.log"; bad=1; continue
+  fi
+  for f in history.csv profile.csv; do
+    cmp -s "$ROOT/golden/study/r05_${case}_tiny_s1/$f" "$d/$f" && echo "OK       study r05_${case} $f" || { echo "DIFFERS  study r05_${case} $f"; bad=1; }
+  done
+done
+mkdir -p "$TMP/calib"; n=$((n + 2))
+if "$COMPAT" run "$HERE/calibration/tensile.py" "out=\"$TMP/calib/tensile.csv\"" "summary=\"$TMP/calib/tensile.summary.json\"" >"$TMP/calib.log" 2>&1; then
+  for f in tensile.csv tensile.summary.json; do
+    cmp -s "$ROOT/golden/calibration/$f" "$TMP/calib/$f" && echo "OK       calibration $f" || { echo "DIFFERS  calibration $f"; bad=1; }
+  done
+else echo "FAILED   calibration/tensile.py under compat run"; tail -n 15 "$TMP/calib.log"; bad=1; fi
 if [[ $bad -ne 0 ]]; then echo "check_compat: FAILED ($n golden files)"; exit 1; fi
 echo "check_compat: all $n golden files reproduced by compat run"

@@ -633,6 +633,20 @@ impl Sim {
         };
         Ok(o.unwrap_or_else(|| py.None()))
     }
+    /// YADE class names of the interaction's geometry and physics.
+    fn intr_classes(&self, a: u32, b: u32) -> PyResult<(String, String)> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let ext = it.ext.as_deref();
+        let g = match ext.and_then(|e| e.geom.as_ref()) {
+            Some(ryade::geom::GeomExt::Sc6D(_)) => "ScGeom6D",
+            Some(ryade::geom::GeomExt::GridNode { .. }) => "GridNodeGeom6D",
+            Some(ryade::geom::GeomExt::ScGridCo(_)) => "ScGridCoGeom",
+            Some(ryade::geom::GeomExt::GridCoGridCo(_)) => "GridCoGridCoGeom",
+            None => "ScGeom",
+        };
+        let p = if ext.and_then(|e| e.coh.as_ref()).is_some() { "CohFrictPhys" } else { "FrictPhys" };
+        Ok((g.to_string(), p.to_string()))
+    }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {
         let k = self.intr_index(a, b)?;

@@ -426,6 +426,7 @@ class _GeomView(object):
     """`i.geom` of a real interaction: ScGeom attributes (plus 6-D and grid ones) read live."""
     _fields = {'normal': 'v', 'penetrationDepth': 's', 'contactPoint': 'v', 'shearInc': 'v', 'refR1': 's', 'refR2': 's'}
     _cls = 'ScGeom'
+    _role = 0
 
     def __init__(self, omega, a, b):
         object.__setattr__(self, '_k', (omega, a, b))
@@ -449,7 +450,9 @@ class _GeomView(object):
 
     @property
     def __class__(self):
-        return _named_class(self._cls)
+        from .wrapper import class_by_name
+        omega, a, b = self._k
+        return class_by_name(omega._sim.intr_classes(a, b)[type(self)._role])
 
     def dict(self):
         return {k: getattr(self, k) for k in self._fields}
@@ -458,6 +461,7 @@ class _GeomView(object):
 class _PhysView(_GeomView):
     _fields = {'normalForce': 'v', 'shearForce': 'v', 'kn': 's', 'ks': 's', 'tangensOfFrictionAngle': 's'}
     _cls = 'FrictPhys'
+    _role = 1
     _ext = {'kr': 's', 'ktw': 's', 'unp': 's', 'unpMax': 's', 'normalAdhesion': 's', 'shearAdhesion': 's',
             'cohesionBroken': 'b', 'momentRotationLaw': 'b', 'moment_twist': 'v', 'moment_bending': 'v'}
 

@@ -576,15 +576,37 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ElastMat, FrictMat]}
 
 
+_ALL = {}
+
+
 def all_classes():
     """name -> class for every YADE class: ours where implemented, an UnsupportedError stub otherwise
-    (OpenGL `Gl1_*`/`GlExtra*` classes are harmless stubs for headless runs)."""
+    (OpenGL `Gl1_*`/`GlExtra*` classes are harmless stubs for headless runs). Stubs get YADE's base
+    class, so `isinstance(i.phys, FrictPhys)` holds for a CohFrictPhys as in YADE."""
+    if _ALL:
+        return dict(_ALL)
     out = dict(_IMPLEMENTED)
-    for name in YADE_CLASSES:
+
+    def make(name):
         if name in out:
-            continue
+            return out[name]
+        parents = [b for b in YADE_CLASSES.get(name, {}).get('bases', ()) if b in YADE_CLASSES]
+        base = make(parents[0]) if parents else Serializable
         if name.startswith(('Gl1_', 'GlBound', 'GlShape', 'GlIGeom', 'GlIPhys', 'GlState', 'GlExtra', 'OpenGLRenderer')):
-            out[name] = type(name, (_GlStub,), {})
+            cls = type(name, (_GlStub,), {})
         else:
-            out[name] = _make_unsupported(name)
-    return out
+            def __init__(self, *args, **kw):
+                unsupported('class %s' % name)
+            cls = type(name, (base,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+        out[name] = cls
+        return cls
+
+    for name in YADE_CLASSES:
+        make(name)
+    _ALL.update(out)
+    return dict(out)
+
+
+def class_by_name(name):
+    """The class object scripts see under `name` (for geometry/physics views' `__class__`)."""
+    return all_classes().get(name) or type(name, (object,), {})
