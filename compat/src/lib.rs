@@ -614,22 +614,89 @@ impl Sim {
             _ => None,
         });
         let o: Option<PyObject> = match field {
-            "kr" => coh.map(|c| c.kr.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "ktw" => coh.map(|c| c.ktw.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "unp" => coh.map(|c| c.unp.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "unpMax" => coh.map(|c| c.unp_max.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "normalAdhesion" => coh.map(|c| c.normal_adhesion.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "shearAdhesion" => coh.map(|c| c.shear_adhesion.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "cohesionBroken" => coh.map(|c| c.cohesion_broken.into_pyobject(py).map(|x| x.to_owned().into_any().unbind())).transpose()?,
-            "momentRotationLaw" => coh.map(|c| c.moment_rotation_law.into_pyobject(py).map(|x| x.to_owned().into_any().unbind())).transpose()?,
-            "moment_twist" => coh.map(|c| v3(&c.moment_twist).into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "moment_bending" => coh.map(|c| v3(&c.moment_bending).into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "twist" => rot.map(|r| r.twist.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "bending" => rot.map(|r| v3(&r.bending).into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "relPos" => gc.map(|g| g.rel_pos.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "isDuplicate" => gc.map(|g| g.is_duplicate.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            "trueInt" => gc.map(|g| g.true_int.into_pyobject(py).map(|x| x.into_any().unbind())).transpose()?,
-            _ => return Err(PyKeyError::new_err(format!("interactions have no attribute '{}' in ryade", field))),
+            "kr" => coh
+                .map(|c| c.kr.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "ktw" => coh
+                .map(|c| c.ktw.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "unp" => coh
+                .map(|c| c.unp.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "unpMax" => coh
+                .map(|c| c.unp_max.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "normalAdhesion" => coh
+                .map(|c| {
+                    c.normal_adhesion
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "shearAdhesion" => coh
+                .map(|c| {
+                    c.shear_adhesion
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "cohesionBroken" => coh
+                .map(|c| {
+                    c.cohesion_broken
+                        .into_pyobject(py)
+                        .map(|x| x.to_owned().into_any().unbind())
+                })
+                .transpose()?,
+            "momentRotationLaw" => coh
+                .map(|c| {
+                    c.moment_rotation_law
+                        .into_pyobject(py)
+                        .map(|x| x.to_owned().into_any().unbind())
+                })
+                .transpose()?,
+            "moment_twist" => coh
+                .map(|c| {
+                    v3(&c.moment_twist)
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "moment_bending" => coh
+                .map(|c| {
+                    v3(&c.moment_bending)
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "twist" => rot
+                .map(|r| r.twist.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "bending" => rot
+                .map(|r| {
+                    v3(&r.bending)
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "relPos" => gc
+                .map(|g| g.rel_pos.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            "isDuplicate" => gc
+                .map(|g| {
+                    g.is_duplicate
+                        .into_pyobject(py)
+                        .map(|x| x.into_any().unbind())
+                })
+                .transpose()?,
+            "trueInt" => gc
+                .map(|g| g.true_int.into_pyobject(py).map(|x| x.into_any().unbind()))
+                .transpose()?,
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "interactions have no attribute '{}' in ryade",
+                    field
+                )))
+            }
         };
         Ok(o.unwrap_or_else(|| py.None()))
     }
@@ -644,17 +711,29 @@ impl Sim {
             Some(ryade::geom::GeomExt::GridCoGridCo(_)) => "GridCoGridCoGeom",
             None => "ScGeom",
         };
-        let p = if ext.and_then(|e| e.coh.as_ref()).is_some() { "CohFrictPhys" } else { "FrictPhys" };
+        let p = if ext.and_then(|e| e.coh.as_ref()).is_some() {
+            "CohFrictPhys"
+        } else {
+            "FrictPhys"
+        };
         Ok((g.to_string(), p.to_string()))
     }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {
         let k = self.intr_index(a, b)?;
         let it = &mut self.scene.interactions.list[k];
-        let nope = || PyKeyError::new_err(format!("setting interaction attribute '{}' is not supported by ryade yet", field));
+        let nope = || {
+            PyKeyError::new_err(format!(
+                "setting interaction attribute '{}' is not supported by ryade yet",
+                field
+            ))
+        };
         match field {
             "kn" | "ks" => {
-                let p = it.phys.as_mut().ok_or_else(|| PyKeyError::new_err("the interaction is not real"))?;
+                let p = it
+                    .phys
+                    .as_mut()
+                    .ok_or_else(|| PyKeyError::new_err("the interaction is not real"))?;
                 if field == "kn" {
                     p.kn = v
                 } else {
@@ -662,7 +741,11 @@ impl Sim {
                 }
             }
             _ => {
-                let c = it.ext.as_deref_mut().and_then(|e| e.coh.as_mut()).ok_or_else(nope)?;
+                let c = it
+                    .ext
+                    .as_deref_mut()
+                    .and_then(|e| e.coh.as_mut())
+                    .ok_or_else(nope)?;
                 match field {
                     "kr" => c.kr = v,
                     "ktw" => c.ktw = v,
@@ -677,14 +760,26 @@ impl Sim {
     }
     /// `utils.createInteraction(id1, id2)`; returns (id1, id2) as stored (after a functor swap).
     fn create_interaction(&mut self, a: usize, b: usize) -> PyResult<(u32, u32)> {
-        let k = self.scene.create_interaction(a, b).map_err(PyRuntimeError::new_err)?;
+        let k = self
+            .scene
+            .create_interaction(a, b)
+            .map_err(PyRuntimeError::new_err)?;
         let it = &self.scene.interactions.list[k];
         Ok((it.id1, it.id2))
     }
     /// `gridpfacet.gridConnection`: creates the connection body and the node-node bond; returns the body id.
     #[pyo3(signature = (id1, id2, radius, material, mask, cell_dist=None))]
-    fn grid_connection(&mut self, id1: usize, id2: usize, radius: f64, material: usize, mask: i32, cell_dist: Option<[i32; 3]>) -> PyResult<usize> {
-        ryade::utils::grid_connection(&mut self.scene, id1, id2, radius, material, mask, cell_dist).map_err(PyRuntimeError::new_err)
+    fn grid_connection(
+        &mut self,
+        id1: usize,
+        id2: usize,
+        radius: f64,
+        material: usize,
+        mask: i32,
+        cell_dist: Option<[i32; 3]>,
+    ) -> PyResult<usize> {
+        ryade::utils::grid_connection(&mut self.scene, id1, id2, radius, material, mask, cell_dist)
+            .map_err(PyRuntimeError::new_err)
     }
     fn intr_set_vec3(&mut self, a: u32, b: u32, field: &str, v: V3) -> PyResult<()> {
         let k = self.intr_index(a, b)?;
