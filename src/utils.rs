@@ -327,19 +327,31 @@ fn at_rest(
     }
 }
 
-/// Kinetic energy of all bodies (`utils.kineticEnergy`): translational plus rotational.
+/// Kinetic energy of all dynamic bodies (`Shop::kineticEnergy`, preprocessing/dem/Shop_01.cpp):
+/// per body `E = .5*(m*|v|²)` (periodic: `.5*m*|v - velGrad*(x - v*dt)|²`) plus `0.5*ω·(I∘ω)`,
+/// summed body by body in id order, in YADE's evaluation order. Aspherical bodies use the spherical
+/// formula (ryade has no aspherical rotation yet).
 pub fn kinetic_energy(scene: &Scene) -> f64 {
     let b = &scene.bodies;
-    let mut e = 0.0;
+    let mut ret = 0.0;
     for id in 0..b.len() {
         if !b.is_dynamic(id) {
             continue;
         }
-        e += 0.5 * b.mass[id] * norm2(&b.vel[id]);
+        let v = b.vel[id];
+        let mut e = match &scene.cell {
+            Some(c) => {
+                let x = b.pos[id] - v * scene.dt;
+                let f = v - crate::math::mat_vec(&c.vel_grad, &x);
+                0.5 * b.mass[id] * norm2(&f)
+            }
+            None => 0.5 * (b.mass[id] * norm2(&v)),
+        };
         let w = b.ang_vel[id];
         e += 0.5 * crate::math::dot(&w, &b.inertia[id].component_mul(&w));
+        ret += e;
     }
-    e
+    ret
 }
 
 /// The critical time step of the stiffest sphere-sphere contact a scene can form: two equal spheres
