@@ -2,47 +2,16 @@
 //! the sphere and split it between the two nodes of the connection, `(1-relPos, relPos)`; the
 //! connection-connection law splits it over the four nodes. Nothing acts on the connection body.
 
-use super::{cxx_max, LawEnergy};
+use super::{cundall_shear, cxx_max, LawEnergy};
 use crate::forces::Forces;
 use crate::geom::{GridCoGridCo, ScGeom, ScGridCo};
-use crate::math::{cross, dot, norm, norm2, Vec3};
+use crate::math::{cross, dot, norm, Vec3};
 use crate::phys::{CohFrictPhys, FrictPhys};
 
 /// `neverErase` of `Law2_ScGridCoGeom_FrictPhys_CundallStrack` (and of its CohFrictPhys sibling).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct ScGridCoParams {
     pub never_erase: bool,
-}
-
-/// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
-fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy>) {
-    let mut fs = ph.shear_force;
-    g.rotate(&mut fs);
-    fs -= g.shear_inc * ph.ks;
-    let max_fs = norm2(&ph.normal_force) * (ph.tan_phi * ph.tan_phi);
-    match energy {
-        None => {
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                fs *= ratio;
-            }
-            ph.shear_force = fs;
-        }
-        Some(e) => {
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                let trial = fs;
-                fs *= ratio;
-                let dissip = dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
-                if dissip > 0.0 {
-                    e.plast_dissip += dissip;
-                }
-            }
-            ph.shear_force = fs;
-            e.elast_potential +=
-                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&ph.shear_force) / ph.ks);
-        }
-    }
 }
 
 /// `Law2_ScGridCoGeom_FrictPhys_CundallStrack::go` (Grid.cpp). Body 1 is the sphere; `x.id3`/`x.id4`

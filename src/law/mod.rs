@@ -100,31 +100,8 @@ pub fn go(
         }
     }
     ph.normal_force = g.normal * (ph.kn * g.pen.max(0.0));
-    let mut fs = ph.shear_force;
-    g.rotate(&mut fs);
-    fs -= g.shear_inc * ph.ks;
-    let max_fs = norm2(&ph.normal_force) * (ph.tan_phi * ph.tan_phi);
-    match energy {
-        None => {
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                fs *= ratio;
-            }
-        }
-        Some(e) => {
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                let trial = fs;
-                fs *= ratio;
-                let dissip = crate::math::dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
-                if dissip > 0.0 {
-                    e.plast_dissip += dissip;
-                }
-            }
-            e.elast_potential += 0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&fs) / ph.ks);
-        }
-    }
-    ph.shear_force = fs;
+    cundall_shear(g, ph, energy);
+    let fs = ph.shear_force;
     let force = -ph.normal_force - fs;
     if p.spherical_bodies {
         forces.add_force(id1, &force);
@@ -143,4 +120,35 @@ pub fn go(
         );
     }
     true
+}
+
+/// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
+pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy>) {
+    let mut fs = ph.shear_force;
+    g.rotate(&mut fs);
+    fs -= g.shear_inc * ph.ks;
+    let max_fs = norm2(&ph.normal_force) * (ph.tan_phi * ph.tan_phi);
+    match energy {
+        None => {
+            if norm2(&fs) > max_fs {
+                let ratio = max_fs.sqrt() / norm(&fs);
+                fs *= ratio;
+            }
+            ph.shear_force = fs;
+        }
+        Some(e) => {
+            if norm2(&fs) > max_fs {
+                let ratio = max_fs.sqrt() / norm(&fs);
+                let trial = fs;
+                fs *= ratio;
+                let dissip = crate::math::dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
+                if dissip > 0.0 {
+                    e.plast_dissip += dissip;
+                }
+            }
+            ph.shear_force = fs;
+            e.elast_potential +=
+                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&ph.shear_force) / ph.ks);
+        }
+    }
 }
