@@ -15,8 +15,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), '
 import ryade_record
 from yade import *
 
-INCREMENTAL = False
-NAME = 'rolling'
+# rolling_inc.py runs this same script with RYADE_ROLLING_INCREMENTAL = True (incremental moment form)
+INCREMENTAL = globals().get('RYADE_ROLLING_INCREMENTAL', False)
+NAME = 'rolling_inc' if INCREMENTAL else 'rolling'
 RS = 0.015
 STEPS = 1500
 
