@@ -17,6 +17,7 @@ pub mod harness;
 pub mod integrator;
 pub mod interaction;
 pub mod io;
+pub mod kinematic;
 pub mod law;
 pub mod material;
 pub mod math;

@@ -228,6 +228,8 @@ pub enum Engine {
     InteractionLoop(Box<InteractionLoop>),
     Newton(Box<Newton>),
     TimeStepper(Box<crate::timestepper::GlobalStiffnessTimeStepper>),
+    Translation(Box<crate::kinematic::TranslationEngine>),
+    ServoPid(Box<crate::kinematic::ServoPid>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -241,6 +243,8 @@ impl Engine {
             Engine::InteractionLoop(_) => "InteractionLoop",
             Engine::Newton(_) => "NewtonIntegrator",
             Engine::TimeStepper(_) => "GlobalStiffnessTimeStepper",
+            Engine::Translation(_) => "TranslationEngine",
+            Engine::ServoPid(_) => "ServoPIDController",
             Engine::External(_) => "External",
         }
     }
@@ -416,6 +420,14 @@ impl Scene {
                         self.dt = dt;
                     }
                 }
+                Ok(())
+            }
+            Engine::Translation(t) => {
+                t.action(&mut self.bodies);
+                Ok(())
+            }
+            Engine::ServoPid(s) => {
+                s.action(&mut self.bodies, &self.forces, self.iter);
                 Ok(())
             }
             Engine::External(_) => Ok(()),

@@ -44,6 +44,14 @@ for case in N F G; do
     cmp -s "$ROOT/golden/study/r05_${case}_tiny_s1/$f" "$d/$f" && echo "OK       study r05_${case} $f" || { echo "DIFFERS  study r05_${case} $f"; bad=1; }
   done
 done
+# YADE's ServoPIDController as the study's piston controller (2 cycles on the committed N specimen)
+d="$TMP/study_servopid"; g="$ROOT/golden/study/servopid_r05_N_tiny_s1_c2"; n=$((n + 3))
+if "$COMPAT" run "$HERE/study/study.py" -- --import-specimen "$ROOT/golden/study/r05_N_tiny_s1/specimen.json" --cycles 2 \
+    --controller servopid --out "$d" >"$TMP/study_servopid.log" 2>&1; then
+  for f in history.csv steps.csv profile.csv; do
+    cmp -s "$g/$f" "$d/$f" && echo "OK       study servopid $f" || { echo "DIFFERS  study servopid $f"; bad=1; }
+  done
+else echo "FAILED   study --controller servopid under compat run:"; tail -n 15 "$TMP/study_servopid.log"; bad=1; fi
 mkdir -p "$TMP/calib"; n=$((n + 2))
 if "$COMPAT" run "$HERE/calibration/tensile.py" "out=\"$TMP/calib/tensile.csv\"" "summary=\"$TMP/calib/tensile.summary.json\"" >"$TMP/calib.log" 2>&1; then
   for f in tensile.csv tensile.summary.json; do

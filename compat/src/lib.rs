@@ -397,6 +397,39 @@ impl Sim {
                 "previousDt" => t.previous_dt = num()?,
                 _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
             },
+            Engine::Translation(t) => match key {
+                "ids" => t.ids = serde_json::from_value(v.clone()).map_err(err)?,
+                "velocity" => t.velocity = num()?,
+                "translationAxis" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    t.translation_axis = vec(a) // normalised on the Python side
+                }
+                _ => return Err(unsupported("TranslationEngine")),
+            },
+            Engine::ServoPid(s) => match key {
+                "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
+                "axis" | "current" | "translationAxis" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    match key {
+                        "axis" => s.axis = vec(a),
+                        "current" => s.current = vec(a),
+                        _ => s.translation_axis = vec(a),
+                    }
+                }
+                "target" => s.target = num()?,
+                "kP" => s.kp = num()?,
+                "kI" => s.ki = num()?,
+                "kD" => s.kd = num()?,
+                "iTerm" => s.i_term = num()?,
+                "curVel" => s.cur_vel = num()?,
+                "errorCur" => s.error_cur = num()?,
+                "errorPrev" => s.error_prev = num()?,
+                "maxVelocity" => s.max_velocity = num()?,
+                "iterPeriod" => s.iter_period = num()? as i64,
+                "iterPrevStart" => s.iter_prev_start = num()? as i64,
+                "velocity" => s.velocity = num()?,
+                _ => return Err(unsupported("ServoPIDController")),
+            },
             Engine::Collider(c) => match key {
                 "verletDist" => c.p.verlet_dist = num()?,
                 "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
@@ -425,6 +458,33 @@ impl Sim {
             (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
             (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
             (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
+            (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
+            (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
+            (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
+            (Engine::ServoPid(s), k) => match k {
+                "ids" => serde_json::json!(s.ids),
+                "axis" => v3json(&s.axis),
+                "current" => v3json(&s.current),
+                "translationAxis" => v3json(&s.translation_axis),
+                "target" => serde_json::json!(s.target),
+                "kP" => serde_json::json!(s.kp),
+                "kI" => serde_json::json!(s.ki),
+                "kD" => serde_json::json!(s.kd),
+                "iTerm" => serde_json::json!(s.i_term),
+                "curVel" => serde_json::json!(s.cur_vel),
+                "errorCur" => serde_json::json!(s.error_cur),
+                "errorPrev" => serde_json::json!(s.error_prev),
+                "maxVelocity" => serde_json::json!(s.max_velocity),
+                "iterPeriod" => serde_json::json!(s.iter_period),
+                "iterPrevStart" => serde_json::json!(s.iter_prev_start),
+                "velocity" => serde_json::json!(s.velocity),
+                _ => {
+                    return Err(PyKeyError::new_err(format!(
+                        "ServoPIDController has no readable attribute '{}' in ryade",
+                        key
+                    )))
+                }
+            },
             _ => {
                 return Err(PyKeyError::new_err(format!(
                     "{} has no readable attribute '{}' in ryade",
@@ -932,4 +992,8 @@ fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(inscribed_circle_center, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
+}
+
+fn v3json(v: &ryade::math::Vec3) -> Value {
+    serde_json::json!([v[0], v[1], v[2]])
 }

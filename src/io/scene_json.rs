@@ -70,6 +70,30 @@ fn vec3(v: &Value, key: &str) -> Result<Vec3> {
     Ok(Vec3::new(c(0)?, c(1)?, c(2)?))
 }
 
+fn vec3_or(v: &Value, key: &str, default: Vec3) -> Result<Vec3> {
+    if v.get(key).is_some() {
+        vec3(v, key)
+    } else {
+        Ok(default)
+    }
+}
+
+/// A `PartialEngine.ids` list (non-negative body ids).
+fn ids(v: &Value) -> Result<Vec<usize>> {
+    match v.get("ids") {
+        None => Ok(Vec::new()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|x| {
+                x.as_u64()
+                    .map(|i| i as usize)
+                    .ok_or_else(|| anyhow!("'ids' must hold body ids (integers >= 0), got {}", x))
+            })
+            .collect(),
+        Some(x) => bail!("'ids' must be a list of body ids, got {}", short(x)),
+    }
+}
+
 fn vec3_of(a: &Value) -> Result<Vec3> {
     let a = a
         .as_array()
@@ -687,7 +711,29 @@ pub fn engine(e: &Value) -> Result<Engine> {
             mask: fo(e, "mask", -1.0)? as i32,
             ..Default::default()
         })),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator)", other),
+        "TranslationEngine" => Engine::Translation(Box::new(crate::kinematic::TranslationEngine {
+            ids: ids(e)?,
+            velocity: fo(e, "velocity", 0.0)?,
+            // taken as stored: YADE's postLoad normalisation already happened where the file was written
+            translation_axis: vec3_or(e, "translationAxis", Vec3::zeros())?,
+        })),
+        "ServoPIDController" => Engine::ServoPid(Box::new(crate::kinematic::ServoPid {
+            ids: ids(e)?,
+            axis: vec3_or(e, "axis", Vec3::zeros())?,
+            target: fo(e, "target", 0.0)?,
+            kp: fo(e, "kP", 0.0)?,
+            ki: fo(e, "kI", 0.0)?,
+            kd: fo(e, "kD", 0.0)?,
+            i_term: fo(e, "iTerm", 0.0)?,
+            cur_vel: fo(e, "curVel", 0.0)?,
+            error_cur: fo(e, "errorCur", 0.0)?,
+            error_prev: fo(e, "errorPrev", 0.0)?,
+            max_velocity: fo(e, "maxVelocity", 0.0)?,
+            iter_period: fo(e, "iterPeriod", 100.0)? as i64,
+            iter_prev_start: fo(e, "iterPrevStart", -1.0)? as i64,
+            ..Default::default()
+        })),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController)", other),
     })
 }
 
@@ -833,6 +879,12 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
+            Engine::Translation(t) => json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
+                "translationAxis": v3(&t.translation_axis)}),
+            Engine::ServoPid(p) => json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
+                "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
+                "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
+                "iterPrevStart": p.iter_prev_start}),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner
             Engine::External(id) => json!({"class": "External", "id": id}),
         })

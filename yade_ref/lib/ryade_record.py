@@ -275,6 +275,15 @@ def _engine(e, grid=False):
         _require(_is_zero_m3(e.prevVelGrad), 'NewtonIntegrator.prevVelGrad != 0 is not supported')
         return {'class': c, 'damping': float(e.damping), 'gravity': _v3(e.gravity),
                 'dampGravity': bool(e.dampGravity)}
+    if c == 'TranslationEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'velocity': float(e.velocity),
+                'translationAxis': _v3(e.translationAxis)}
+    if c == 'ServoPIDController':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'axis': _v3(e.axis), 'target': float(e.target),
+                'kP': float(e.kP), 'kI': float(e.kI), 'kD': float(e.kD), 'iTerm': float(e.iTerm),
+                'curVel': float(e.curVel), 'errorCur': float(e.errorCur), 'errorPrev': float(e.errorPrev),
+                'maxVelocity': float(e.maxVelocity), 'iterPeriod': int(e.iterPeriod),
+                'iterPrevStart': int(e.iterPrevStart)}
     raise UnsupportedScene('engine class %s is not supported by golden/FORMAT.md' % c)
 
 

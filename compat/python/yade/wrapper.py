@@ -8,6 +8,7 @@ translated to the engine descriptions the Rust core reads (``_json``).
 """
 
 import json
+import math
 import os
 
 from ._errors import unsupported
@@ -425,6 +426,92 @@ class GlobalStiffnessTimeStepper(TimeStepper):
                 'maxDt': float(v['maxDt']), 'timestepSafetyCoefficient': float(v['timestepSafetyCoefficient'])}
 
 
+class PartialEngine(Engine):
+    _attrs = {'ids': []}
+
+    def _convert(self, k, v):
+        if k == 'ids':
+            try:
+                out = [int(i) for i in v]
+            except TypeError:
+                raise TypeError('%s.ids must be a list of body ids' % type(self).__name__)
+            if any(i < 0 for i in out):
+                raise ValueError('%s.ids: negative body id in %r' % (type(self).__name__, out))
+            return out
+        return v
+
+
+class KinematicEngine(PartialEngine):
+    def __add__(self, other):
+        unsupported('combining kinematic engines with + (CombinedKinematicEngine)')
+
+
+def _eigen_normalized(v):
+    """Eigen's normalize() on a 3-vector: divide by sqrt(x*x + (y*y + z*z)); a zero vector stays."""
+    z = v[0] * v[0] + (v[1] * v[1] + v[2] * v[2])
+    if z > 0:
+        n = math.sqrt(z)
+        return (v[0] / n, v[1] / n, v[2] / n)
+    return tuple(v)
+
+
+def _vec3_attr(cls, k, v):
+    from .minieigen import to_vec3
+    return to_vec3(v, '%s.%s' % (cls, k))
+
+
+class TranslationEngine(KinematicEngine):
+    """Constant velocity along translationAxis for the listed bodies (Rust core: `kinematic`)."""
+    _attrs = {'velocity': 0.0, 'translationAxis': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'velocity', 'translationAxis')
+    _vectors = ('translationAxis',)
+    _state = ()
+
+    def __init__(self, *args, **kw):
+        Serializable.__init__(self, *args, **kw)
+        if 'translationAxis' in kw:
+            # YADE quirk: constructing with translationAxis=... runs postLoad's normalize() twice (once per
+            # attribute update and once at the end of the constructor); an assignment runs it once. The
+            # second pass can move the last bit: (1, 1, 0) -> 0.7071067811865476 instead of ...475.
+            self._values['translationAxis'] = _eigen_normalized(self._values['translationAxis'])
+
+    def _convert(self, k, v):
+        if k in self._vectors:
+            v = tuple(_vec3_attr(type(self).__name__, k, v))
+            # TranslationEngine.postLoad: translationAxis.normalize()
+            return _eigen_normalized(v) if k == 'translationAxis' else v
+        return PartialEngine._convert(self, k, v)
+
+    def _read(self, k):
+        if self._owner is not None and (k in self._state or k in self._vectors):
+            omega, index = self._owner
+            v = json.loads(omega._sim.engine_get(index, k))
+        else:
+            v = self._values[k]
+        if k in self._vectors:
+            from .minieigen import Vector3
+            return Vector3(*v)
+        return v
+
+    def _json(self):
+        d = {'class': type(self).__name__}
+        for k in self._all_attrs():
+            if k not in Engine._attrs:
+                d[k] = _jsonable(self._values[k])
+        return d
+
+
+class ServoPIDController(TranslationEngine):
+    """YADE's PID force servo (KinematicEngines.cpp), run in the Rust core (`kinematic::ServoPid`)."""
+    _attrs = {'maxVelocity': 0.0, 'axis': (0.0, 0.0, 0.0), 'target': 0.0, 'current': (0.0, 0.0, 0.0), 'kP': 0.0,
+              'kI': 0.0, 'kD': 0.0, 'iTerm': 0.0, 'curVel': 0.0, 'errorCur': 0.0, 'errorPrev': 0.0, 'iterPeriod': 100,
+              'iterPrevStart': -1}
+    _live = ('ids', 'velocity', 'translationAxis', 'maxVelocity', 'axis', 'target', 'current', 'kP', 'kI', 'kD',
+             'iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPeriod', 'iterPrevStart')
+    _vectors = ('translationAxis', 'axis', 'current')
+    _state = ('iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPrevStart', 'velocity')
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -568,7 +655,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
-    TimeStepper, GlobalStiffnessTimeStepper, CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
+    TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, ServoPIDController,
+    CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,

@@ -1,0 +1,211 @@
+//! Kinematic engines: prescribed velocities on a list of bodies (YADE `pkg/common/KinematicEngines.cpp`).
+//!
+//! `KinematicEngine::action` zeroes `vel` and `angVel` of every listed body, then `apply` adds the
+//! engine's contribution. Two engines are mirrored: `TranslationEngine` (constant `velocity` along
+//! `translationAxis`) and `ServoPIDController` (a PID law on the summed force of the bodies, which then
+//! acts as a `TranslationEngine`).
+
+use crate::body::Bodies;
+use crate::forces::Forces;
+use crate::math::{norm, normalized, Vec3};
+
+/// `KinematicEngine::action`: reset the velocities of the listed bodies (ids past the container are
+/// skipped, as YADE's `Body::byId` returns null for erased bodies).
+fn reset_velocities(ids: &[usize], bodies: &mut Bodies) {
+    for &id in ids {
+        if id < bodies.len() {
+            bodies.vel[id] = Vec3::zeros();
+            bodies.ang_vel[id] = Vec3::zeros();
+        }
+    }
+}
+
+/// `TranslationEngine::apply`: `vel += velocity * translationAxis` for each listed body.
+fn translate(ids: &[usize], bodies: &mut Bodies, velocity: f64, axis: &Vec3) {
+    let dv = axis * velocity;
+    for &id in ids {
+        if id < bodies.len() {
+            bodies.vel[id] += dv;
+        }
+    }
+}
+
+/// YADE `TranslationEngine`: every step, the listed bodies move at `velocity` along `translation_axis`
+/// (normalised when set, as its postLoad does).
+#[derive(Clone, Debug, Default)]
+pub struct TranslationEngine {
+    pub ids: Vec<usize>,
+    pub velocity: f64,
+    pub translation_axis: Vec3,
+}
+
+impl TranslationEngine {
+    /// `KinematicEngine::action` + `TranslationEngine::apply`. Returns false when `ids` is empty
+    /// (YADE logs "The list of ids is empty!" and moves nothing).
+    pub fn action(&self, bodies: &mut Bodies) -> bool {
+        if self.ids.is_empty() {
+            return false;
+        }
+        reset_velocities(&self.ids, bodies);
+        translate(&self.ids, bodies, self.velocity, &self.translation_axis);
+        true
+    }
+}
+
+/// YADE `ServoPIDController` (attribute names and defaults of 2023.02a; `iterPeriod` 100,
+/// `maxVelocity` 0 = always clamped to rest).
+#[derive(Clone, Debug)]
+pub struct ServoPid {
+    pub ids: Vec<usize>,
+    pub axis: Vec3,
+    /// Target force magnitude along `axis` [N].
+    pub target: f64,
+    pub current: Vec3,
+    pub kp: f64,
+    pub ki: f64,
+    pub kd: f64,
+    pub i_term: f64,
+    pub cur_vel: f64,
+    pub error_cur: f64,
+    pub error_prev: f64,
+    pub max_velocity: f64,
+    pub iter_period: i64,
+    pub iter_prev_start: i64,
+    /// Inherited from TranslationEngine; overwritten on every call.
+    pub velocity: f64,
+    pub translation_axis: Vec3,
+}
+
+impl Default for ServoPid {
+    fn default() -> Self {
+        ServoPid {
+            ids: Vec::new(),
+            axis: Vec3::zeros(),
+            target: 0.0,
+            current: Vec3::zeros(),
+            kp: 0.0,
+            ki: 0.0,
+            kd: 0.0,
+            i_term: 0.0,
+            cur_vel: 0.0,
+            error_cur: 0.0,
+            error_prev: 0.0,
+            max_velocity: 0.0,
+            iter_period: 100,
+            iter_prev_start: -1,
+            velocity: 0.0,
+            translation_axis: Vec3::zeros(),
+        }
+    }
+}
+
+impl ServoPid {
+    /// `KinematicEngine::action` + `ServoPIDController::apply` (KinematicEngines.cpp). The forces must
+    /// be this step's synced ones (the servo normally follows NewtonIntegrator). Quirks kept on purpose:
+    /// the error uses the *magnitude* of the axial force (its sign is ignored), the integral term
+    /// accumulates `kI * error` without dt, and `axis` is normalised in place at every update.
+    pub fn action(&mut self, bodies: &mut Bodies, forces: &Forces, iter: i64) -> bool {
+        if self.ids.is_empty() {
+            return false;
+        }
+        reset_velocities(&self.ids, bodies);
+        if self.iter_prev_start < 0 || iter - self.iter_prev_start >= self.iter_period {
+            let mut f = Vec3::zeros();
+            for &id in &self.ids {
+                if let Some(fi) = forces.force.get(id) {
+                    f += fi;
+                }
+            }
+            self.axis = normalized(&self.axis);
+            let fa = f.component_mul(&self.axis);
+            self.error_cur = norm(&fa) - self.target;
+            let p_term = self.error_cur * self.kp;
+            self.i_term += self.error_cur * self.ki;
+            let d_term = (self.error_cur - self.error_prev) * self.kd;
+            self.error_prev = self.error_cur;
+            self.cur_vel = p_term + self.i_term + d_term;
+            if self.cur_vel.abs() > self.max_velocity.abs() {
+                self.cur_vel *= self.max_velocity.abs() / self.cur_vel.abs();
+            }
+            self.iter_prev_start = iter;
+            self.current = fa;
+        }
+        self.translation_axis = self.axis;
+        self.velocity = self.cur_vel;
+        translate(&self.ids, bodies, self.velocity, &self.translation_axis);
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::Bodies;
+
+    fn two_bodies() -> Bodies {
+        let mut b = Bodies::default();
+        for _ in 0..2 {
+            b.push(crate::utils::sphere(Vec3::zeros(), 0.1, 0, 1000.0, true));
+        }
+        b
+    }
+
+    /// The PID arithmetic of KinematicEngines.cpp by hand: error from |F·axis|, clamp to maxVelocity,
+    /// integral without dt, and the update only every iterPeriod steps.
+    #[test]
+    fn servo_pid_update_and_clamp() {
+        let mut bodies = two_bodies();
+        bodies.vel[0] = Vec3::new(5.0, 5.0, 5.0);
+        let mut forces = Forces::default();
+        forces.resize(2);
+        forces.force[0] = Vec3::new(1.0, 2.0, -30.0);
+        forces.force[1] = Vec3::new(0.0, 0.0, -20.0);
+        let mut s = ServoPid {
+            ids: vec![0, 1],
+            axis: Vec3::new(0.0, 0.0, 2.0),
+            target: 40.0,
+            kp: 0.01,
+            ki: 0.001,
+            kd: 0.1,
+            max_velocity: 1.0,
+            iter_period: 2,
+            ..Default::default()
+        };
+        assert!(s.action(&mut bodies, &forces, 10));
+        // |(0, 0, -50)| - 40 = 10; v = 0.1 + 0.01 + 1.0 = 1.11 -> clamped to 1
+        assert_eq!(s.error_cur, 10.0);
+        assert_eq!(s.axis, Vec3::new(0.0, 0.0, 1.0));
+        assert_eq!(s.cur_vel, 1.0);
+        assert_eq!(bodies.vel[0], Vec3::new(0.0, 0.0, 1.0));
+        assert_eq!(bodies.ang_vel[0], Vec3::zeros());
+        // next step: no update (iterPeriod 2), the velocity is held
+        forces.force[1] = Vec3::zeros();
+        s.action(&mut bodies, &forces, 11);
+        assert_eq!(s.error_cur, 10.0);
+        assert_eq!(bodies.vel[1], Vec3::new(0.0, 0.0, 1.0));
+        // step 12: |(0,0,-30)| - 40 = -10; v = -0.1 + 0.02 + 0.1*(-20) -> clamped to -1
+        s.action(&mut bodies, &forces, 12);
+        assert_eq!(s.error_cur, -10.0);
+        assert_eq!(s.i_term, 0.0);
+        assert_eq!(s.cur_vel, -1.0);
+        assert_eq!(s.iter_prev_start, 12);
+    }
+
+    /// maxVelocity's default 0 keeps the bodies at rest whatever the error (grid-pid-api.md 3.1).
+    #[test]
+    fn servo_pid_default_max_velocity_is_rest() {
+        let mut bodies = two_bodies();
+        let mut forces = Forces::default();
+        forces.resize(2);
+        forces.force[0] = Vec3::new(0.0, 0.0, 7.0);
+        let mut s = ServoPid {
+            ids: vec![0],
+            axis: Vec3::new(0.0, 0.0, 1.0),
+            kp: 1.0,
+            ..Default::default()
+        };
+        s.action(&mut bodies, &forces, 0);
+        assert_eq!(s.cur_vel, 0.0);
+        assert_eq!(bodies.vel[0], Vec3::zeros());
+    }
+}
