@@ -20,10 +20,11 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Compare ryade with YADE's golden records. Targets: `micro` and `micro_grid` (bit for bit,
-    /// every step), `meso`.
+    /// Compare ryade with YADE. Targets: `micro` and `micro_grid` (golden records, bit for bit, every
+    /// step), `meso`, and the study scenarios `r03`, `r05`, `r07` (both engines run the case from the
+    /// same specimens; rutting and porosity must stay inside YADE's seed-to-seed band every cycle).
     Diff {
-        /// What to compare: micro | micro_grid | meso
+        /// What to compare: micro | micro_grid | meso | r03 | r05 | r07
         target: String,
         /// Golden directory (default: golden/<target>)
         #[arg(long)]
@@ -34,6 +35,68 @@ enum Cmd {
         /// Also write the report as JSON here
         #[arg(long)]
         json: Option<PathBuf>,
+        /// rXX: case N, G, F, a list (N,G) or all
+        #[arg(long, default_value = "all")]
+        case: String,
+        /// rXX: specimen size (tiny | small | medium | full)
+        #[arg(long, default_value = "tiny")]
+        size: String,
+        /// rXX: number of seeds (YADE's band needs >= 2)
+        #[arg(long, default_value_t = 3)]
+        seeds: u32,
+        /// rXX: first seed
+        #[arg(long, default_value_t = 1)]
+        first_seed: u32,
+        /// rXX: load cycles (default: the size's, 5 for tiny)
+        #[arg(long)]
+        cycles: Option<u32>,
+        /// rXX: parallel runs (default: number of cores)
+        #[arg(short = 'j', long)]
+        jobs: Option<usize>,
+        /// rXX: output directory (default: diff_out/<target>_<size>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// rXX: take YADE's runs from DIR/<case>/ (e.g. golden/study) instead of running YADE
+        #[arg(long)]
+        yade_from: Option<PathBuf>,
+        /// rXX: band half-width in YADE standard deviations
+        #[arg(long, default_value_t = 3.0)]
+        band_k: f64,
+        /// rXX: extra study.py argument for the ryade runs only (repeatable; e.g. --ryade-arg=--friction=20
+        /// to see the diff fail)
+        #[arg(long, allow_hyphen_values = true)]
+        ryade_arg: Vec<String>,
+    },
+    /// The study: every ratio x case (x seed) in ryade, histories, the paper's figures and a summary.
+    Study {
+        /// Specimen size: tiny | small | medium | full
+        #[arg(long, default_value = "small")]
+        size: String,
+        /// Scenarios (r03,r05,r07 or all)
+        #[arg(long, default_value = "all")]
+        ratios: String,
+        /// Cases (N,G,F or all)
+        #[arg(long, default_value = "all")]
+        cases: String,
+        #[arg(long, default_value_t = 1)]
+        seeds: u32,
+        #[arg(long, default_value_t = 1)]
+        first_seed: u32,
+        /// Load cycles (default: the size's)
+        #[arg(long)]
+        cycles: Option<u32>,
+        /// Parallel runs (default: number of cores)
+        #[arg(short = 'j', long)]
+        jobs: Option<usize>,
+        /// Output directory (default: study_out/<size>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Also run every case in Debian YADE (one thread per run)
+        #[arg(long)]
+        with_yade: bool,
+        /// Extra study.py argument for every run (repeatable; e.g. --arg=--controller=servopid)
+        #[arg(long, allow_hyphen_values = true)]
+        arg: Vec<String>,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
     #[command(trailing_var_arg = true)]
@@ -111,6 +174,12 @@ fn python(module: &str, args: &[std::ffi::OsString]) -> Result<ExitCode> {
     })
 }
 
+fn cores() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+}
+
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
         Cmd::Run { script, args } => {
@@ -127,7 +196,49 @@ fn run(cli: Cli) -> Result<ExitCode> {
             golden,
             only,
             json,
+            case,
+            size,
+            seeds,
+            first_seed,
+            cycles,
+            jobs,
+            out,
+            yade_from,
+            band_k,
+            ryade_arg,
         } => {
+            if target.starts_with('r') && target.len() == 3 {
+                use ryade::harness::{study, study_run};
+                let o = study_run::DiffOptions {
+                    ratio: study::parse_scenario(&target)?,
+                    cases: study::parse_cases(&case)?,
+                    out: out.unwrap_or_else(|| {
+                        PathBuf::from("diff_out").join(format!("{}_{}", target, size))
+                    }),
+                    size,
+                    seeds,
+                    first_seed,
+                    cycles,
+                    jobs: jobs.unwrap_or_else(cores),
+                    yade_from,
+                    band_k,
+                    ryade_extra: ryade_arg,
+                    quiet: false,
+                };
+                let rep = study_run::diff(&study_run::repo_root(), &o)?;
+                print!("{}", study_run::format_diff(&rep));
+                println!(
+                    "outputs: {}/diff_{}_{}.{{csv,json,png}}",
+                    o.out.display(),
+                    target,
+                    o.size
+                );
+                return Ok(if rep.pass {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::from(1)
+                });
+            }
             let dir = golden.unwrap_or_else(|| PathBuf::from("golden").join(&target));
             if target == "meso" {
                 let rep = ryade::harness::meso::diff_meso(&dir)?;
@@ -144,7 +255,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             if target != "micro" && target != "micro_grid" {
                 bail!(
-                    "unknown diff target '{}': available targets are: micro, micro_grid, meso",
+                    "unknown diff target '{}': available targets are: micro, micro_grid, meso, r03, r05, r07",
                     target
                 );
             }
@@ -231,6 +342,64 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 }
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Cmd::Study {
+            size,
+            ratios,
+            cases,
+            seeds,
+            first_seed,
+            cycles,
+            jobs,
+            out,
+            with_yade,
+            arg,
+        } => {
+            use ryade::harness::{study, study_run};
+            let ratios: Vec<u8> = if ratios.eq_ignore_ascii_case("all") {
+                study::RATIOS.to_vec()
+            } else {
+                ratios
+                    .split(',')
+                    .map(|r| study::parse_scenario(r.trim()))
+                    .collect::<Result<_>>()?
+            };
+            if seeds == 0 {
+                bail!("--seeds must be at least 1");
+            }
+            let o = study_run::StudyOptions {
+                out: out.unwrap_or_else(|| PathBuf::from("study_out").join(&size)),
+                size,
+                ratios,
+                cases: study::parse_cases(&cases)?,
+                seeds,
+                first_seed,
+                cycles,
+                jobs: jobs.unwrap_or_else(cores),
+                with_yade,
+                extra: arg,
+                quiet: false,
+            };
+            let r = study_run::study_sweep(&study_run::repo_root(), &o)?;
+            let failed: Vec<String> = r
+                .runs
+                .iter()
+                .filter_map(|(run, res)| {
+                    res.as_ref()
+                        .err()
+                        .map(|e| format!("{} {}: {:#}", run.engine.name(), run.spec.name(), e))
+                })
+                .collect();
+            print!("{}", std::fs::read_to_string(&r.summary_path)?);
+            println!("outputs in {}", o.out.display());
+            for f in &failed {
+                eprintln!("error: {}", f);
+            }
+            Ok(if failed.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
         }
         Cmd::Scene { file, steps, out } => {
             let sf = scene_json::load(&file)?;

@@ -2,3 +2,5 @@
 
 pub mod meso;
 pub mod micro;
+pub mod study;
+pub mod study_run;

@@ -1,0 +1,144 @@
+"""Figures for ryade's study tools (called by the `compat` binary; headless matplotlib).
+
+    python3 -m yade._ryade_figures diff DIFF.csv OUT.png          # compat diff rXX: YADE band vs ryade
+    python3 -m yade._ryade_figures profile PROFILE.csv OUT.png TITLE   # paper Fig 7 for one run
+    python3 -m yade._ryade_figures study HISTORIES.csv SDR.csv OUTDIR  # paper Figs 3-6
+"""
+import csv
+import math
+import sys
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _rows(path):
+    with open(path, newline='') as f:
+        return list(csv.DictReader(f))
+
+
+def _f(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+CASE_STYLE = {'N': ('tab:red', 'N non-stabilized'), 'G': ('tab:green', 'G geogrid'),
+              'F': ('tab:blue', 'F full lateral confinement')}
+LABELS = {'rut_mm': 'rut [mm]', 'porosity_box': 'porosity under the piston'}
+
+
+def diff(csv_path, png):
+    plt = _plt()
+    rows = _rows(csv_path)
+    cases = sorted({r['case'] for r in rows}, key='NGF'.index)
+    metrics = ['rut_mm', 'porosity_box']
+    fig, axes = plt.subplots(len(metrics), max(1, len(cases)), figsize=(4.2 * max(1, len(cases)), 6.5), squeeze=False)
+    for j, c in enumerate(cases):
+        for i, m in enumerate(metrics):
+            ax = axes[i][j]
+            rr = [r for r in rows if r['case'] == c and r['metric'] == m]
+            cyc = [int(r['cycle']) for r in rr]
+            lo = [_f(r['band_lo']) for r in rr]
+            hi = [_f(r['band_hi']) for r in rr]
+            ax.fill_between(cyc, lo, hi, color='0.85', label='YADE band (mean +- k sd)')
+            ys = [[_f(x) for x in r['yade_values'].split()] for r in rr]
+            rs = [[_f(x) for x in r['ryade_values'].split()] for r in rr]
+            for s in range(len(ys[0]) if ys else 0):
+                ax.plot(cyc, [y[s] for y in ys], '-', color='0.45', lw=1, label='YADE seeds' if s == 0 else None)
+            for s in range(len(rs[0]) if rs else 0):
+                ax.plot(cyc, [y[s] for y in rs], 'o', ms=4, mfc='none', color=CASE_STYLE[c][0],
+                        label='ryade seeds' if s == 0 else None)
+            bad = [k for k, r in zip(cyc, rr) if r['inside'] != '1']
+            if bad:
+                ax.plot(bad, [_f(r['ryade_mean']) for r in rr if r['inside'] != '1'], 'kx', ms=8, label='outside')
+            ax.set_xlabel('cycle')
+            ax.set_ylabel(LABELS[m])
+            ax.set_title('case %s' % c)
+            ax.grid(alpha=0.3)
+            if i == 0 and j == 0:
+                ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def profile(csv_path, png, title):
+    plt = _plt()
+    rows = _rows(csv_path)
+    mid = [-(0.5 * (_f(r['depth_top_m']) + _f(r['depth_bot_m']))) for r in rows]
+    fig, ax = plt.subplots(1, 2, figsize=(8, 4.5), sharey=True)
+    for k, (col, lab) in enumerate([('uz', 'vertical displacement uz [mm]'), ('ur', 'radial displacement ur [mm]')]):
+        ax[k].plot([_f(r[col + '_under_mm']) for r in rows], mid, 'o-', label='under the piston')
+        ax[k].plot([_f(r[col + '_outside_mm']) for r in rows], mid, 's--', label='beside the piston')
+        ax[k].axvline(0, color='0.6', lw=0.8)
+        ax[k].set_xlabel(lab)
+        ax[k].grid(alpha=0.3)
+    ax[0].set_ylabel('depth below the piston at the end of seating [m]')
+    ax[0].legend(fontsize=8)
+    fig.suptitle('%s: displacement since the end of seating (paper Fig 7)' % title)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def study(hist_csv, sdr_csv, outdir):
+    import os
+    plt = _plt()
+    rows = _rows(hist_csv)
+    ratios = sorted({r['ratio'] for r in rows}, key=float)
+    for m, fname in [('rut_mm', 'fig_rutting.png'), ('porosity_box', 'fig_porosity.png')]:
+        fig, axes = plt.subplots(1, len(ratios), figsize=(4.5 * len(ratios), 4), squeeze=False)
+        for j, ra in enumerate(ratios):
+            ax = axes[0][j]
+            for c in 'NGF':
+                for eng, ls in (('ryade', '-'), ('yade', ':')):
+                    runs = sorted({r['seed'] for r in rows if r['ratio'] == ra and r['case'] == c and r['engine'] == eng})
+                    for k, s in enumerate(runs):
+                        rr = [r for r in rows if r['ratio'] == ra and r['case'] == c and r['engine'] == eng and r['seed'] == s]
+                        ax.plot([int(r['cycle']) for r in rr], [_f(r[m]) for r in rr], ls, color=CASE_STYLE[c][0],
+                                label=('%s (%s)' % (CASE_STYLE[c][1], eng)) if k == 0 else None)
+            ax.set_title('d/a = %s' % ra)
+            ax.set_xlabel('cycle')
+            ax.set_ylabel(LABELS[m])
+            ax.grid(alpha=0.3)
+            if j == 0:
+                ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(outdir, fname), dpi=110)
+        plt.close(fig)
+    sd = _rows(sdr_csv)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for ra in sorted({r['ratio'] for r in sd}, key=float):
+        for eng, ls in (('ryade', 'o-'), ('yade', 's:')):
+            rr = [r for r in sd if r['ratio'] == ra and r['engine'] == eng]
+            if not rr:
+                continue
+            cyc = [int(r['cycle']) for r in rr]
+            mean = [_f(r['sdr_mean']) for r in rr]
+            err = [_f(r['sdr_sd']) for r in rr]
+            ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2, label='d/a = %s (%s)' % (ra, eng))
+    ax.axhline(0, color='0.6', lw=0.8)
+    ax.axhline(1, color='0.6', lw=0.8)
+    ax.set_xlabel('cycle')
+    ax.set_ylabel('surface displacement ratio (G-N)/(F-N)')
+    ax.set_title('Surface displacement ratio (paper Eq 1, Fig 6)')
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(outdir, 'fig_sdr.png'), dpi=110)
+
+
+def main(argv):
+    if not argv or argv[0] not in ('diff', 'profile', 'study'):
+        sys.stderr.write(__doc__)
+        return 2
+    {'diff': diff, 'profile': profile, 'study': study}[argv[0]](*argv[1:])
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))

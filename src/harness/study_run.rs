@@ -1,0 +1,877 @@
+//! Running the study in YADE and in ryade: `compat diff rXX` and `compat study`.
+//!
+//! Both engines run the same script, `yade_ref/study/study.py` (YADE as `yade -n -x`, always one
+//! thread; ryade as `compat run`). Runs go in parallel (`-j`), each with a progress bar fed by the
+//! script's `[study]` lines; every run writes its own directory and log, so an interrupted or failed
+//! sweep keeps every finished run.
+
+use super::study::{self, CaseSpec, CycleBand, HistoryRow, Horizon};
+use anyhow::{anyhow, bail, Context, Result};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use serde::Serialize;
+use std::collections::VecDeque;
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Engine {
+    Yade,
+    Ryade,
+}
+
+impl Engine {
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Yade => "yade",
+            Engine::Ryade => "ryade",
+        }
+    }
+}
+
+/// One study.py run.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub spec: CaseSpec,
+    pub engine: Engine,
+    pub out: PathBuf,
+    /// Load this specimen instead of generating one.
+    pub import: Option<PathBuf>,
+    /// Write the generated specimen to `out/specimen.json`.
+    pub export: bool,
+    pub cycles: Option<u32>,
+    /// Extra study.py arguments (e.g. `--controller servopid`).
+    pub extra: Vec<String>,
+}
+
+/// Where the repository is (for yade_ref/study/study.py): `RYADE_ROOT`, else the source tree this
+/// binary was built from.
+pub fn repo_root() -> PathBuf {
+    std::env::var_os("RYADE_ROOT")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")))
+}
+
+fn study_script(root: &Path) -> Result<PathBuf> {
+    let p = root.join("yade_ref/study/study.py");
+    if !p.is_file() {
+        bail!(
+            "{} not found: run from a ryade checkout or set RYADE_ROOT to one",
+            p.display()
+        );
+    }
+    Ok(p)
+}
+
+/// Cycles a size runs by default (study.py SIZES).
+pub fn default_cycles(size: &str) -> u32 {
+    if size == "tiny" {
+        5
+    } else {
+        10
+    }
+}
+
+/// Run study.py once; the progress bar follows the script's phases and cycles. The full output goes
+/// to `out/<engine>.log`.
+pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
+    let script = study_script(root)?;
+    std::fs::create_dir_all(&run.out).with_context(|| format!("creating {}", run.out.display()))?;
+    let mut args: Vec<String> = vec!["--".into()];
+    match &run.import {
+        Some(sp) => {
+            args.push("--import-specimen".into());
+            args.push(sp.display().to_string());
+        }
+        None => args.extend(run.spec.study_args()),
+    }
+    if let Some(c) = run.cycles {
+        args.push("--cycles".into());
+        args.push(c.to_string());
+    }
+    args.push("--out".into());
+    args.push(run.out.display().to_string());
+    if run.export {
+        args.push("--export-specimen".into());
+        args.push(run.out.join("specimen.json").display().to_string());
+    }
+    args.extend(run.extra.iter().cloned());
+    let mut cmd = match run.engine {
+        Engine::Yade => {
+            let mut c = Command::new("yade");
+            c.env("OMP_NUM_THREADS", "1")
+                .args(["-n", "-x"])
+                .arg(&script);
+            c
+        }
+        Engine::Ryade => {
+            let exe = std::env::current_exe().context("locating the compat executable")?;
+            let mut c = Command::new(exe);
+            c.arg("run").arg(&script);
+            c
+        }
+    };
+    cmd.args(&args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    let log_path = run.out.join(format!("{}.log", run.engine.name()));
+    let mut log = std::fs::File::create(&log_path)
+        .with_context(|| format!("creating {}", log_path.display()))?;
+    let mut child = cmd.spawn().with_context(|| match run.engine {
+        Engine::Yade => {
+            "starting yade (install it: apt-get install -y --no-install-recommends yade)"
+                .to_string()
+        }
+        Engine::Ryade => "starting `compat run`".to_string(),
+    })?;
+    let stderr = child.stderr.take().unwrap();
+    let err_thread = std::thread::spawn(move || {
+        let mut s = String::new();
+        for l in BufReader::new(stderr).lines().map_while(Result::ok) {
+            s.push_str(&l);
+            s.push('\n');
+        }
+        s
+    });
+    let stdout = child.stdout.take().unwrap();
+    for line in BufReader::new(stdout).lines() {
+        let line = line.unwrap_or_default();
+        writeln!(log, "{}", line).ok();
+        if let Some(rest) = line.strip_prefix("[study] ") {
+            if let Some(c) = rest.strip_prefix("cycle ") {
+                if let Some(k) = c
+                    .split_whitespace()
+                    .next()
+                    .and_then(|t| t.parse::<u64>().ok())
+                {
+                    bar.set_position(k);
+                    bar.set_message(format!(
+                        "cycle {}: {}",
+                        k,
+                        c.split_once(' ').map(|x| x.1).unwrap_or("").trim()
+                    ));
+                }
+            } else if let Some(ph) = rest.split_whitespace().next() {
+                bar.set_message(ph.to_string());
+            }
+        }
+    }
+    let status = child.wait()?;
+    let err = err_thread.join().unwrap_or_default();
+    log.write_all(err.as_bytes()).ok();
+    if !status.success() {
+        let tail: Vec<&str> = err.lines().rev().take(6).collect();
+        let tail: Vec<&str> = tail.into_iter().rev().collect();
+        bail!(
+            "{} {} failed ({}); log: {}\n{}",
+            run.engine.name(),
+            run.spec.name(),
+            status,
+            log_path.display(),
+            tail.join("\n")
+        );
+    }
+    if !run.out.join("history.csv").is_file() {
+        bail!(
+            "{} {} wrote no history.csv (log: {})",
+            run.engine.name(),
+            run.spec.name(),
+            log_path.display()
+        );
+    }
+    Ok(())
+}
+
+/// A chain of runs executed in order by one worker (e.g. YADE generates, then ryade imports).
+pub type Chain = Vec<Run>;
+
+/// Run chains on `jobs` workers with one progress bar per run. Returns one result per run, in order.
+pub fn run_chains(
+    root: &Path,
+    chains: Vec<Chain>,
+    jobs: usize,
+    quiet: bool,
+) -> Vec<(Run, Result<()>)> {
+    let mp = if quiet {
+        MultiProgress::with_draw_target(indicatif::ProgressDrawTarget::hidden())
+    } else {
+        MultiProgress::new()
+    };
+    let style = ProgressStyle::with_template(
+        "{prefix:>22} {bar:20} {pos:>2}/{len} cycles {elapsed:>4} {wide_msg}",
+    )
+    .unwrap();
+    let queue: Mutex<VecDeque<(usize, Chain)>> =
+        Mutex::new(chains.into_iter().enumerate().collect());
+    let results: Mutex<Vec<(usize, usize, Run, Result<()>)>> = Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..jobs.max(1) {
+            s.spawn(|| loop {
+                let Some((ci, chain)) = queue.lock().unwrap().pop_front() else {
+                    break;
+                };
+                let mut failed = false;
+                for (ri, run) in chain.into_iter().enumerate() {
+                    let r = if failed {
+                        Err(anyhow!("skipped: an earlier run of its chain failed"))
+                    } else {
+                        let cycles = run.cycles.unwrap_or_else(|| default_cycles(&run.spec.size));
+                        let bar = mp.add(ProgressBar::new(cycles as u64));
+                        bar.set_style(style.clone());
+                        bar.set_prefix(format!("{} {}", run.engine.name(), run.spec.name()));
+                        let r = run_one(root, &run, &bar);
+                        match &r {
+                            Ok(()) => bar.finish_with_message("done"),
+                            Err(_) => bar.abandon_with_message("FAILED"),
+                        }
+                        r
+                    };
+                    failed |= r.is_err();
+                    results.lock().unwrap().push((ci, ri, run, r));
+                }
+            });
+        }
+    });
+    let mut v = results.into_inner().unwrap();
+    v.sort_by_key(|(c, r, _, _)| (*c, *r));
+    v.into_iter().map(|(_, _, run, r)| (run, r)).collect()
+}
+
+// ------------------------------------------------------------------------------------------------
+// compat diff rXX
+
+pub struct DiffOptions {
+    pub ratio: u8,
+    pub cases: Vec<char>,
+    pub size: String,
+    pub seeds: u32,
+    pub first_seed: u32,
+    pub cycles: Option<u32>,
+    pub jobs: usize,
+    pub out: PathBuf,
+    /// Take YADE's runs from `<dir>/<case name>/` instead of running YADE.
+    pub yade_from: Option<PathBuf>,
+    pub band_k: f64,
+    /// Extra study.py arguments for the ryade runs only (e.g. a deliberate perturbation).
+    pub ryade_extra: Vec<String>,
+    pub quiet: bool,
+}
+
+#[derive(Serialize)]
+pub struct CaseDiff {
+    pub case: char,
+    pub seeds: Vec<u32>,
+    pub bands: Vec<CycleBand>,
+    pub horizons: Vec<(u32, Horizon)>,
+    pub pass: bool,
+}
+
+#[derive(Serialize)]
+pub struct DiffReport {
+    pub scenario: String,
+    pub size: String,
+    pub band_k: f64,
+    pub cases: Vec<CaseDiff>,
+    pub errors: Vec<String>,
+    pub pass: bool,
+}
+
+fn history_of(dir: &Path) -> Result<Vec<HistoryRow>> {
+    study::read_history(&dir.join("history.csv"))
+}
+
+pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
+    study::check_size(&o.size)?;
+    if o.seeds < 2 {
+        bail!("--seeds must be at least 2: the band is YADE's seed-to-seed spread");
+    }
+    std::fs::create_dir_all(&o.out).with_context(|| format!("creating {}", o.out.display()))?;
+    let specs: Vec<CaseSpec> = o
+        .cases
+        .iter()
+        .flat_map(|&c| (o.first_seed..o.first_seed + o.seeds).map(move |s| (c, s)))
+        .map(|(case, seed)| CaseSpec {
+            ratio: o.ratio,
+            case,
+            size: o.size.clone(),
+            seed,
+        })
+        .collect();
+    let yade_dir = |s: &CaseSpec| match &o.yade_from {
+        Some(d) => d.join(s.name()),
+        None => o.out.join(s.name()).join("yade"),
+    };
+    let chains: Vec<Chain> = specs
+        .iter()
+        .map(|s| {
+            let mut chain = Vec::new();
+            if o.yade_from.is_none() {
+                chain.push(Run {
+                    spec: s.clone(),
+                    engine: Engine::Yade,
+                    out: yade_dir(s),
+                    import: None,
+                    export: true,
+                    cycles: o.cycles,
+                    extra: vec![],
+                });
+            }
+            chain.push(Run {
+                spec: s.clone(),
+                engine: Engine::Ryade,
+                out: o.out.join(s.name()).join("ryade"),
+                import: Some(yade_dir(s).join("specimen.json")),
+                export: false,
+                cycles: o.cycles,
+                extra: o.ryade_extra.clone(),
+            });
+            chain
+        })
+        .collect();
+    if let Some(d) = &o.yade_from {
+        for s in &specs {
+            let sp = d.join(s.name()).join("specimen.json");
+            if !sp.is_file() {
+                bail!(
+                    "{} not found: --yade-from needs YADE's run directories (yade_ref/study/golden.sh {} writes them)",
+                    sp.display(),
+                    s.name()
+                );
+            }
+        }
+    }
+    let results = run_chains(root, chains, o.jobs, o.quiet);
+    let mut errors: Vec<String> = results
+        .iter()
+        .filter_map(|(_, r)| r.as_ref().err().map(|e| format!("{:#}", e)))
+        .collect();
+    let mut cases = Vec::new();
+    for &c in &o.cases {
+        let mine: Vec<&CaseSpec> = specs.iter().filter(|s| s.case == c).collect();
+        let mut yh = Vec::new();
+        let mut rh = Vec::new();
+        let mut horizons = Vec::new();
+        let mut seeds = Vec::new();
+        for s in &mine {
+            let rd = o.out.join(s.name()).join("ryade");
+            match (history_of(&yade_dir(s)), history_of(&rd)) {
+                (Ok(y), Ok(r)) => {
+                    let y = match o.cycles {
+                        Some(k) => y.into_iter().take(k as usize + 1).collect(),
+                        None => y,
+                    };
+                    yh.push(y);
+                    rh.push(r);
+                    seeds.push(s.seed);
+                    match study::exact_match_horizon(
+                        &yade_dir(s).join("steps.csv"),
+                        &rd.join("steps.csv"),
+                    ) {
+                        Ok(mut h) => {
+                            let read = |d: &Path| std::fs::read(d.join("history.csv")).ok();
+                            let (a, b) = (read(&yade_dir(s)), read(&rd));
+                            h.history_identical = a.is_some() && a == b;
+                            horizons.push((s.seed, h))
+                        }
+                        Err(e) => errors.push(format!("{:#}", e)),
+                    }
+                }
+                (y, r) => {
+                    for e in [y.err(), r.err()].into_iter().flatten() {
+                        errors.push(format!("{}: {:#}", s.name(), e));
+                    }
+                }
+            }
+        }
+        let bands = if yh.len() >= 2 && !rh.is_empty() {
+            study::compare_case(&yh, &rh, o.band_k)?
+        } else {
+            errors.push(format!(
+                "case {}: only {} complete seed(s), the band needs 2",
+                c,
+                yh.len()
+            ));
+            vec![]
+        };
+        let pass = !bands.is_empty() && bands.iter().all(|b| b.inside) && seeds.len() == mine.len();
+        cases.push(CaseDiff {
+            case: c,
+            seeds,
+            bands,
+            horizons,
+            pass,
+        });
+    }
+    errors.dedup();
+    let pass = errors.is_empty() && cases.iter().all(|c| c.pass);
+    let rep = DiffReport {
+        scenario: format!("r{:02}", o.ratio),
+        size: o.size.clone(),
+        band_k: o.band_k,
+        cases,
+        errors,
+        pass,
+    };
+    write_diff_outputs(&rep, &o.out)?;
+    Ok(rep)
+}
+
+/// Table for stdout.
+pub fn format_diff(rep: &DiffReport) -> String {
+    let mut s = String::new();
+    for c in &rep.cases {
+        s += &format!(
+            "\n{} case {} ({} seeds {:?}): band = YADE mean +- {} sd per cycle\n",
+            rep.scenario,
+            c.case,
+            c.seeds.len(),
+            c.seeds,
+            rep.band_k
+        );
+        s += &format!(
+            "{:>5} {:>12} {:>12} {:>10} {:>12} {:>8} {:>8}  {}\n",
+            "cycle", "metric", "YADE mean", "YADE sd", "ryade mean", "z(mean)", "max|z|", "verdict"
+        );
+        for b in &c.bands {
+            s += &format!(
+                "{:>5} {:>12} {:>12.6} {:>10.3e} {:>12.6} {:>8.2} {:>8.2}  {}\n",
+                b.cycle,
+                b.metric,
+                b.yade_mean,
+                b.yade_sd,
+                b.ryade_mean,
+                b.z_mean,
+                b.z_max_run,
+                if b.inside { "inside" } else { "OUTSIDE" }
+            );
+        }
+        for (seed, h) in &c.horizons {
+            s += &match h.first_diff_iter {
+                None if h.history_identical => format!(
+                    "  seed {}: exact-match horizon: none; identical at all {} sampled steps (through iteration {}) and history.csv byte-identical (17 digits)\n",
+                    seed, h.rows_compared, h.last_iter
+                ),
+                None => format!(
+                    "  seed {}: exact-match horizon: none, identical at all {} sampled steps (through iteration {})\n",
+                    seed, h.rows_compared, h.last_iter
+                ),
+                Some(it) => format!(
+                    "  seed {}: exact-match horizon: first difference at iteration {} ({}), after {} identical samples\n",
+                    seed,
+                    it,
+                    h.first_diff_phase.as_deref().unwrap_or("?"),
+                    h.rows_compared.saturating_sub(1)
+                ),
+            };
+        }
+        s += &format!(
+            "  case {}: {}\n",
+            c.case,
+            if c.pass { "PASS" } else { "FAIL" }
+        );
+    }
+    for e in &rep.errors {
+        s += &format!("error: {}\n", e);
+    }
+    s += &format!(
+        "\n{} {}: {}\n",
+        rep.scenario,
+        rep.size,
+        if rep.pass {
+            "PASS (every cycle inside YADE's band)"
+        } else {
+            "FAIL"
+        }
+    );
+    s
+}
+
+fn write_diff_outputs(rep: &DiffReport, out: &Path) -> Result<()> {
+    let name = format!("diff_{}_{}", rep.scenario, rep.size);
+    let csv_path = out.join(format!("{}.csv", name));
+    let mut w = csv::Writer::from_path(&csv_path)
+        .with_context(|| format!("writing {}", csv_path.display()))?;
+    w.write_record([
+        "case",
+        "cycle",
+        "metric",
+        "yade_mean",
+        "yade_sd",
+        "band_lo",
+        "band_hi",
+        "ryade_mean",
+        "z_mean",
+        "z_max_run",
+        "inside",
+        "yade_values",
+        "ryade_values",
+    ])?;
+    let join = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{:.17e}", x))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    for c in &rep.cases {
+        for b in &c.bands {
+            w.write_record([
+                c.case.to_string(),
+                b.cycle.to_string(),
+                b.metric.to_string(),
+                format!("{:.17e}", b.yade_mean),
+                format!("{:.17e}", b.yade_sd),
+                format!("{:.17e}", b.lo),
+                format!("{:.17e}", b.hi),
+                format!("{:.17e}", b.ryade_mean),
+                format!("{}", b.z_mean),
+                format!("{}", b.z_max_run),
+                (b.inside as u8).to_string(),
+                join(&b.yade),
+                join(&b.ryade),
+            ])?;
+        }
+    }
+    w.flush()?;
+    let json_path = out.join(format!("{}.json", name));
+    std::fs::write(&json_path, serde_json::to_string_pretty(rep)?)?;
+    figures(&[
+        "diff",
+        &csv_path.display().to_string(),
+        &out.join(format!("{}.png", name)).display().to_string(),
+    ]);
+    Ok(())
+}
+
+/// Draw figures with the compat package's matplotlib helper (`python3 -m yade._ryade_figures`).
+/// Figures are a convenience: a missing matplotlib is reported, never fatal.
+pub fn figures(args: &[&str]) -> bool {
+    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
+    match Command::new(&py)
+        .arg("-m")
+        .arg("yade._ryade_figures")
+        .args(args)
+        .status()
+    {
+        Ok(s) if s.success() => true,
+        Ok(s) => {
+            eprintln!(
+                "warning: figure '{}' not drawn (python exited with {})",
+                args[0], s
+            );
+            false
+        }
+        Err(e) => {
+            eprintln!(
+                "warning: figure '{}' not drawn ({}: {})",
+                args[0],
+                py.to_string_lossy(),
+                e
+            );
+            false
+        }
+    }
+}
+
+// ------------------------------------------------------------------------------------------------
+// compat study
+
+pub struct StudyOptions {
+    pub size: String,
+    pub ratios: Vec<u8>,
+    pub cases: Vec<char>,
+    pub seeds: u32,
+    pub first_seed: u32,
+    pub cycles: Option<u32>,
+    pub jobs: usize,
+    pub out: PathBuf,
+    pub with_yade: bool,
+    pub extra: Vec<String>,
+    pub quiet: bool,
+}
+
+#[derive(Serialize, Clone)]
+pub struct SdrPoint {
+    pub ratio: u8,
+    pub engine: &'static str,
+    pub cycle: u32,
+    pub seeds: Vec<u32>,
+    pub values: Vec<f64>,
+    pub mean: f64,
+    pub sd: f64,
+}
+
+pub struct StudyResult {
+    pub runs: Vec<(Run, Result<()>)>,
+    pub sdr: Vec<SdrPoint>,
+    pub summary_path: PathBuf,
+}
+
+pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
+    study::check_size(&o.size)?;
+    std::fs::create_dir_all(&o.out).with_context(|| format!("creating {}", o.out.display()))?;
+    let mut chains = Vec::new();
+    // the expensive ratio (0.3: most spheres) first, so that parallel workers finish together
+    let mut ratios = o.ratios.clone();
+    ratios.sort();
+    for &r in &ratios {
+        for s in o.first_seed..o.first_seed + o.seeds {
+            for &c in &o.cases {
+                let spec = CaseSpec {
+                    ratio: r,
+                    case: c,
+                    size: o.size.clone(),
+                    seed: s,
+                };
+                let mut engines = vec![Engine::Ryade];
+                if o.with_yade {
+                    engines.push(Engine::Yade);
+                }
+                for e in engines {
+                    chains.push(vec![Run {
+                        out: o.out.join(spec.name()).join(e.name()),
+                        spec: spec.clone(),
+                        engine: e,
+                        import: None,
+                        export: true,
+                        cycles: o.cycles,
+                        extra: o.extra.clone(),
+                    }]);
+                }
+            }
+        }
+    }
+    let runs = run_chains(root, chains, o.jobs, o.quiet);
+    // combined histories
+    let hist_path = o.out.join("histories.csv");
+    let mut w = csv::Writer::from_path(&hist_path)?;
+    w.write_record([
+        "engine",
+        "ratio",
+        "case",
+        "seed",
+        "cycle",
+        "complete",
+        "rut_mm",
+        "rut_max_mm",
+        "peak_kPa",
+        "tracking_rms_kPa",
+        "porosity_box",
+        "piston_z_m",
+        "grid_z_m",
+    ])?;
+    let mut hist: std::collections::BTreeMap<(&'static str, u8, char, u32), Vec<HistoryRow>> =
+        Default::default();
+    for (run, r) in &runs {
+        if r.is_err() {
+            continue;
+        }
+        let h = history_of(&run.out)?;
+        for row in &h {
+            w.write_record([
+                run.engine.name().to_string(),
+                format!("{}", run.spec.ratio_value()),
+                run.spec.case.to_string(),
+                run.spec.seed.to_string(),
+                row.cycle.to_string(),
+                row.complete.to_string(),
+                format!("{:.17e}", row.rut_mm),
+                format!("{:.17e}", row.rut_max_mm),
+                format!("{:.17e}", row.peak_kpa),
+                format!("{:.17e}", row.tracking_rms_kpa),
+                format!("{:.17e}", row.porosity_box),
+                format!("{:.17e}", row.piston_z_m),
+                row.grid_z_m
+                    .map(|g| format!("{:.17e}", g))
+                    .unwrap_or_default(),
+            ])?;
+        }
+        hist.insert(
+            (
+                run.engine.name(),
+                run.spec.ratio,
+                run.spec.case,
+                run.spec.seed,
+            ),
+            h,
+        );
+        let prof = run.out.join("profile.csv");
+        if prof.is_file() {
+            figures(&[
+                "profile",
+                &prof.display().to_string(),
+                &run.out.join("profile.png").display().to_string(),
+                &run.spec.name(),
+            ]);
+        }
+    }
+    w.flush()?;
+    // surface displacement ratio per ratio, engine and cycle, over seeds
+    let mut sdr = Vec::new();
+    for eng in ["ryade", "yade"] {
+        for &r in &ratios {
+            let mut per_cycle: std::collections::BTreeMap<u32, Vec<(u32, f64)>> =
+                Default::default();
+            for s in o.first_seed..o.first_seed + o.seeds {
+                let g = |c: char| hist.get(&(eng, r, c, s));
+                if let (Some(n), Some(gg), Some(f)) = (g('N'), g('G'), g('F')) {
+                    for (cyc, v) in study::sdr(n, gg, f) {
+                        per_cycle.entry(cyc).or_default().push((s, v));
+                    }
+                }
+            }
+            for (cycle, v) in per_cycle {
+                let vals: Vec<f64> = v.iter().map(|x| x.1).collect();
+                let (mean, sd) = study::mean_sd(&vals);
+                sdr.push(SdrPoint {
+                    ratio: r,
+                    engine: eng,
+                    cycle,
+                    seeds: v.iter().map(|x| x.0).collect(),
+                    values: vals,
+                    mean,
+                    sd,
+                });
+            }
+        }
+    }
+    let sdr_path = o.out.join("sdr.csv");
+    let mut w = csv::Writer::from_path(&sdr_path)?;
+    w.write_record([
+        "engine", "ratio", "cycle", "n_seeds", "sdr_mean", "sdr_sd", "values",
+    ])?;
+    for p in &sdr {
+        w.write_record([
+            p.engine.to_string(),
+            format!("{}", p.ratio as f64 / 10.0),
+            p.cycle.to_string(),
+            p.values.len().to_string(),
+            format!("{:.17e}", p.mean),
+            format!("{:.17e}", p.sd),
+            p.values
+                .iter()
+                .map(|x| format!("{:.17e}", x))
+                .collect::<Vec<_>>()
+                .join(" "),
+        ])?;
+    }
+    w.flush()?;
+    let h = hist_path.display().to_string();
+    let s = sdr_path.display().to_string();
+    let od = o.out.display().to_string();
+    figures(&["study", &h, &s, &od]);
+    let summary_path = o.out.join("summary.md");
+    std::fs::write(&summary_path, summary_markdown(o, &runs, &hist, &sdr))?;
+    Ok(StudyResult {
+        runs,
+        sdr,
+        summary_path,
+    })
+}
+
+type Histories = std::collections::BTreeMap<(&'static str, u8, char, u32), Vec<HistoryRow>>;
+
+fn summary_markdown(
+    o: &StudyOptions,
+    runs: &[(Run, Result<()>)],
+    hist: &Histories,
+    sdr: &[SdrPoint],
+) -> String {
+    let mut s = String::new();
+    s += &format!(
+        "# Study summary: size {}, ratios {:?}, cases {:?}, seeds {}..{}\n\n",
+        o.size,
+        o.ratios
+            .iter()
+            .map(|r| *r as f64 / 10.0)
+            .collect::<Vec<_>>(),
+        o.cases,
+        o.first_seed,
+        o.first_seed + o.seeds - 1
+    );
+    s += "Generated by `compat study` (yade_ref/study/study.py under ryade's `compat run`";
+    s += if o.with_yade {
+        ", and in Debian YADE"
+    } else {
+        ""
+    };
+    s += "). Histories: `histories.csv`; surface displacement ratio (seed-paper.txt Eq 1): `sdr.csv`; figures: `fig_rutting.png`, `fig_porosity.png`, `fig_sdr.png`, and `profile.png` per run (paper Fig 7).\n\n";
+    s += "## Rutting and porosity under the piston (last cycle run)\n\n";
+    s += "| engine | ratio | case | seed | cycles | rut [mm] | porosity (cycle 0 -> last) | status |\n|---|---|---|---|---|---|---|---|\n";
+    for (run, r) in runs {
+        let key = (
+            run.engine.name(),
+            run.spec.ratio,
+            run.spec.case,
+            run.spec.seed,
+        );
+        match (r, hist.get(&key)) {
+            (Ok(()), Some(h)) => {
+                let last = h.last().unwrap();
+                s += &format!(
+                    "| {} | {} | {} | {} | {} | {:.2} | {:.4} -> {:.4} | {} |\n",
+                    run.engine.name(),
+                    run.spec.ratio_value(),
+                    run.spec.case,
+                    run.spec.seed,
+                    last.cycle,
+                    last.rut_mm,
+                    h[0].porosity_box,
+                    last.porosity_box,
+                    if last.complete == 0 {
+                        "stopped: rut limit"
+                    } else {
+                        "ok"
+                    }
+                );
+            }
+            (Err(e), _) => {
+                s += &format!(
+                    "| {} | {} | {} | {} | - | - | - | FAILED: {} |\n",
+                    run.engine.name(),
+                    run.spec.ratio_value(),
+                    run.spec.case,
+                    run.spec.seed,
+                    format!("{:#}", e).lines().next().unwrap_or("")
+                )
+            }
+            _ => {}
+        }
+    }
+    s += "\n## Surface displacement ratio (G - N) / (F - N) per cycle (mean +- sd over seeds)\n\n";
+    if sdr.is_empty() {
+        s += "Not available: it needs the N, G and F runs of one ratio and seed.\n";
+    }
+    for eng in ["ryade", "yade"] {
+        let pts: Vec<&SdrPoint> = sdr.iter().filter(|p| p.engine == eng).collect();
+        if pts.is_empty() {
+            continue;
+        }
+        s += &format!("\n{}:\n\n| cycle |", eng);
+        let mut ratios: Vec<u8> = pts.iter().map(|p| p.ratio).collect();
+        ratios.dedup();
+        for r in &ratios {
+            s += &format!(" d/a = {} |", *r as f64 / 10.0);
+        }
+        s += "\n|---|";
+        s += &"---|".repeat(ratios.len());
+        s += "\n";
+        let maxc = pts.iter().map(|p| p.cycle).max().unwrap_or(0);
+        for c in 1..=maxc {
+            s += &format!("| {} |", c);
+            for r in &ratios {
+                match pts.iter().find(|p| p.ratio == *r && p.cycle == c) {
+                    Some(p) if p.values.len() > 1 => {
+                        s += &format!(" {:.2} +- {:.2} |", p.mean, p.sd)
+                    }
+                    Some(p) => s += &format!(" {:.2} |", p.mean),
+                    None => s += " - |",
+                }
+            }
+            s += "\n";
+        }
+    }
+    s += "\nThe ratio is undefined (large or of either sign) where F and N rut alike: study.md warns that single seeds at small sizes scatter by 18-30 %, so read trends over seeds.\n";
+    s
+}
