@@ -913,12 +913,16 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
         d_best,
         t.tol_mm
     )?;
-    writeln!(rep, "  tensile residual rms {}", e3(rms))?;
+    writeln!(
+        rep,
+        "  tensile residual rms {}",
+        e3(rms).trim_start_matches('+')
+    )?;
     writeln!(
         rep,
         "  every target within 1 %: {} (largest |residual| {})",
         if max_rel <= 0.01 { "yes" } else { "NO" },
-        e3(max_rel)
+        e3(max_rel).trim_start_matches('+')
     )?;
     print!("{}", rep);
     std::fs::write(out.join("summary.txt"), &rep)?;
