@@ -810,8 +810,8 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
                     next = g;
                 }
             }
-            (Some(l), None) => next = next.clamp(l * 1.0005, l * 1.5),
-            (None, Some(h)) => next = next.clamp(h / 1.5, h / 1.0005),
+            (Some(l), None) => next = next.clamp(l * 1.0005, l * 10.0),
+            (None, Some(h)) => next = next.clamp(h / 10.0, h / 1.0005),
             (None, None) => unreachable!(),
         }
         k = next;
@@ -980,6 +980,26 @@ mod tests {
         assert_eq!(secant_key(0.005), "secant_0p5pct_kN");
         assert_eq!(e3(0.0), "+0.000e+00");
         assert_eq!(e3(-1.5e-7), "-1.500e-07");
+    }
+
+    #[test]
+    fn step0_values_from_area_and_mass() {
+        let d = std::env::temp_dir().join(format!("ryade-calib-step0-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let f = d.join("t.toml");
+        // area 4 pi mm^2 -> r = 2 mm; the model's own 689.24 g/m^2 -> rho = 950 kg/m^3
+        std::fs::write(
+            &f,
+            "[rib]\narea_mm2 = 12.566370614359172\n[mass]\nmass_per_area_g_m2 = 689.2437584090029\n\
+             [tensile]\nsecant_2pct_kN = 1\nsecant_5pct_kN = 1\n[flexural]\noverhang_45deg_mm = 800\n",
+        )
+        .unwrap();
+        let t = Targets::load(&f).unwrap();
+        assert!((t.r.unwrap() - 0.002).abs() < 1e-15);
+        assert!((t.rho.unwrap() - 950.0).abs() < 1e-9);
+        assert_eq!(t.a, 0.06);
+        assert_eq!(t.tol_mm, 1.0);
+        let _ = std::fs::remove_dir_all(&d);
         // a linear model with exact targets: s recovered exactly up to rounding
         let s = kn_scale_lsq(&[2.0, 2.0], &[3.4, 3.4]);
         assert!((s - 1.7).abs() < 1e-15);
