@@ -7,6 +7,7 @@
 pub mod bench;
 pub mod body;
 pub mod bound;
+pub mod calibrate;
 pub mod cell;
 pub mod collider;
 pub mod dispatch;

@@ -130,6 +130,36 @@ enum Cmd {
         #[arg(long)]
         log: Option<PathBuf>,
     },
+    /// Fit the geogrid rib stiffness multipliers (kn_scale; kr_scale = ktw_scale) to datasheet targets
+    /// with the ASTM D6637 tensile and D7748 cantilever model tests (calibration/README.md).
+    Calibrate {
+        /// Targets file (e.g. calibration/tx190l.toml; empty strings are missing values)
+        targets: PathBuf,
+        /// Engine that runs the model tests: ryade (`compat run`) or yade (`yade -n -x`)
+        #[arg(long, default_value = "ryade", value_parser = ["ryade", "yade"])]
+        engine: String,
+        /// Output folder (calibration.json, model outputs, plots; default out/calibrate/<targets name>)
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Step 2 stops after one cantilever evaluation (smoke test)
+        #[arg(long)]
+        quick: bool,
+        /// Starting k of step 2 (default: beam scaling from the 817.6 mm overhang at k = 1)
+        #[arg(long)]
+        k0: Option<f64>,
+        /// Most cantilever evaluations in step 2
+        #[arg(long, default_value_t = 10)]
+        max_evals: usize,
+        /// Overhang tolerance [mm] of step 2 (default: [fit] overhang_tolerance_mm of the targets file)
+        #[arg(long)]
+        tolerance_mm: Option<f64>,
+        /// Folder with tensile.py and cantilever.py (default: yade_ref/calibration)
+        #[arg(long)]
+        scripts: Option<PathBuf>,
+        /// Do not make the PNG plots
+        #[arg(long)]
+        no_plot: bool,
+    },
     /// Run a scene file (*.scene.json) and record every step in the golden format.
     Scene {
         file: PathBuf,
@@ -186,6 +216,41 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let mut a: Vec<std::ffi::OsString> = vec![script.into_os_string()];
             a.extend(args.into_iter().map(Into::into));
             python("yade.runner", &a)
+        }
+        Cmd::Calibrate {
+            targets,
+            engine,
+            out,
+            quick,
+            k0,
+            max_evals,
+            tolerance_mm,
+            scripts,
+            no_plot,
+        } => {
+            let out = out.unwrap_or_else(|| {
+                let stem = targets
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().to_string())
+                    .unwrap_or_else(|| "targets".into());
+                PathBuf::from("out").join("calibrate").join(stem)
+            });
+            let ok = ryade::calibrate::calibrate(&ryade::calibrate::Options {
+                targets,
+                engine: engine.parse()?,
+                out,
+                quick,
+                k0,
+                max_evals,
+                tol_mm: tolerance_mm,
+                scripts,
+                plot: !no_plot,
+            })?;
+            Ok(if ok {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
         }
         Cmd::Batch { args } => {
             let a: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
