@@ -24,6 +24,24 @@ echo "== compat diff micro_grid"
 ./target/release/compat diff micro_grid
 echo "== compat diff meso"
 ./target/release/compat diff meso
+echo "== the study against YADE's seed band (r05 live in YADE when installed; r03, r07 from golden/study)"
+if command -v yade >/dev/null 2>&1; then
+  ./target/release/compat diff r05 --case all --size tiny --seeds 3 --out "${TMPDIR:-/tmp}/ryade_diff_r05"
+  echo "== YADE's live r05 runs equal the committed golden/study histories"
+  for d in golden/study/r05_?_tiny_s[123]; do
+    cmp "$d/history.csv" "${TMPDIR:-/tmp}/ryade_diff_r05/$(basename "$d")/yade/history.csv"
+  done
+else
+  ./target/release/compat diff r05 --case all --size tiny --seeds 3 --yade-from golden/study --out "${TMPDIR:-/tmp}/ryade_diff_r05"
+fi
+./target/release/compat diff r03 --case all --size tiny --seeds 3 --yade-from golden/study --out "${TMPDIR:-/tmp}/ryade_diff_r03"
+./target/release/compat diff r07 --case all --size tiny --seeds 3 --yade-from golden/study --out "${TMPDIR:-/tmp}/ryade_diff_r07"
+echo "== the band rule is not vacuous: a 45 % heavier load in ryade must fail it"
+if ./target/release/compat diff r05 --case N --size tiny --seeds 3 --yade-from golden/study \
+    --ryade-arg=--peak-kpa=400 --out "${TMPDIR:-/tmp}/ryade_diff_neg" >"${TMPDIR:-/tmp}/ryade_diff_neg.log" 2>&1; then
+  echo "compat diff r05 with --peak-kpa=400 in ryade passed: the band rule cannot fail" >&2; exit 1
+fi
+echo "   failed as it must: $(grep -c OUTSIDE "${TMPDIR:-/tmp}/ryade_diff_neg.log") cycle values outside YADE's band"
 echo "== unmodified YADE scripts under compat run reproduce YADE's files"
 yade_ref/check_compat.sh
 echo "== Python tests (compat layer)"

@@ -116,6 +116,16 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
+    // a finished run with the same arguments is reused (an interrupted sweep resumes where it stopped)
+    let marker = run.out.join(format!(".{}_run.json", run.engine.name()));
+    let key = serde_json::json!({"engine": run.engine.name(), "args": &args}).to_string();
+    if run.out.join("history.csv").is_file()
+        && std::fs::read_to_string(&marker).ok().as_deref() == Some(key.as_str())
+    {
+        bar.set_message("reused (finished earlier with the same arguments)");
+        return Ok(());
+    }
+    std::fs::remove_file(&marker).ok();
     let log_path = run.out.join(format!("{}.log", run.engine.name()));
     let mut log = std::fs::File::create(&log_path)
         .with_context(|| format!("creating {}", log_path.display()))?;
@@ -173,7 +183,9 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
             tail.join("\n")
         );
     }
-    if !run.out.join("history.csv").is_file() {
+    if run.out.join("history.csv").is_file() {
+        std::fs::write(&marker, &key).ok();
+    } else {
         bail!(
             "{} {} wrote no history.csv (log: {})",
             run.engine.name(),
@@ -183,6 +195,9 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
     }
     Ok(())
 }
+
+/// (chain index, index in the chain, run, outcome)
+type Finished = (usize, usize, Run, Result<()>);
 
 /// A chain of runs executed in order by one worker (e.g. YADE generates, then ryade imports).
 pub type Chain = Vec<Run>;
@@ -205,7 +220,7 @@ pub fn run_chains(
     .unwrap();
     let queue: Mutex<VecDeque<(usize, Chain)>> =
         Mutex::new(chains.into_iter().enumerate().collect());
-    let results: Mutex<Vec<(usize, usize, Run, Result<()>)>> = Mutex::new(Vec::new());
+    let results: Mutex<Vec<Finished>> = Mutex::new(Vec::new());
     std::thread::scope(|s| {
         for _ in 0..jobs.max(1) {
             s.spawn(|| loop {
@@ -600,6 +615,8 @@ pub struct SdrPoint {
     pub values: Vec<f64>,
     pub mean: f64,
     pub sd: f64,
+    /// Eq 1 on the seed-mean ruts of N, G and F.
+    pub of_means: f64,
 }
 
 pub struct StudyResult {
@@ -721,9 +738,26 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
                     }
                 }
             }
+            // Eq 1 applied to the seed-mean ruts (more stable than the mean of per-seed ratios, whose
+            // denominators F - N can be near zero for single seeds)
+            let mean_rut = |c: char, cyc: usize| {
+                let v: Vec<f64> = (o.first_seed..o.first_seed + o.seeds)
+                    .filter_map(|s| {
+                        hist.get(&(eng, r, c, s))
+                            .and_then(|h| h.get(cyc))
+                            .map(|x| x.rut_mm)
+                    })
+                    .collect();
+                (v.len() == o.seeds as usize).then(|| study::mean_sd(&v).0)
+            };
             for (cycle, v) in per_cycle {
                 let vals: Vec<f64> = v.iter().map(|x| x.1).collect();
                 let (mean, sd) = study::mean_sd(&vals);
+                let c = cycle as usize;
+                let of_means = match (mean_rut('N', c), mean_rut('G', c), mean_rut('F', c)) {
+                    (Some(n), Some(g), Some(f)) => (g - n) / (f - n),
+                    _ => f64::NAN,
+                };
                 sdr.push(SdrPoint {
                     ratio: r,
                     engine: eng,
@@ -732,6 +766,7 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
                     values: vals,
                     mean,
                     sd,
+                    of_means,
                 });
             }
         }
@@ -739,7 +774,14 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
     let sdr_path = o.out.join("sdr.csv");
     let mut w = csv::Writer::from_path(&sdr_path)?;
     w.write_record([
-        "engine", "ratio", "cycle", "n_seeds", "sdr_mean", "sdr_sd", "values",
+        "engine",
+        "ratio",
+        "cycle",
+        "n_seeds",
+        "sdr_mean",
+        "sdr_sd",
+        "sdr_of_mean_ruts",
+        "values",
     ])?;
     for p in &sdr {
         w.write_record([
@@ -749,6 +791,7 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
             p.values.len().to_string(),
             format!("{:.17e}", p.mean),
             format!("{:.17e}", p.sd),
+            format!("{:.17e}", p.of_means),
             p.values
                 .iter()
                 .map(|x| format!("{:.17e}", x))
@@ -839,7 +882,7 @@ fn summary_markdown(
             _ => {}
         }
     }
-    s += "\n## Surface displacement ratio (G - N) / (F - N) per cycle (mean +- sd over seeds)\n\n";
+    s += "\n## Surface displacement ratio (G - N) / (F - N) per cycle\n\nWith several seeds: Eq 1 on the seed-mean ruts, then in brackets the mean +- sd of the per-seed ratios.\n\n";
     if sdr.is_empty() {
         s += "Not available: it needs the N, G and F runs of one ratio and seed.\n";
     }
@@ -863,7 +906,7 @@ fn summary_markdown(
             for r in &ratios {
                 match pts.iter().find(|p| p.ratio == *r && p.cycle == c) {
                     Some(p) if p.values.len() > 1 => {
-                        s += &format!(" {:.2} +- {:.2} |", p.mean, p.sd)
+                        s += &format!(" {:.2} ({:.2} +- {:.2}) |", p.of_means, p.mean, p.sd)
                     }
                     Some(p) => s += &format!(" {:.2} |", p.mean),
                     None => s += " - |",

@@ -118,9 +118,12 @@ def study(hist_csv, sdr_csv, outdir):
             if not rr:
                 continue
             cyc = [int(r['cycle']) for r in rr]
-            mean = [_f(r['sdr_mean']) for r in rr]
-            err = [_f(r['sdr_sd']) for r in rr]
-            ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2, label='d/a = %s (%s)' % (ra, eng))
+            several = int(rr[0]['n_seeds']) > 1
+            # several seeds: Eq 1 on the seed-mean ruts, bars = sd of the per-seed ratios
+            mean = [_f(r['sdr_of_mean_ruts'] if several else r['sdr_mean']) for r in rr]
+            err = [_f(r['sdr_sd']) for r in rr] if several else None
+            ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2,
+                        label='d/a = %s (%s%s)' % (ra, eng, ', %s seeds' % rr[0]['n_seeds'] if several else ''))
     ax.axhline(0, color='0.6', lw=0.8)
     ax.axhline(1, color='0.6', lw=0.8)
     ax.set_xlabel('cycle')
