@@ -106,7 +106,12 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
             c
         }
         Engine::Ryade => {
-            let exe = std::env::current_exe().context("locating the compat executable")?;
+            // /proc/self/exe keeps working when the binary is rebuilt during a long sweep
+            let exe = if Path::new("/proc/self/exe").exists() {
+                PathBuf::from("/proc/self/exe")
+            } else {
+                std::env::current_exe().context("locating the compat executable")?
+            };
             let mut c = Command::new(exe);
             c.arg("run").arg(&script);
             c
