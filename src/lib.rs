@@ -12,6 +12,7 @@ pub mod cell;
 pub mod collider;
 pub mod dispatch;
 pub mod forces;
+pub mod gap;
 pub mod geogrid;
 pub mod geom;
 pub mod harness;
