@@ -10,6 +10,7 @@ pub mod bound;
 pub mod cell;
 pub mod collider;
 pub mod dispatch;
+pub mod fast;
 pub mod forces;
 pub mod geogrid;
 pub mod geom;
