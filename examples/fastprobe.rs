@@ -23,5 +23,5 @@ fn main() {
     for i in 0..s.bodies.len() { md = md.max((s.bodies.pos[i] - y.bodies.pos[i]).norm()); mv = mv.max((s.bodies.vel[i] - y.bodies.vel[i]).norm()); vs = vs.max(y.bodies.vel[i].norm()); }
     println!("max |dpos| {:.3e}  max |dvel| {:.3e} (max |vel| {:.3e})", md, mv, vs);
     println!("unbalanced yade {:.6e} fast {:.6e}; Ek yade {:.6e} fast {:.6e}", ryade::utils::unbalanced_force(&y, false), ryade::utils::unbalanced_force(&s, false), ryade::utils::kinetic_energy(&y), ryade::utils::kinetic_energy(&s));
-    println!("{:?}", f.memory());
+    println!("{:?}", f.memory()); println!("{:?} per step ms: contacts {:.3} newton {:.3}", f.timing, 1e3*f.timing.contacts/n as f64, 1e3*f.timing.newton/n as f64);
 }

@@ -97,6 +97,87 @@ pub struct FastSim {
     max_disp2: f64,
     /// Number of Verlet list builds so far.
     pub rebuilds: u64,
+    /// Seconds spent so far in list builds, contact forces and integration.
+    pub timing: Timing,
+}
+
+/// Where the fast path's time goes (wall clock, summed over steps).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Timing {
+    pub rebuild: f64,
+    pub contacts: f64,
+    pub newton: f64,
+}
+
+/// What the contact kernel reads of the bodies.
+struct View<'a> {
+    pos: &'a [V3],
+    vel: &'a [V3],
+    w: &'a [V3],
+    rad: &'a [f64],
+    mats: &'a [Mat],
+    mat: &'a [u32],
+    shifts: &'a [V3],
+    dt: f64,
+}
+
+/// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
+/// the bodies from `lo`. Body i's sums stay in registers while its pairs last.
+fn chunk_forces(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+) {
+    for x in f.iter_mut() {
+        *x = [0.0; 3];
+    }
+    for x in t.iter_mut() {
+        *x = [0.0; 3];
+    }
+    let np = pairs.len();
+    let mut p = 0;
+    while p < np {
+        let i = pairs[p].i as usize;
+        let (xi, vi, wi, ri) = (v.pos[i], v.vel[i], v.w[i], v.rad[i]);
+        let (mut fi, mut ti) = ([0.0; 3], [0.0; 3]);
+        while p < np && pairs[p].i as usize == i {
+            let pr = pairs[p];
+            let j = pr.j as usize;
+            let two = Two {
+                xi,
+                xj: contact::add(v.pos[j], v.shifts[pr.img as usize]),
+                vi,
+                vj: v.vel[j],
+                wi,
+                wj: v.w[j],
+                ri,
+                rj: v.rad[j],
+            };
+            let created = |c: &mut Contact| {
+                contact::create(
+                    c,
+                    &v.mats[v.mat[i] as usize],
+                    &v.mats[v.mat[j] as usize],
+                    ri,
+                    two.rj,
+                )
+            };
+            if let Some(l) = contact::pair(&mut cs[p], &two, v.dt, created) {
+                fi = contact::add(fi, l.f);
+                ti = contact::add(ti, l.ti);
+                let jj = j - lo;
+                f[jj] = contact::sub(f[jj], l.f);
+                t[jj] = contact::add(t[jj], l.tj);
+            }
+            p += 1;
+        }
+        let ii = i - lo;
+        f[ii] = contact::add(f[ii], fi);
+        t[ii] = contact::add(t[ii], ti);
+    }
 }
 
 /// A contact seen from the other body.
@@ -260,6 +341,7 @@ impl FastSim {
             threads,
             max_disp2: 0.0,
             rebuilds: 0,
+            timing: Timing::default(),
         };
         // the scene's real sphere-sphere contacts carry over with their shear history
         let mut known = FxHashMap::default();
@@ -418,8 +500,10 @@ impl FastSim {
     pub fn step(&mut self) {
         let half = 0.5 * self.skin;
         if self.max_disp2 > half * half {
+            let t0 = std::time::Instant::now();
             let known = self.known_contacts();
             self.rebuild_with(known);
+            self.timing.rebuild += t0.elapsed().as_secs_f64();
         }
         if self.threads == 1 {
             self.step_serial();
@@ -437,44 +521,27 @@ impl FastSim {
     }
 
     fn step_serial(&mut self) {
-        for f in self.force.iter_mut() {
-            *f = [0.0; 3];
-        }
-        for t in self.torque.iter_mut() {
-            *t = [0.0; 3];
-        }
-        let dt = self.cfg.dt;
-        let (pos, vel, w, rad) = (&self.pos, &self.vel, &self.ang_vel, &self.radius);
-        let (mats, mat) = (&self.mats, &self.mat);
-        for (p, c) in self.pairs.iter().zip(self.contacts.iter_mut()) {
-            let (i, j) = (p.i as usize, p.j as usize);
-            let s = self.shifts[p.img as usize];
-            let two = Two {
-                xi: pos[i],
-                xj: contact::add(pos[j], s),
-                vi: vel[i],
-                vj: vel[j],
-                wi: w[i],
-                wj: w[j],
-                ri: rad[i],
-                rj: rad[j],
-            };
-            let created = |c: &mut Contact| {
-                contact::create(
-                    c,
-                    &mats[mat[i] as usize],
-                    &mats[mat[j] as usize],
-                    rad[i],
-                    rad[j],
-                )
-            };
-            if let Some(l) = contact::pair(c, &two, dt, created) {
-                self.force[i] = contact::add(self.force[i], l.f);
-                self.force[j] = contact::sub(self.force[j], l.f);
-                self.torque[i] = contact::add(self.torque[i], l.ti);
-                self.torque[j] = contact::add(self.torque[j], l.tj);
-            }
-        }
+        let t0 = std::time::Instant::now();
+        let view = View {
+            pos: &self.pos,
+            vel: &self.vel,
+            w: &self.ang_vel,
+            rad: &self.radius,
+            mats: &self.mats,
+            mat: &self.mat,
+            shifts: &self.shifts,
+            dt: self.cfg.dt,
+        };
+        chunk_forces(
+            &view,
+            &self.pairs,
+            &mut self.contacts,
+            &mut self.force,
+            &mut self.torque,
+            0,
+        );
+        let t1 = std::time::Instant::now();
+        self.timing.contacts += (t1 - t0).as_secs_f64();
         let cfg = self.cfg;
         let mut md: f64 = 0.0;
         for k in 0..self.pos.len() {
@@ -492,9 +559,11 @@ impl FastSim {
             md = md.max(d);
         }
         self.max_disp2 = md;
+        self.timing.newton += t1.elapsed().as_secs_f64();
     }
 
     fn step_parallel(&mut self) {
+        let t0 = std::time::Instant::now();
         let dt = self.cfg.dt;
         let pool = self.pool.as_ref().unwrap();
         // contact phase: each chunk into its own buffers
@@ -506,52 +575,35 @@ impl FastSim {
                 slices.push(a);
                 rest = b;
             }
-            let (pos, vel, w, rad) = (&self.pos, &self.vel, &self.ang_vel, &self.radius);
-            let (mats, mat, pairs, shifts) = (&self.mats, &self.mat, &self.pairs, &self.shifts);
+            let view = View {
+                pos: &self.pos,
+                vel: &self.vel,
+                w: &self.ang_vel,
+                rad: &self.radius,
+                mats: &self.mats,
+                mat: &self.mat,
+                shifts: &self.shifts,
+                dt,
+            };
+            let pairs = &self.pairs;
             pool.install(|| {
                 self.chunks
                     .par_iter_mut()
                     .zip(slices.into_par_iter())
                     .for_each(|(ch, cs)| {
-                        for v in ch.f.iter_mut() {
-                            *v = [0.0; 3];
-                        }
-                        for v in ch.t.iter_mut() {
-                            *v = [0.0; 3];
-                        }
-                        let lo = ch.lo;
-                        for (p, c) in pairs[ch.pairs.clone()].iter().zip(cs.iter_mut()) {
-                            let (i, j) = (p.i as usize, p.j as usize);
-                            let two = Two {
-                                xi: pos[i],
-                                xj: contact::add(pos[j], shifts[p.img as usize]),
-                                vi: vel[i],
-                                vj: vel[j],
-                                wi: w[i],
-                                wj: w[j],
-                                ri: rad[i],
-                                rj: rad[j],
-                            };
-                            let created = |c: &mut Contact| {
-                                contact::create(
-                                    c,
-                                    &mats[mat[i] as usize],
-                                    &mats[mat[j] as usize],
-                                    rad[i],
-                                    rad[j],
-                                )
-                            };
-                            if let Some(l) = contact::pair(c, &two, dt, created) {
-                                let (i, j) = (i - lo, j - lo);
-                                ch.f[i] = contact::add(ch.f[i], l.f);
-                                ch.f[j] = contact::sub(ch.f[j], l.f);
-                                ch.t[i] = contact::add(ch.t[i], l.ti);
-                                ch.t[j] = contact::add(ch.t[j], l.tj);
-                            }
-                        }
+                        chunk_forces(
+                            &view,
+                            &pairs[ch.pairs.clone()],
+                            cs,
+                            &mut ch.f,
+                            &mut ch.t,
+                            ch.lo,
+                        );
                     });
             });
         }
+        let t1 = std::time::Instant::now();
+        self.timing.contacts += (t1 - t0).as_secs_f64();
         // integration: bodies cut in equal blocks; each body sums the chunk buffers in chunk order
         let n = self.pos.len();
         let block = n.div_ceil(self.threads).max(1);
@@ -598,6 +650,7 @@ impl FastSim {
                 .reduce(|| 0.0, f64::max)
         });
         self.max_disp2 = md;
+        self.timing.newton += t1.elapsed().as_secs_f64();
     }
 
     /// Copy the state back into the scene: bodies, forces of the last step, time, and the contacts
