@@ -226,6 +226,15 @@ pub struct BenchReport {
     pub variants: Vec<VariantReport>,
     /// Named ratios between ryade variants over the repetitions (e.g. fast 2t / fast 1t).
     pub ratios: Vec<(String, Stats)>,
+    /// `/proc/loadavg` before and after (the machine may be shared).
+    pub load_before: String,
+    pub load_after: String,
+}
+
+fn loadavg() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_default()
 }
 
 /// Alternate `reps` runs of every variant of the same scene (YADE first in each repetition).
@@ -243,6 +252,7 @@ pub fn bench(
     if variants.is_empty() {
         bail!("nothing to time");
     }
+    let load_before = loadavg();
     let mut samples = Vec::new();
     let mut per: Vec<Vec<Sample>> = vec![Vec::new(); variants.len()];
     let mut mem: Vec<Option<Memory>> = vec![None; variants.len()];
@@ -309,6 +319,8 @@ pub fn bench(
         samples,
         variants: reports,
         ratios,
+        load_before,
+        load_after: loadavg(),
     })
 }
 
@@ -351,5 +363,11 @@ pub fn format_report(r: &BenchReport) -> String {
     for (name, s) in &r.ratios {
         out += &format!("  {:30} {}\n", name, q(s));
     }
+    out += &format!(
+        "  load average before {} / after {} on {} cores\n",
+        r.load_before,
+        r.load_after,
+        std::thread::available_parallelism().map_or(0, |n| n.get())
+    );
     out
 }
