@@ -344,12 +344,12 @@ pub fn format_report(r: &BenchReport) -> String {
     };
     let q = |s: &Stats| format!("min {:.2} median {:.2} max {:.2}", s.min, s.median, s.max);
     for v in &r.variants {
-        out += &format!("  {:18} particle-steps/s: {}\n", v.name, p(&v.particle_steps));
         out += &format!(
-            "  {:18} contact updates/s: {}\n",
-            "",
-            p(&v.contact_updates)
+            "  {:18} particle-steps/s: {}\n",
+            v.name,
+            p(&v.particle_steps)
         );
+        out += &format!("  {:18} contact updates/s: {}\n", "", p(&v.contact_updates));
         if let Some(x) = &v.ratio_to_yade {
             out += &format!("  {:18} ratio to YADE:     {}\n", "", q(x));
         }

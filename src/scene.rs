@@ -559,11 +559,7 @@ impl Scene {
             }
             let sc = self.interactions.scan[k];
             if sc.idle {
-                if let (
-                    Some(p),
-                    Shape::Sphere { radius: r1 },
-                    Shape::Sphere { radius: r2 },
-                ) = (
+                if let (Some(p), Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) = (
                     &il.sphere_sphere,
                     &self.bodies.shape[sc.id1 as usize],
                     &self.bodies.shape[sc.id2 as usize],

@@ -119,7 +119,11 @@ fn fast_path_matches_yade_on_the_dense_packing() {
     f.write_back(&mut s);
     let vmax = y.bodies.vel.iter().map(|v| v.norm()).fold(0.0, f64::max);
     for id in 0..s.bodies.len() {
-        assert!((s.bodies.pos[id] - y.bodies.pos[id]).norm() < 1e-15, "pos #{}", id);
+        assert!(
+            (s.bodies.pos[id] - y.bodies.pos[id]).norm() < 1e-15,
+            "pos #{}",
+            id
+        );
         assert!(
             (s.bodies.vel[id] - y.bodies.vel[id]).norm() < 1e-9 * vmax,
             "vel #{}",

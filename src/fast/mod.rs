@@ -214,7 +214,9 @@ impl FastSim {
                         p.interaction_detection_factor == 1.0 && p.avoid_granular_ratcheting
                     }) && il.sphere_sphere_6d.is_none()
                         && il.frict_phys
-                        && il.cundall_strack.is_some_and(|l| !l.never_erase && l.spherical_bodies);
+                        && il
+                            .cundall_strack
+                            .is_some_and(|l| !l.never_erase && l.spherical_bodies);
                     if !ok || il_seen || newton.is_some() {
                         return unsupported(
                             "this InteractionLoop (needs Ig2_Sphere_Sphere_ScGeom with default attributes, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack with default attributes, one loop before Newton)".into(),
@@ -284,7 +286,10 @@ impl FastSim {
                 let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
                 let blocked = b.blocked[id];
                 if blocked != DOF_ALL && (b.mass[id] <= 0.0 || b.inertia[id].min() <= 0.0) {
-                    return Err(format!("body #{} is dynamic but has no mass or inertia", id));
+                    return Err(format!(
+                        "body #{} is dynamic but has no mass or inertia",
+                        id
+                    ));
                 }
                 Ok(newton::Inert {
                     inv_mass: inv(b.mass[id]),
@@ -633,14 +638,7 @@ impl FastSim {
                         f[m] = fk;
                         t[m] = tk;
                         let d = newton::body(
-                            &cfg,
-                            &inert[k],
-                            fk,
-                            tk,
-                            &mut x[m],
-                            &mut v[m],
-                            &mut w[m],
-                            &mut q[m],
+                            &cfg, &inert[k], fk, tk, &mut x[m], &mut v[m], &mut w[m], &mut q[m],
                             &x_ref[k],
                         );
                         md = md.max(d);

@@ -75,7 +75,11 @@ pub fn body(
     if b.blocked != DOF_ALL {
         let mut a = [f[0] * b.inv_mass, f[1] * b.inv_mass, f[2] * b.inv_mass];
         if c.damp_gravity {
-            a = [a[0] + c.gravity[0], a[1] + c.gravity[1], a[2] + c.gravity[2]];
+            a = [
+                a[0] + c.gravity[0],
+                a[1] + c.gravity[1],
+                a[2] + c.gravity[2],
+            ];
         }
         if b.blocked != 0 {
             for (k, ak) in a.iter_mut().enumerate() {
@@ -155,7 +159,11 @@ mod tests {
             for k in 0..3 {
                 let want = s * w[k] / wn;
                 let got = [q.x, q.y, q.z][k];
-                assert!((got - want).abs() <= 4.0 * f64::EPSILON * want.abs(), "sin {}", wx);
+                assert!(
+                    (got - want).abs() <= 4.0 * f64::EPSILON * want.abs(),
+                    "sin {}",
+                    wx
+                );
             }
         }
     }
@@ -177,7 +185,9 @@ mod tests {
             damped: true,
         };
         let (mut x, mut v, mut w, mut q) = ([0.0; 3], [0.0; 3], [0.0; 3], Quat::IDENTITY);
-        body(&c, &b, [0.0; 3], [0.0; 3], &mut x, &mut v, &mut w, &mut q, &[0.0; 3]);
+        body(
+            &c, &b, [0.0; 3], [0.0; 3], &mut x, &mut v, &mut w, &mut q, &[0.0; 3],
+        );
         assert!((v[2] - -7.848e-5).abs() < 1e-18);
         assert_eq!(x[2], v[2] * 1e-5);
     }
