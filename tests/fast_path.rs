@@ -24,8 +24,8 @@ fn micro_worst(name: &str, opt: FastOptions) -> (f64, String) {
     let mut scale = [0f64; 19];
     for r in &rows {
         by_step.entry(r.step).or_default().push(r);
-        for c in 0..19 {
-            scale[c] = scale[c].max(r.v[c].abs());
+        for (sc, v) in scale.iter_mut().zip(&r.v) {
+            *sc = sc.max(v.abs());
         }
     }
     let mut scene = sf.scene;
