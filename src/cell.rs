@@ -96,11 +96,13 @@ impl Cell {
     }
 
     /// `Cell::intrShiftPos`: `hSize * cellDist`.
+    #[inline(always)]
     pub fn shift_pos(&self, cell_dist: &[i32; 3]) -> Vec3 {
         mat_vec_i(&self.hsize, cell_dist)
     }
 
     /// `Cell::intrShiftVel`: `(velGrad * prevHSize) * cellDist`.
+    #[inline(always)]
     pub fn shift_vel(&self, cell_dist: &[i32; 3]) -> Vec3 {
         mat_vec_i(&self.vgrad_times_prev_h, cell_dist)
     }

@@ -142,6 +142,15 @@ impl Collider {
         self.bb[0].v.len() != 2 * n_bodies || dirty || self.do_sort
     }
 
+    /// Bytes held by the collider's bound lists and bound copies.
+    pub fn memory_bytes(&self) -> usize {
+        self.bb
+            .iter()
+            .map(|b| b.v.capacity() * std::mem::size_of::<BoundEntry>())
+            .sum::<usize>()
+            + (self.minima.capacity() + self.maxima.capacity()) * std::mem::size_of::<f64>()
+    }
+
     /// `Collider::mayCollide`: masks only (no clumps here, no "one must be dynamic" rule).
     #[inline(always)]
     fn may_collide(&self, bodies: &Bodies, a: u32, b: u32) -> bool {

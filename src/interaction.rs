@@ -120,9 +120,26 @@ fn key(a: u32, b: u32) -> u64 {
     ((lo as u64) << 32) | hi as u64
 }
 
+/// A compact per-slot summary the interaction loop reads instead of the (large) interaction, so
+/// that the many potential pairs cost one small sequential read per step. `idle` is set only by the
+/// interaction loop, for a potential sphere-sphere pair whose functor is resolved; `id1`, `id2` and
+/// `cell_dist` are copied from the interaction at that moment. Invariant: while `idle` is set the
+/// interaction is potential (no geometry, no physics), its functor is `SphereSphere` and its ids and
+/// period equal the copies here. Only the interaction loop turns such a pair real, and it clears
+/// `idle` when it does; new slots start with `idle` cleared.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ScanEntry {
+    pub id1: u32,
+    pub id2: u32,
+    pub cell_dist: [i32; 3],
+    pub idle: bool,
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct Interactions {
     pub list: Vec<Interaction>,
+    /// One `ScanEntry` per slot of `list`, kept in step by `insert`, `erase_at` and `clear`.
+    pub scan: Vec<ScanEntry>,
     index: FxHashMap<u64, u32>,
     /// Set when the container was cleared; forces the collider to re-initialise.
     pub dirty: bool,
@@ -159,6 +176,7 @@ impl Interactions {
         }
         self.index.insert(k, self.list.len() as u32);
         self.list.push(i);
+        self.scan.push(ScanEntry::default());
         true
     }
 
@@ -167,6 +185,7 @@ impl Interactions {
         let k = key(self.list[pos].id1, self.list[pos].id2);
         self.index.remove(&k);
         self.list.swap_remove(pos);
+        self.scan.swap_remove(pos);
         if pos < self.list.len() {
             let moved = key(self.list[pos].id1, self.list[pos].id2);
             self.index.insert(moved, pos as u32);
@@ -175,6 +194,7 @@ impl Interactions {
 
     pub fn clear(&mut self) {
         self.list.clear();
+        self.scan.clear();
         self.index.clear();
         self.shared.clear();
         self.dirty = true;
@@ -241,6 +261,31 @@ impl Interactions {
         } else {
             self.shared.insert(share, alive);
         }
+    }
+
+    /// Ask the CPU to bring slot `k` into cache ahead of use (a hint only: no effect on results).
+    /// The interaction loop skips the idle slots, so the remaining ones are too sparse for the
+    /// hardware prefetcher.
+    #[inline(always)]
+    pub fn prefetch(&self, k: usize) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(it) = self.list.get(k) {
+            let p = it as *const Interaction as *const i8;
+            let size = std::mem::size_of::<Interaction>();
+            let mut off = 0;
+            while off < size {
+                // SAFETY: prefetch never faults; the address lies inside `list`
+                unsafe {
+                    std::arch::x86_64::_mm_prefetch(p.add(off), std::arch::x86_64::_MM_HINT_T0)
+                };
+                off += 64;
+            }
+            unsafe {
+                std::arch::x86_64::_mm_prefetch(p.add(size - 1), std::arch::x86_64::_MM_HINT_T0)
+            };
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = k;
     }
 
     pub fn count_real(&self) -> usize {

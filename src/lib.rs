@@ -11,6 +11,7 @@ pub mod calibrate;
 pub mod cell;
 pub mod collider;
 pub mod dispatch;
+pub mod fast;
 pub mod forces;
 pub mod gap;
 pub mod geogrid;

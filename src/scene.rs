@@ -563,6 +563,43 @@ impl Scene {
         let mut geom_entries = None;
         let n = self.interactions.list.len();
         for k in 0..n {
+            // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
+            // summary alone (same operands, so the same decision), without touching the interaction
+            const AHEAD: usize = 24;
+            if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
+                self.interactions.prefetch(k + AHEAD);
+            }
+            let sc = self.interactions.scan[k];
+            if sc.idle {
+                if let (Some(p), Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) = (
+                    &il.sphere_sphere,
+                    &self.bodies.shape[sc.id1 as usize],
+                    &self.bodies.shape[sc.id2 as usize],
+                ) {
+                    debug_assert!({
+                        let it = &self.interactions.list[k];
+                        !it.is_real()
+                            && it.functor == GeomFunctor::SphereSphere
+                            && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
+                    });
+                    // a zero period gives a zero shift (its sign cannot change the squared distance)
+                    let shift2 = match &self.cell {
+                        Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
+                        _ => Vec3::zeros(),
+                    };
+                    if !geom::sphere_sphere::within_reach(
+                        p,
+                        *r1,
+                        *r2,
+                        &self.bodies.pos[sc.id1 as usize],
+                        &self.bodies.pos[sc.id2 as usize],
+                        &shift2,
+                    ) {
+                        continue;
+                    }
+                }
+                self.interactions.scan[k].idle = false;
+            }
             let (id1_raw, id2_raw) = {
                 let it = &self.interactions.list[k];
                 (it.id1 as usize, it.id2 as usize)
@@ -676,6 +713,13 @@ impl Scene {
             if !created {
                 if was_real {
                     self.interactions.list[k].reset();
+                } else if functor == GeomFunctor::SphereSphere {
+                    self.interactions.scan[k] = crate::interaction::ScanEntry {
+                        id1: id1 as u32,
+                        id2: id2 as u32,
+                        cell_dist,
+                        idle: true,
+                    };
                 }
                 continue;
             }
@@ -703,10 +747,9 @@ impl Scene {
                     pos1: &b.pos[id1],
                     pos2_shifted: b.pos[id2] + shift2,
                 };
-                let g = *it.geom.as_ref().unwrap();
                 law::go(
                     il.cundall_strack.as_ref().unwrap(),
-                    &g,
+                    it.geom.as_ref().unwrap(),
                     it.phys.as_mut().unwrap(),
                     id1,
                     id2,

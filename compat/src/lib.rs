@@ -545,6 +545,29 @@ impl Sim {
         .map_err(PyRuntimeError::new_err)
     }
 
+    /// Run `n` whole steps on the fast path (`ryade::fast`, `O.ryadeFastPath = True`): the state goes
+    /// back into the scene afterwards, contacts included. Fails with the reason for scenes outside it.
+    fn run_steps_fast(&mut self, py: Python<'_>, n: u64, threads: usize) -> PyResult<()> {
+        if self.cursor.is_some() {
+            return Err(PyRuntimeError::new_err(
+                "run_steps_fast called in the middle of a step",
+            ));
+        }
+        let scene = &mut self.scene;
+        py.allow_threads(|| {
+            let opt = ryade::fast::FastOptions {
+                threads: threads.max(1),
+                ..Default::default()
+            };
+            let mut f = ryade::fast::FastSim::from_scene(scene, opt)
+                .map_err(|e| format!("O.ryadeFastPath: {}", e))?;
+            f.run(n);
+            f.write_back(scene);
+            Ok::<(), String>(())
+        })
+        .map_err(PyRuntimeError::new_err)
+    }
+
     // ---- forces ----
     fn force(&self, id: usize) -> PyResult<V3> {
         self.check_id(id)?;

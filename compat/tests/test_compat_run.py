@@ -72,3 +72,19 @@ def test_stop_at_iter_semantics_match_yade():
     assert p.returncode == 0, p.stderr
     got = [l for l in p.stdout.splitlines() if l[:2] in ('A ', 'B ', 'C ', 'D ', 'E ')]
     assert got == ['A 0', 'B -1 10', 'C -1 20', 'D -1 21', 'E -1 31']
+
+
+def test_fast_path_flag_runs_the_fast_path(tmp_path):
+    """O.ryadeFastPath = True: the fast path follows the YADE-order path (bit-identical to YADE) to
+    round-off on a small periodic scene with sliding and spin, keeps the contacts across two runs,
+    and refuses a scene it does not model (a facet) with the reason."""
+    out = tmp_path / 'o.json'
+    p = run('run', os.path.join(SCRIPTS, 'fast_path.py'), str(out))
+    assert p.returncode == 0, p.stderr
+    r = json.load(open(out))
+    assert r['iter'] == 60
+    assert r['real_ref'] == r['real_fast'] >= 1
+    assert r['max_dpos'] < 1e-15
+    # round-off only, and not zero: the fast path (reciprocal masses) really ran
+    assert 0 < r['max_dvel'] < 1e-12
+    assert 'O.ryadeFastPath' in r['refused'] and 'Facet' in r['refused']

@@ -123,6 +123,12 @@ enum Cmd {
         warmup: u64,
         #[arg(long, default_value_t = 3)]
         reps: usize,
+        /// ryade paths to time: yade (the YADE-order path), fast, or all
+        #[arg(long, default_value = "all")]
+        path: String,
+        /// Thread counts for the fast path, comma-separated (e.g. 1,2)
+        #[arg(long, default_value = "1,2")]
+        threads: String,
         /// Time ryade only
         #[arg(long)]
         no_yade: bool,
@@ -365,38 +371,41 @@ fn run(cli: Cli) -> Result<ExitCode> {
             steps,
             warmup,
             reps,
+            path,
+            threads,
             no_yade,
             log,
         } => {
+            use ryade::bench::Variant;
             if scenes.is_empty() {
                 bail!("give at least one scene file (e.g. bench/scenes/dense8000.scene.json)");
             }
+            let mut variants = Vec::new();
+            if !no_yade {
+                variants.push(Variant::Yade);
+            }
+            if path == "yade" || path == "all" {
+                variants.push(Variant::YadeOrder);
+            }
+            if path == "fast" || path == "all" {
+                for t in threads.split(',') {
+                    let t: usize = t
+                        .trim()
+                        .parse()
+                        .map_err(|_| anyhow::anyhow!("--threads: '{}' is not a count", t))?;
+                    if t == 0 {
+                        bail!("--threads: counts start at 1");
+                    }
+                    variants.push(Variant::Fast(t));
+                }
+            }
+            if !matches!(path.as_str(), "yade" | "fast" | "all") {
+                bail!("--path: yade, fast or all, not '{}'", path);
+            }
             let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
             for sc in &scenes {
-                let r = ryade::bench::bench(&root, sc, steps, warmup, reps, !no_yade)?;
-                let b = r
-                    .samples
-                    .last()
-                    .map(|s| (s.bodies, s.contacts))
-                    .unwrap_or((0, 0));
-                println!(
-                    "{}: {} bodies, {} contacts, {} steps x {} reps",
-                    r.scene, b.0, b.1, steps, reps
-                );
-                let p = |s: &ryade::bench::Stats| {
-                    format!(
-                        "min {:.4e} median {:.4e} max {:.4e}",
-                        s.min, s.median, s.max
-                    )
-                };
-                println!("  ryade particle-steps/s: {}", p(&r.ryade_particle_steps));
-                if let (Some(y), Some(q)) = (&r.yade_particle_steps, &r.ratio) {
-                    println!("  YADE  particle-steps/s: {}", p(y));
-                    println!(
-                        "  ratio ryade/YADE:       min {:.2} median {:.2} max {:.2}",
-                        q.min, q.median, q.max
-                    );
-                }
+                let r = ryade::bench::bench(&root, sc, steps, warmup, reps, &variants)?;
+                print!("{}", ryade::bench::format_report(&r));
                 if let Some(l) = &log {
                     use std::io::Write;
                     let mut f = std::fs::OpenOptions::new()

@@ -207,6 +207,7 @@ impl ScGeom {
     /// `ScGeom::precompute` (pkg/dem/ScGeom.cpp): rotation of the contact frame since the last step,
     /// then the tangential relative velocity times dt.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     pub fn precompute(
         &mut self,
         s1: &Kin,
@@ -234,6 +235,7 @@ impl ScGeom {
     }
 
     /// `ScGeom::getIncidentVel` (pkg/dem/ScGeom.cpp).
+    #[inline(always)]
     pub fn incident_vel(
         &self,
         s1: &Kin,

@@ -29,6 +29,7 @@ pub fn within_reach(p: &Params, r1: f64, r2: f64, pos1: &Vec3, pos2: &Vec3, shif
 
 /// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
 /// interaction always gets its geometry updated, even when the spheres have separated.
+#[inline(always)]
 pub fn go(p: &Params, r1: f64, r2: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
     let (s1, s2, shift2) = (&pr.s1, &pr.s2, &pr.shift2);
     let d = (s2.pos + shift2) - s1.pos;

@@ -81,6 +81,7 @@ pub struct LawBodies<'a> {
 
 /// Returns false when the contact must be erased (separated and `never_erase` off).
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub fn go(
     p: &Params,
     g: &ScGeom,
@@ -123,6 +124,7 @@ pub fn go(
 }
 
 /// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
+#[inline(always)]
 pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy>) {
     let mut fs = ph.shear_force;
     g.rotate(&mut fs);

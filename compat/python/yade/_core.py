@@ -748,6 +748,10 @@ class Omega(object):
         self.stopAtTime = 0.0
         self.timingEnabled = False
         self.dynDt = False
+        # ryade only: O.run(n, True) without Python engines runs on the fast path (issue 6; same physics,
+        # free summation order, so agreement with YADE is statistical) with this many threads
+        self.ryadeFastPath = False
+        self.ryadeFastThreads = 1
         self._saved = {}
         self._default_engines()
 
@@ -875,7 +879,10 @@ class Omega(object):
         if n > 0:
             self.stopAtIter = self.iter + n
         if not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0:
-            self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
+            if self.ryadeFastPath:
+                self._sim.run_steps_fast(n, self.ryadeFastThreads)
+            else:
+                self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
             self.stopAtIter = -1
             return
         if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:

@@ -1,0 +1,708 @@
+//! The fast path (issue 6): a stepper for sphere scenes built from a `Scene`, free to reorder sums.
+//!
+//! Same physics as the YADE-order path (FrictMat, `Ig2_Sphere_Sphere_ScGeom` with
+//! `avoidGranularRatcheting`, `Ip2_FrictMat_FrictMat_FrictPhys`, `Law2_ScGeom_FrictPhys_CundallStrack`,
+//! `NewtonIntegrator` with damping and gravity, a static periodic cell or an open domain), laid out
+//! for speed:
+//!
+//! * `neighbors`: a cell-list Verlet list with a skin (rebuilt only when some body has moved more
+//!   than skin/2) instead of YADE's insertion-sort collider; bodies renumbered in cell order;
+//! * `contact`: pair list and contact state in flat arrays, one fused kernel per pair;
+//! * `newton`: the integrator with reciprocal masses;
+//! * threads (rayon): the pair list is cut into one fixed chunk per thread, each chunk sums its
+//!   forces into its own buffer, and each body adds the chunk buffers in chunk order. The result
+//!   depends on the thread count only through those chunk boundaries: the same thread count gives
+//!   the same bits on every run.
+//!
+//! Results agree with YADE (and the YADE-order path) to round-off at first, statistically after
+//! the chaotic growth of differences in a dense packing. `write_back` returns the state to the
+//! `Scene`, contacts included, so both paths can be mixed.
+
+pub mod contact;
+pub mod neighbors;
+pub mod newton;
+
+use crate::body::DOF_ALL;
+use crate::geom::ScGeom;
+use crate::interaction::{GeomFunctor, Interaction};
+use crate::math::{Quat, Vec3};
+use crate::phys::FrictPhys;
+use crate::scene::{Engine, Scene};
+use crate::shape::Shape;
+use contact::{Contact, Mat, Pair, Two, V3};
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+/// Options of the fast path.
+#[derive(Clone, Copy, Debug)]
+pub struct FastOptions {
+    /// Worker threads (1: no thread pool).
+    pub threads: usize,
+    /// Verlet skin as a fraction of the smallest radius.
+    pub skin: f64,
+}
+
+impl Default for FastOptions {
+    fn default() -> Self {
+        FastOptions {
+            threads: 1,
+            skin: 0.3,
+        }
+    }
+}
+
+/// One thread's share of the pair list and the bodies its pairs touch.
+struct Chunk {
+    pairs: std::ops::Range<usize>,
+    lo: usize,
+    hi: usize,
+    f: Vec<V3>,
+    t: Vec<V3>,
+}
+
+/// Memory held by the fast path, in bytes.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct Memory {
+    pub per_particle: f64,
+    pub per_contact: f64,
+    pub per_pair: f64,
+}
+
+pub struct FastSim {
+    pub iter: i64,
+    pub time: f64,
+    cfg: newton::Cfg,
+    period: Option<V3>,
+    skin: f64,
+    /// `ids[k]`: the scene id of body k (bodies are kept in spatial order).
+    ids: Vec<u32>,
+    pos: Vec<V3>,
+    vel: Vec<V3>,
+    ang_vel: Vec<V3>,
+    ori: Vec<Quat>,
+    radius: Vec<f64>,
+    inert: Vec<newton::Inert>,
+    mat: Vec<u32>,
+    x_ref: Vec<V3>,
+    force: Vec<V3>,
+    torque: Vec<V3>,
+    mats: Vec<Mat>,
+    pairs: Vec<Pair>,
+    contacts: Vec<Contact>,
+    shifts: Vec<V3>,
+    shift_cells: Vec<[i32; 3]>,
+    chunks: Vec<Chunk>,
+    pool: Option<rayon::ThreadPool>,
+    threads: usize,
+    max_disp2: f64,
+    /// Number of Verlet list builds so far.
+    pub rebuilds: u64,
+    /// Seconds spent so far in list builds, contact forces and integration.
+    pub timing: Timing,
+}
+
+/// Where the fast path's time goes (wall clock, summed over steps).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Timing {
+    pub rebuild: f64,
+    pub contacts: f64,
+    pub newton: f64,
+}
+
+/// What the contact kernel reads of the bodies.
+struct View<'a> {
+    pos: &'a [V3],
+    vel: &'a [V3],
+    w: &'a [V3],
+    rad: &'a [f64],
+    mats: &'a [Mat],
+    mat: &'a [u32],
+    shifts: &'a [V3],
+    dt: f64,
+}
+
+/// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
+/// the bodies from `lo`. Body i's sums stay in registers while its pairs last.
+fn chunk_forces(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+) {
+    for x in f.iter_mut() {
+        *x = [0.0; 3];
+    }
+    for x in t.iter_mut() {
+        *x = [0.0; 3];
+    }
+    let np = pairs.len();
+    let mut p = 0;
+    while p < np {
+        let i = pairs[p].i as usize;
+        let (xi, vi, wi, ri) = (v.pos[i], v.vel[i], v.w[i], v.rad[i]);
+        let (mut fi, mut ti) = ([0.0; 3], [0.0; 3]);
+        while p < np && pairs[p].i as usize == i {
+            let pr = pairs[p];
+            let j = pr.j as usize;
+            let two = Two {
+                xi,
+                xj: contact::add(v.pos[j], v.shifts[pr.img as usize]),
+                vi,
+                vj: v.vel[j],
+                wi,
+                wj: v.w[j],
+                ri,
+                rj: v.rad[j],
+            };
+            let created = |c: &mut Contact| {
+                contact::create(
+                    c,
+                    &v.mats[v.mat[i] as usize],
+                    &v.mats[v.mat[j] as usize],
+                    ri,
+                    two.rj,
+                )
+            };
+            if let Some(l) = contact::pair(&mut cs[p], &two, v.dt, created) {
+                fi = contact::add(fi, l.f);
+                ti = contact::add(ti, l.ti);
+                let jj = j - lo;
+                f[jj] = contact::sub(f[jj], l.f);
+                t[jj] = contact::add(t[jj], l.tj);
+            }
+            p += 1;
+        }
+        let ii = i - lo;
+        f[ii] = contact::add(f[ii], fi);
+        t[ii] = contact::add(t[ii], ti);
+    }
+}
+
+/// A contact seen from the other body.
+fn flipped(c: &Contact) -> Contact {
+    Contact {
+        normal: [-c.normal[0], -c.normal[1], -c.normal[2]],
+        fs: [-c.fs[0], -c.fs[1], -c.fs[2]],
+        ..*c
+    }
+}
+
+fn v3(v: &Vec3) -> V3 {
+    [v[0], v[1], v[2]]
+}
+
+impl FastSim {
+    /// Build the fast stepper from a scene, or say why the scene is outside the fast path.
+    pub fn from_scene(scene: &Scene, opt: FastOptions) -> Result<FastSim, String> {
+        let unsupported = |what: String| Err(format!("the fast path does not support {}", what));
+        if scene.track_energy {
+            return unsupported("energy tracking (O.trackEnergy)".into());
+        }
+        let mut newton = None;
+        let mut il_seen = false;
+        for (k, e) in scene.engines.iter().enumerate() {
+            if scene.is_dead(k) {
+                return unsupported(format!("dead engines ({})", e.class_name()));
+            }
+            match e {
+                Engine::ForceResetter | Engine::Collider(_) => {}
+                Engine::InteractionLoop(il) => {
+                    let ss = il.sphere_sphere.as_ref();
+                    let ok = ss.is_some_and(|p| {
+                        p.interaction_detection_factor == 1.0 && p.avoid_granular_ratcheting
+                    }) && il.sphere_sphere_6d.is_none()
+                        && il.frict_phys
+                        && il
+                            .cundall_strack
+                            .is_some_and(|l| !l.never_erase && l.spherical_bodies);
+                    if !ok || il_seen || newton.is_some() {
+                        return unsupported(
+                            "this InteractionLoop (needs Ig2_Sphere_Sphere_ScGeom with default attributes, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack with default attributes, one loop before Newton)".into(),
+                        );
+                    }
+                    il_seen = true;
+                }
+                Engine::Newton(n) => {
+                    if n.mask > 0 || newton.is_some() {
+                        return unsupported("a NewtonIntegrator mask or two integrators".into());
+                    }
+                    newton = Some(n.as_ref());
+                }
+                other => return unsupported(format!("engine {}", other.class_name())),
+            }
+        }
+        let Some(nw) = newton else {
+            return unsupported("a scene without NewtonIntegrator".into());
+        };
+        if !il_seen {
+            return unsupported("a scene without InteractionLoop".into());
+        }
+        let period = match &scene.cell {
+            None => None,
+            Some(c) => {
+                let h = c.hsize;
+                let diag = (0..3).all(|i| (0..3).all(|j| i == j || h[(i, j)] == 0.0));
+                if !diag
+                    || c.vel_grad != crate::math::Mat3::zeros()
+                    || c.next_vel_grad != crate::math::Mat3::zeros()
+                    || nw.prev_vel_grad != crate::math::Mat3::zeros()
+                {
+                    return unsupported("a sheared or deforming periodic cell".into());
+                }
+                Some([h[(0, 0)], h[(1, 1)], h[(2, 2)]])
+            }
+        };
+        let b = &scene.bodies;
+        let n = b.len();
+        let mut radius = Vec::with_capacity(n);
+        for id in 0..n {
+            match b.shape[id] {
+                Shape::Sphere { radius: r } => radius.push(r),
+                ref s => return unsupported(format!("{} bodies (#{})", s.class_name(), id)),
+            }
+        }
+        let mut mats = Vec::with_capacity(scene.materials.len());
+        for m in &scene.materials {
+            if m.coh.is_some() {
+                return unsupported("CohFrictMat".into());
+            }
+            mats.push(Mat {
+                young: m.young,
+                poisson: m.poisson,
+                friction_angle: m.friction_angle,
+            });
+        }
+        let rmin = radius.iter().cloned().fold(f64::INFINITY, f64::min);
+        if let (Some(l), true) = (period, n > 0) {
+            let rmax = radius.iter().cloned().fold(0.0, f64::max);
+            if l.iter().any(|&x| 2.0 * rmax + opt.skin * rmin >= 0.5 * x) {
+                return unsupported("spheres larger than a quarter of the periodic cell".into());
+            }
+        }
+        let inert = (0..n)
+            .map(|id| {
+                let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
+                let blocked = b.blocked[id];
+                if blocked != DOF_ALL && (b.mass[id] <= 0.0 || b.inertia[id].min() <= 0.0) {
+                    return Err(format!(
+                        "body #{} is dynamic but has no mass or inertia",
+                        id
+                    ));
+                }
+                Ok(newton::Inert {
+                    inv_mass: inv(b.mass[id]),
+                    inv_inertia: [
+                        inv(b.inertia[id][0]),
+                        inv(b.inertia[id][1]),
+                        inv(b.inertia[id][2]),
+                    ],
+                    blocked,
+                    damped: b.is_damped[id],
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        let threads = opt.threads.max(1);
+        let pool = if threads > 1 {
+            Some(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .map_err(|e| e.to_string())?,
+            )
+        } else {
+            None
+        };
+        let mut sim = FastSim {
+            iter: scene.iter,
+            time: scene.time,
+            cfg: newton::Cfg {
+                dt: scene.dt,
+                damping: nw.damping,
+                gravity: v3(&nw.gravity),
+                damp_gravity: nw.damp_gravity,
+            },
+            period,
+            skin: opt.skin * if rmin.is_finite() { rmin } else { 0.0 },
+            ids: (0..n as u32).collect(),
+            pos: b.pos.iter().map(v3).collect(),
+            vel: b.vel.iter().map(v3).collect(),
+            ang_vel: b.ang_vel.iter().map(v3).collect(),
+            ori: b.ori.clone(),
+            radius,
+            inert,
+            mat: b.material.iter().map(|&m| m as u32).collect(),
+            x_ref: vec![],
+            force: vec![[0.0; 3]; n],
+            torque: vec![[0.0; 3]; n],
+            mats,
+            pairs: vec![],
+            contacts: vec![],
+            shifts: vec![[0.0; 3]],
+            shift_cells: vec![[0; 3]],
+            chunks: vec![],
+            pool,
+            threads,
+            max_disp2: 0.0,
+            rebuilds: 0,
+            timing: Timing::default(),
+        };
+        // the scene's real sphere-sphere contacts carry over with their shear history
+        let mut known = FxHashMap::default();
+        for it in &scene.interactions.list {
+            if let (Some(g), Some(ph), None, GeomFunctor::SphereSphere) =
+                (&it.geom, &it.phys, &it.ext, it.functor)
+            {
+                let c = Contact {
+                    active: true,
+                    normal: v3(&g.normal),
+                    fs: v3(&ph.shear_force),
+                    pen: g.pen,
+                    kn: ph.kn,
+                    ks: ph.ks,
+                    tan_phi: ph.tan_phi,
+                };
+                if it.id1 < it.id2 {
+                    known.insert((it.id1, it.id2), c);
+                } else {
+                    known.insert((it.id2, it.id1), flipped(&c));
+                }
+            }
+        }
+        sim.rebuild_with(known);
+        Ok(sim)
+    }
+
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pos.is_empty()
+    }
+
+    /// Contacts (touching pairs) now.
+    pub fn active_contacts(&self) -> usize {
+        self.contacts.iter().filter(|c| c.active).count()
+    }
+
+    /// Pairs in the Verlet list.
+    pub fn pairs(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// Bytes held per particle, per contact (all contact storage over the touching pairs) and per
+    /// listed pair.
+    pub fn memory(&self) -> Memory {
+        use std::mem::size_of;
+        let body = size_of::<u32>() * 2
+            + size_of::<V3>() * 7
+            + size_of::<Quat>()
+            + size_of::<f64>()
+            + size_of::<newton::Inert>();
+        let buffers: usize = self
+            .chunks
+            .iter()
+            .map(|c| (c.f.capacity() + c.t.capacity()) * size_of::<V3>())
+            .sum();
+        let n = self.len().max(1) as f64;
+        let pair_bytes = (self.pairs.capacity() * size_of::<Pair>()
+            + self.contacts.capacity() * size_of::<Contact>()) as f64;
+        Memory {
+            per_particle: (body * self.len() + buffers) as f64 / n,
+            per_contact: pair_bytes / self.active_contacts().max(1) as f64,
+            per_pair: pair_bytes / self.pairs.len().max(1) as f64,
+        }
+    }
+
+    /// The active contacts keyed by scene ids (lower id first, state seen from the lower id).
+    fn known_contacts(&self) -> FxHashMap<(u32, u32), Contact> {
+        let mut known = FxHashMap::default();
+        for (p, c) in self.pairs.iter().zip(&self.contacts) {
+            if c.active {
+                let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
+                if a < b {
+                    known.insert((a, b), *c);
+                } else {
+                    known.insert((b, a), flipped(c));
+                }
+            }
+        }
+        known
+    }
+
+    /// Build the Verlet list again (bodies re-sorted), keeping every contact's state.
+    fn rebuild_with(&mut self, known: FxHashMap<(u32, u32), Contact>) {
+        let built = neighbors::build(&self.pos, &self.radius, self.period, self.skin);
+        let ord = &built.order;
+        fn perm<T: Copy>(v: &mut Vec<T>, ord: &[u32]) {
+            *v = ord.iter().map(|&o| v[o as usize]).collect();
+        }
+        perm(&mut self.ids, ord);
+        perm(&mut self.pos, ord);
+        perm(&mut self.vel, ord);
+        perm(&mut self.ang_vel, ord);
+        perm(&mut self.ori, ord);
+        perm(&mut self.radius, ord);
+        perm(&mut self.inert, ord);
+        perm(&mut self.mat, ord);
+        perm(&mut self.force, ord);
+        perm(&mut self.torque, ord);
+        self.pairs = built.pairs;
+        self.shifts = built.shifts;
+        self.shift_cells = built.shift_cells;
+        self.contacts = self
+            .pairs
+            .iter()
+            .map(|p| {
+                let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
+                if a < b {
+                    known.get(&(a, b)).copied().unwrap_or_default()
+                } else {
+                    known.get(&(b, a)).map(flipped).unwrap_or_default()
+                }
+            })
+            .collect();
+        self.x_ref = self.pos.clone();
+        self.max_disp2 = 0.0;
+        self.rebuilds += 1;
+        self.make_chunks();
+    }
+
+    /// Cut the pair list into one chunk per thread (equal pair counts).
+    fn make_chunks(&mut self) {
+        let np = self.pairs.len();
+        let t = self.threads;
+        self.chunks = (0..t)
+            .map(|k| {
+                let r = (np * k / t)..(np * (k + 1) / t);
+                let (lo, hi) = if r.is_empty() {
+                    (0, 0)
+                } else {
+                    let lo = self.pairs[r.start].i as usize;
+                    let hi = self.pairs[r.clone()]
+                        .iter()
+                        .map(|p| p.j as usize)
+                        .max()
+                        .unwrap()
+                        + 1;
+                    (lo, hi)
+                };
+                let len = if t > 1 { hi - lo } else { 0 };
+                Chunk {
+                    pairs: r,
+                    lo,
+                    hi,
+                    f: vec![[0.0; 3]; len],
+                    t: vec![[0.0; 3]; len],
+                }
+            })
+            .collect();
+    }
+
+    /// One time step: (Verlet list rebuild if needed), contact forces, integration.
+    pub fn step(&mut self) {
+        let half = 0.5 * self.skin;
+        if self.max_disp2 > half * half {
+            let t0 = std::time::Instant::now();
+            let known = self.known_contacts();
+            self.rebuild_with(known);
+            self.timing.rebuild += t0.elapsed().as_secs_f64();
+        }
+        if self.threads == 1 {
+            self.step_serial();
+        } else {
+            self.step_parallel();
+        }
+        self.iter += 1;
+        self.time += self.cfg.dt;
+    }
+
+    pub fn run(&mut self, steps: u64) {
+        for _ in 0..steps {
+            self.step();
+        }
+    }
+
+    fn step_serial(&mut self) {
+        let t0 = std::time::Instant::now();
+        let view = View {
+            pos: &self.pos,
+            vel: &self.vel,
+            w: &self.ang_vel,
+            rad: &self.radius,
+            mats: &self.mats,
+            mat: &self.mat,
+            shifts: &self.shifts,
+            dt: self.cfg.dt,
+        };
+        chunk_forces(
+            &view,
+            &self.pairs,
+            &mut self.contacts,
+            &mut self.force,
+            &mut self.torque,
+            0,
+        );
+        let t1 = std::time::Instant::now();
+        self.timing.contacts += (t1 - t0).as_secs_f64();
+        let cfg = self.cfg;
+        let mut md: f64 = 0.0;
+        for k in 0..self.pos.len() {
+            let d = newton::body(
+                &cfg,
+                &self.inert[k],
+                self.force[k],
+                self.torque[k],
+                &mut self.pos[k],
+                &mut self.vel[k],
+                &mut self.ang_vel[k],
+                &mut self.ori[k],
+                &self.x_ref[k],
+            );
+            md = md.max(d);
+        }
+        self.max_disp2 = md;
+        self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    fn step_parallel(&mut self) {
+        let t0 = std::time::Instant::now();
+        let dt = self.cfg.dt;
+        let pool = self.pool.as_ref().unwrap();
+        // contact phase: each chunk into its own buffers
+        {
+            let mut slices: Vec<&mut [Contact]> = Vec::with_capacity(self.chunks.len());
+            let mut rest: &mut [Contact] = &mut self.contacts;
+            for ch in &self.chunks {
+                let (a, b) = rest.split_at_mut(ch.pairs.len());
+                slices.push(a);
+                rest = b;
+            }
+            let view = View {
+                pos: &self.pos,
+                vel: &self.vel,
+                w: &self.ang_vel,
+                rad: &self.radius,
+                mats: &self.mats,
+                mat: &self.mat,
+                shifts: &self.shifts,
+                dt,
+            };
+            let pairs = &self.pairs;
+            pool.install(|| {
+                self.chunks
+                    .par_iter_mut()
+                    .zip(slices.into_par_iter())
+                    .for_each(|(ch, cs)| {
+                        chunk_forces(
+                            &view,
+                            &pairs[ch.pairs.clone()],
+                            cs,
+                            &mut ch.f,
+                            &mut ch.t,
+                            ch.lo,
+                        );
+                    });
+            });
+        }
+        let t1 = std::time::Instant::now();
+        self.timing.contacts += (t1 - t0).as_secs_f64();
+        // integration: bodies cut in equal blocks; each body sums the chunk buffers in chunk order
+        let n = self.pos.len();
+        let block = n.div_ceil(self.threads).max(1);
+        let cfg = self.cfg;
+        let chunks = &self.chunks;
+        let (inert, x_ref) = (&self.inert, &self.x_ref);
+        let md = pool.install(|| {
+            self.pos
+                .par_chunks_mut(block)
+                .zip(self.vel.par_chunks_mut(block))
+                .zip(self.ang_vel.par_chunks_mut(block))
+                .zip(self.ori.par_chunks_mut(block))
+                .zip(self.force.par_chunks_mut(block))
+                .zip(self.torque.par_chunks_mut(block))
+                .enumerate()
+                .map(|(bi, (((((x, v), w), q), f), t))| {
+                    let mut md: f64 = 0.0;
+                    for m in 0..x.len() {
+                        let k = bi * block + m;
+                        let (mut fk, mut tk) = ([0.0; 3], [0.0; 3]);
+                        for ch in chunks {
+                            if k >= ch.lo && k < ch.hi {
+                                fk = contact::add(fk, ch.f[k - ch.lo]);
+                                tk = contact::add(tk, ch.t[k - ch.lo]);
+                            }
+                        }
+                        f[m] = fk;
+                        t[m] = tk;
+                        let d = newton::body(
+                            &cfg, &inert[k], fk, tk, &mut x[m], &mut v[m], &mut w[m], &mut q[m],
+                            &x_ref[k],
+                        );
+                        md = md.max(d);
+                    }
+                    md
+                })
+                .reduce(|| 0.0, f64::max)
+        });
+        self.max_disp2 = md;
+        self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    /// Copy the state back into the scene: bodies, forces of the last step, time, and the contacts
+    /// as real interactions (the collider re-initialises on the next YADE-order step).
+    pub fn write_back(&self, scene: &mut Scene) {
+        let n = self.len();
+        scene.forces.resize(n);
+        for k in 0..n {
+            let id = self.ids[k] as usize;
+            let b = &mut scene.bodies;
+            b.pos[id] = Vec3::from(self.pos[k]);
+            b.vel[id] = Vec3::from(self.vel[k]);
+            b.ang_vel[id] = Vec3::from(self.ang_vel[k]);
+            b.ori[id] = self.ori[k];
+            scene.forces.force[id] = Vec3::from(self.force[k]);
+            scene.forces.torque[id] = Vec3::from(self.torque[k]);
+        }
+        scene.iter = self.iter;
+        scene.time = self.time;
+        scene.interactions.clear();
+        for (p, c) in self.pairs.iter().zip(&self.contacts) {
+            if !c.active {
+                continue;
+            }
+            let (i, j) = (p.i as usize, p.j as usize);
+            let (a, b) = (self.ids[i], self.ids[j]);
+            let cd = self.shift_cells[p.img as usize];
+            // YADE's sphere-sphere interactions are (lower id, higher id)
+            let (id1, id2, k1, k2, c, cd) = if a < b {
+                (a, b, i, j, *c, cd)
+            } else {
+                (b, a, j, i, flipped(c), [-cd[0], -cd[1], -cd[2]])
+            };
+            let n = Vec3::from(c.normal);
+            let (r1, r2) = (self.radius[k1], self.radius[k2]);
+            let mut it = Interaction::new(id1, id2, cd, self.iter);
+            it.functor = GeomFunctor::SphereSphere;
+            it.iter_made_real = self.iter;
+            it.geom = Some(ScGeom {
+                contact_point: Vec3::from(self.pos[k1]) + n * (r1 - 0.5 * c.pen),
+                pen: c.pen,
+                normal: n,
+                radius1: r1,
+                radius2: r2,
+                ..ScGeom::default()
+            });
+            it.phys = Some(FrictPhys {
+                kn: c.kn,
+                ks: c.ks,
+                tan_phi: c.tan_phi,
+                normal_force: n * (c.kn * c.pen.max(0.0)),
+                shear_force: Vec3::from(c.fs),
+            });
+            scene.interactions.insert(it);
+        }
+    }
+}
