@@ -24,6 +24,10 @@
 # same scene step for step (contacts are re-detected at the rebuild: shear forces start at zero,
 # grid bonds are re-created stress-free at the imported node positions). --no-rebuild skips this.
 #
+# Unmodelled-effect knobs (issue 7; README "Unmodelled-effect knobs"), all off by default: --psd-fuzz
+# (generation), --eta-roll/--alpha-kr/--roll-plates, --subgrade-k/--subgrade-mass/--subgrade-zeta,
+# --grid-kn-scale/--grid-kr-scale, --load-friction (loading, applied at the specimen rebuild).
+#
 # Only common YADE API is used (O.bodies, utils.sphere/box, pack.SpherePack.makeCloud, geom.facetCylinder,
 # PyRunner, O.forces.f); yade.gridpfacet only in case G.
 import argparse, json, math, os, sys, time
