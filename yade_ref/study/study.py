@@ -24,6 +24,10 @@
 # same scene step for step (contacts are re-detected at the rebuild: shear forces start at zero,
 # grid bonds are re-created stress-free at the imported node positions). --no-rebuild skips this.
 #
+# Unmodelled-effect knobs (issue 7; README "Unmodelled-effect knobs"), all off by default: --psd-fuzz
+# (generation), --eta-roll/--alpha-kr/--roll-plates, --subgrade-k/--subgrade-mass/--subgrade-zeta,
+# --grid-kn-scale/--grid-kr-scale, --load-friction (loading, applied at the specimen rebuild).
+#
 # Only common YADE API is used (O.bodies, utils.sphere/box, pack.SpherePack.makeCloud, geom.facetCylinder,
 # PyRunner, O.forces.f); yade.gridpfacet only in case G.
 import argparse, json, math, os, sys, time
@@ -44,7 +48,19 @@ SIZES = {  # nx x ny rectangular lattice periods, piston diameter [m], default c
 # parameters an imported specimen fixes (the others come from the command line)
 SPECIMEN_PARAMS = ('ratio', 'case', 'size', 'seed', 'rib', 'nx', 'ny', 'young', 'poisson', 'friction', 'density',
                    'grid_young', 'grid_poisson', 'grid_density', 'grid_radius', 'mid_rib', 'layer', 'target_porosity',
-                   'cloud_fraction', 'oedo_kpa', 'oedo_cycles', 'settle_tol', 'freq')
+                   'cloud_fraction', 'oedo_kpa', 'oedo_cycles', 'settle_tol', 'freq', 'psd_fuzz')
+
+
+# unmodelled-effect knobs (README "Unmodelled-effect knobs"): at these values the model is exactly the
+# study's. They are written to specimen.json / summary.json only when they differ, so default runs
+# write the same files as before the knobs existed. Only psd_fuzz changes the generation (it is a
+# SPECIMEN_PARAM; specimens written before it existed read as 0); the others act on the loading.
+KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
+                 'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None}
+
+
+def params_dict(a, leave_out=()):
+    return {k: v for k, v in sorted(vars(a).items()) if k not in leave_out and not (k in KNOB_DEFAULTS and v == KNOB_DEFAULTS[k])}
 
 
 # run options that are not properties of the specimen (left out of specimen.json)
@@ -99,13 +115,29 @@ def parse_args(argv):
     ap.add_argument('--vmax', type=float, default=1.0, help='piston speed limit [m/s]')
     ap.add_argument('--stop-rut', type=float, default=0.075, help='stop when the rut exceeds this [m] (0.3 x 0.25 m)')
     ap.add_argument('--steps-every', type=int, default=10, help='steps.csv sampling period [steps]')
+    # unmodelled-effect knobs (README "Unmodelled-effect knobs"); the defaults are the study's model
+    ap.add_argument('--psd-fuzz', type=float, default=0.0,
+                    help='generation: makeCloud rRelFuzz (radii uniform in r(1 +- fuzz), same mean radius, count from the mean volume)')
+    ap.add_argument('--eta-roll', type=float, default=0.0,
+                    help='loading: rolling resistance of sphere-sphere contacts (CohFrictMat etaRoll, CohesionMoment law); 0 = none')
+    ap.add_argument('--alpha-kr', type=float, default=2.0, help='loading: CohFrictMat alphaKr of the rolling spheres (with --eta-roll)')
+    ap.add_argument('--roll-plates', action='store_true',
+                    help='with --eta-roll: plates and piston roll-resist too (Ig2_Box/Facet_Sphere_ScGeom6D; YADE only, not in ryade)')
+    ap.add_argument('--subgrade-k', type=float, default=0.0,
+                    help='loading: modulus of subgrade reaction [N/m^3] under the bottom plate (Winkler spring bed); 0 = rigid, fixed plate')
+    ap.add_argument('--subgrade-mass', type=float, default=None, help='plate mass [kg] with --subgrade-k (default 0.1 x the layer mass)')
+    ap.add_argument('--subgrade-zeta', type=float, default=0.2, help='spring-bed dashpot as a fraction of the plate-alone critical damping')
+    ap.add_argument('--grid-kn-scale', type=float, default=1.0, help='loading: multiply kn and ks of every grid bond')
+    ap.add_argument('--grid-kr-scale', type=float, default=1.0, help='loading: multiply kr and ktw of every grid bond')
+    ap.add_argument('--load-friction', type=float, default=None,
+                    help='loading: friction angle [deg] of the grain and rib materials from the rebuild on (default: the specimen\'s --friction)')
     a = ap.parse_args(argv)
     if a.import_specimen:  # the specimen fixes the geometry and the materials
         with open(a.import_specimen) as f:
             a.specimen = json.load(f)
         sp = a.specimen['params']
         for k in SPECIMEN_PARAMS:
-            setattr(a, k, sp[k])
+            setattr(a, k, sp.get(k, KNOB_DEFAULTS.get(k)) if k in KNOB_DEFAULTS else sp[k])
         if a.piston_d is None:
             a.piston_d = sp['piston_d']
     nx, ny, D, cyc = SIZES[a.size]
@@ -118,6 +150,12 @@ def parse_args(argv):
         ap.error('--seed must be >= 0 (makeCloud with seed < 0 is not reproducible)')
     if a.nx < 3 or a.ny < 2:
         ap.error('a periodic triaxial grid needs nx >= 3 and ny >= 2')
+    if not 0 <= a.psd_fuzz < 1:
+        ap.error('--psd-fuzz must be in [0, 1)')
+    if a.no_rebuild and any(getattr(a, k) != v for k, v in KNOB_DEFAULTS.items() if k != 'psd_fuzz'):
+        ap.error('the loading knobs act at the specimen rebuild: not with --no-rebuild')
+    if a.roll_plates and not a.eta_roll > 0:
+        ap.error('--roll-plates needs --eta-roll > 0')
     if a.out is None:
         a.out = os.path.join('study_out', 'r%02d_%s_%s_s%d' % (round(a.ratio * 10), a.case, a.size, a.seed))
     return a
@@ -131,6 +169,8 @@ class Params:
         self.rib = a.rib
         self.d = a.ratio * a.rib
         self.r = self.d / 2
+        self.rMin = self.r * (1 - a.psd_fuzz)  # with --psd-fuzz the radii are uniform in [rMin, rMax]
+        self.rMax = self.r * (1 + a.psd_fuzz)
         self.rg = a.grid_radius
         self.Lx = a.nx * a.rib
         self.Ly = a.ny * a.rib * math.sqrt(3)
@@ -138,12 +178,12 @@ class Params:
         self.D = a.piston_d
         self.A = math.pi * self.D**2 / 4
         self.cx, self.cy = self.Lx / 2, self.Ly / 2
-        vs = math.pi * self.d**3 / 6
+        vs = math.pi * self.d**3 / 6 * (1 + a.psd_fuzz**2)  # E[r^3] = r^3 (1 + fuzz^2) for uniform radii
         self.nSpheres = int(round((1 - a.target_porosity) * self.Lx * self.Ly * a.layer / vs))
         self.H0 = a.layer * (1 - a.target_porosity) / a.cloud_fraction  # height of the two clouds together
         # clouds: lower box, an empty slab around the grid plane, upper box
-        self.gapHalf = self.r + self.rg + 0.1 * self.r
-        self.zLow0 = self.Z0 + 1.05 * self.r
+        self.gapHalf = self.rMax + self.rg + 0.1 * self.rMax
+        self.zLow0 = self.Z0 + 1.05 * self.rMax
         self.zLow1 = self.zLow0 + 0.5 * self.H0
         self.zGrid = self.zLow1 + self.gapHalf
         self.zUp0 = self.zGrid + self.gapHalf
@@ -155,7 +195,7 @@ class Params:
         ribL = self.rib / 2 if a.mid_rib else self.rib
         nRibs = 2 if a.mid_rib else 6  # the lightest node: a mid-rib node (2 half ribs) or a junction (6)
         self.mNode = nRibs * 0.5 * ribL * math.pi * self.rg**2 * a.grid_density
-        dtSph = 0.5 * self.r * math.sqrt(a.density / a.young)
+        dtSph = 0.5 * self.rMin * math.sqrt(a.density / a.young)
         dtGrid = 0.3 * math.sqrt(self.mNode / (2 * a.young * self.rg))
         self.dt0 = min(dtSph, dtGrid)
         self.stepsPerCycle = int(math.ceil(self.T / self.dt0))
@@ -282,22 +322,34 @@ class Study:
         self.top = None
         self.piston = []
         self.gridNodes = []
+        self.sub = None  # knob --subgrade-k: the spring-bed state, set by load()
 
     # --- engines, materials -------------------------------------------------------------------
-    def setup_scene(self):
+    def setup_scene(self, loading=False):
+        """Engines. loading=True (the rebuild): with --eta-roll the sphere-sphere geometry is ScGeom6D and
+        the CohFrictMat contacts go through the CohesionMoment law (README "Unmodelled-effect knobs")."""
         a, P = self.a, self.P
         O.periodic = True
         O.cell.setBox(P.Lx, P.Ly, P.Lz)
         grid = a.case == 'G'
+        roll = loading and a.eta_roll > 0
         bo1 = [Bo1_Sphere_Aabb(), Bo1_Box_Aabb(), Bo1_Facet_Aabb()]
-        ig2 = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]
+        ig2 = [Ig2_Sphere_Sphere_ScGeom6D() if roll else Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]
+        if roll and a.roll_plates:  # YADE only: ryade has no Box/Facet-Sphere ScGeom6D
+            ig2[1:] = [Ig2_Box_Sphere_ScGeom6D(), Ig2_Facet_Sphere_ScGeom6D()]
         ip2 = [Ip2_FrictMat_FrictMat_FrictPhys()]
         law2 = [Law2_ScGeom_FrictPhys_CundallStrack()]
+        if grid or roll:
+            # always_use_moment_law: non-cohesive contacts start with cohesionBroken=True;
+            # useIncrementalForm: the etaRoll limit is then irreversible (rolling plasticity). With G this
+            # functor also carries the grid bonds, so --eta-roll switches them to the incremental form too.
+            ip2 = [Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=grid, setCohesionOnNewContacts=False)] + ip2
+            law2 += [Law2_ScGeom6D_CohFrictPhys_CohesionMoment(always_use_moment_law=True, useIncrementalForm=True) if roll
+                     else Law2_ScGeom6D_CohFrictPhys_CohesionMoment()]
         if grid:
             bo1 += [Bo1_GridConnection_Aabb()]
             ig2 += [Ig2_GridNode_GridNode_GridNodeGeom6D(), Ig2_Sphere_GridConnection_ScGridCoGeom()]
-            ip2 = [Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True, setCohesionOnNewContacts=False)] + ip2
-            law2 += [Law2_ScGeom6D_CohFrictPhys_CohesionMoment(), Law2_ScGridCoGeom_FrictPhys_CundallStrack()]
+            law2 += [Law2_ScGridCoGeom_FrictPhys_CundallStrack()]
         # allowBiggerThanPeriod: the plates are 100 m wide (pitfall 1). sortAxis=2: the initial sweep
         # runs along z, where the plates are thin, so every sphere resting on a plate when the
         # collider (re)initialises gets its pair (the x sweep misses some of them).
@@ -342,7 +394,7 @@ class Study:
         nLow = P.nSpheres // 2
         for (z0, z1, n, seed) in [(P.zLow0, P.zLow1, nLow, a.seed), (P.zUp0, P.zUp1, P.nSpheres - nLow, a.seed + 100000)]:
             sp = pack.SpherePack()
-            got = sp.makeCloud((0, 0, z0), (P.Lx, P.Ly, z1), rMean=P.r, rRelFuzz=0, num=n, periodic=True, seed=seed)
+            got = sp.makeCloud((0, 0, z0), (P.Lx, P.Ly, z1), rMean=P.r, rRelFuzz=a.psd_fuzz, num=n, periodic=True, seed=seed)
             if got != n:
                 raise RuntimeError('makeCloud placed %d of %d spheres (cloud too dense)' % (got, n))
             for c, rad in sp:
@@ -506,28 +558,41 @@ class Study:
                            'mass': s.mass, 'inertia': list(s.inertia), 'blockedDOFs': s.blockedDOFs})
         P = self.P
         return {'format': 'ryade-study-specimen-1', 'source': 'yade_ref/study/study.py',
-                'params': {k: v for k, v in sorted(vars(self.a).items()) if k not in RUN_OPTIONS},
+                'params': params_dict(self.a, RUN_OPTIONS),
                 'Z0': P.Z0, 'cell': list(O.cell.size), 'iter': O.iter, 'time': O.time, 'dt': O.dt,
                 'roles': {'spheres': self.spheres, 'top': self.top, 'gridNodes': self.gridNodes},
                 'info': self.info, 'materials': mats, 'bodies': bodies}
 
     def rebuild(self, spec):
         """O.reset() and rebuild the specimen exactly (same ids, same doubles)."""
-        P = self.P
+        P, a = self.P, self.a
         O.reset()
-        self.setup_scene()
+        self.setup_scene(loading=True)
         O.cell.setBox(*spec['cell'])
         O.dt = spec['dt']
         mat = {'FrictMat': FrictMat, 'CohFrictMat': CohFrictMat}
         for m in spec['materials']:
             kw = dict(m)
+            if a.load_friction is not None and kw['label'] in ('grain', 'rib'):  # knob --load-friction
+                kw['frictionAngle'] = math.radians(a.load_friction)
+            if a.eta_roll > 0 and a.roll_plates and kw['label'] == 'grain':  # plates and piston roll-resist too
+                kw.update(self.roll_material_kw())
             O.materials.append(mat[kw.pop('class')](**kw))
+        sphereMat = None
+        if a.eta_roll > 0 and not a.roll_plates:  # knob --eta-roll: the spheres get their own CohFrictMat
+            g = [m for m in spec['materials'] if m['label'] == 'grain'][0]
+            kw = {k: g[k] for k in ('young', 'poisson', 'frictionAngle', 'density')}
+            if a.load_friction is not None:
+                kw['frictionAngle'] = math.radians(a.load_friction)
+            kw.update(self.roll_material_kw())
+            kw.pop('class')
+            sphereMat = O.materials.append(CohFrictMat(label='grainRoll', **kw))
         for bd in spec['bodies']:
             sh = bd['shape']
             if sh['class'] == 'Box':
                 b = utils.box(bd['pos'], sh['extents'], fixed=True, material=bd['material'], mask=bd['mask'])
             elif sh['class'] == 'Sphere':
-                b = utils.sphere(bd['pos'], sh['radius'], material=bd['material'], mask=bd['mask'])
+                b = utils.sphere(bd['pos'], sh['radius'], material=bd['material'] if sphereMat is None else sphereMat, mask=bd['mask'])
             elif sh['class'] == 'GridNode':
                 from yade.gridpfacet import gridNode
                 b = gridNode(bd['pos'], sh['radius'], fixed=False, material=bd['material'])
@@ -551,6 +616,25 @@ class Study:
             s.blockedDOFs = bd['blockedDOFs']
         roles = spec['roles']
         self.spheres, self.top, self.gridNodes = roles['spheres'], roles['top'], roles['gridNodes']
+        if a.grid_kn_scale != 1 or a.grid_kr_scale != 1:  # knob: geogrid bond stiffness (as calibration connect())
+            n = 0
+            for bd in spec['bodies']:
+                if bd['shape']['class'] == 'GridConnection':
+                    ph = O.interactions[bd['shape']['node1'], bd['shape']['node2']].phys
+                    ph.kn *= a.grid_kn_scale
+                    ph.ks *= a.grid_kn_scale
+                    ph.kr *= a.grid_kr_scale
+                    ph.ktw *= a.grid_kr_scale
+                    n += 1
+            if n == 0:
+                raise RuntimeError('--grid-kn-scale/--grid-kr-scale: the specimen has no grid bonds (case %s)' % a.case)
+
+    def roll_material_kw(self):
+        """CohFrictMat fields of a non-cohesive rolling-resistant material (knob --eta-roll): moments on,
+        plastic rolling limit etaRoll*R*|Fn|, no twisting moment (alphaKtw = 0), no cohesion."""
+        a = self.a
+        return {'class': 'CohFrictMat', 'isCohesive': False, 'normalCohesion': 0.0, 'shearCohesion': 0.0, 'momentRotationLaw': True,
+                'alphaKr': a.alpha_kr, 'etaRoll': a.eta_roll, 'alphaKtw': 0.0, 'etaTwist': -1.0}
 
     # --- loading ------------------------------------------------------------------------------
     def pressure(self):
@@ -576,6 +660,8 @@ class Study:
         return O.bodies[self.piston[0]].state.pos[2] + self.pistonOff
 
     def tick(self):
+        if self.sub is not None:
+            self.tick_subgrade()
         if self.phase == 'idle':
             return
         if self.phase == 'oedo':
@@ -619,8 +705,41 @@ class Study:
         if O.iter % a.steps_every == 0:
             self.steps.append([O.iter, phase, p / 1e3, self.pf / 1e3, target / 1e3, self.piston_bottom() - P.Z0, vNow])
 
+    def start_subgrade(self):
+        """Knob --subgrade-k: the bottom plate stays a kinematic (blocked) body, as the piston is, but
+        its velocity is integrated here every step from its own equation of motion
+            m_p dv/dt = F_c + P0 - K A u - c v,   u = z - z0 (z0: its position at the start of loading),
+        F_c the contact force on it (O.forces.f after NewtonIntegrator, this step's forces), K A u a
+        Winkler spring bed (A = Lx Ly), P0 = the weight of the layer (spheres and grid) so that u = 0 is
+        the equilibrium under self weight, c = 2 zeta sqrt(K A m_p) a dashpot. The velocity set here
+        is used by the next step's NewtonIntegrator (one-step lag, explicit). The same Python arithmetic
+        runs in both engines, so nothing depends on how an engine applies forces to a blocked body."""
+        a, P = self.a, self.P
+        plate = [b.id for b in O.bodies if b.shape.__class__.__name__ == 'Box' and b.id != self.top]
+        if len(plate) != 1:
+            raise RuntimeError('--subgrade-k: expected one bottom plate, found %r' % plate)
+        mLayer = sum(O.bodies[i].state.mass for i in self.spheres + self.gridNodes)
+        m = a.subgrade_mass if a.subgrade_mass is not None else 0.1 * mLayer
+        KA = a.subgrade_k * P.Lx * P.Ly
+        w = math.sqrt(KA / m)
+        if w * P.dt > 0.05:  # the plate's own spring-mass oscillation must be far below the step limit
+            raise RuntimeError('--subgrade-k: omega dt = %.3g > 0.05; raise --subgrade-mass' % (w * P.dt))
+        self.sub = {'id': plate[0], 'm': m, 'KA': KA, 'c': 2 * a.subgrade_zeta * math.sqrt(KA * m), 'P0': 9.81 * mLayer,
+                    'u': 0.0, 'v': 0.0}
+        self.info['subgrade'] = {'plate': plate[0], 'mass': m, 'KA': KA, 'c': self.sub['c'], 'P0': self.sub['P0'],
+                                 'omega_dt': w * P.dt, 'layerMass': mLayer}
+
+    def tick_subgrade(self):
+        s, dt = self.sub, self.P.dt
+        f = O.forces.f(s['id'])[2] + s['P0'] - s['KA'] * s['u'] - s['c'] * s['v']
+        s['u'] += dt * s['v']  # what NewtonIntegrator did to the plate this step
+        s['v'] += dt * f / s['m']
+        O.bodies[s['id']].state.vel = Vector3(0, 0, s['v'])
+
     def load(self):
         a, P = self.a, self.P
+        if a.subgrade_k > 0:
+            self.start_subgrade()
         tops = self.sphere_tops()
         zb = max(tops) + 0.05 * P.d
         self.piston = O.bodies.append(geom.facetCylinder((P.cx, P.cy, zb + 0.025), radius=P.D / 2, height=0.05, segmentsNumber=24,
@@ -672,7 +791,8 @@ class Study:
         P = self.P
         zb = self.piston_bottom()
         sph = [(O.bodies[i].state.pos, O.bodies[i].shape.radius) for i in self.spheres]
-        lo = (P.cx - P.D / 2, P.cy - P.D / 2, P.Z0)
+        zBot = P.Z0 + (self.sub['u'] if self.sub else 0.0)  # the plate top
+        lo = (P.cx - P.D / 2, P.cy - P.D / 2, zBot)
         hi = (P.cx + P.D / 2, P.cy + P.D / 2, zb)
         n = c['n']
         row = {'cycle': k, 'complete': 0 if self.stopped else 1, 'steps': n, 'time_s': (O.iter - self.iterSeatEnd) * P.dt,
@@ -687,6 +807,8 @@ class Study:
         if self.gridNodes:
             zs = [O.bodies[i].state.pos[2] - P.Z0 for i in self.gridNodes]
             row['grid_z_m'] = sum(zs) / len(zs)
+        if self.sub:
+            row['subgrade_mm'] = self.sub['u'] * 1e3
         return row
 
     def displacement_profile(self, ref):
@@ -792,12 +914,13 @@ if not args.generate_only:
     study.load()
     write_csv(os.path.join(args.out, 'history.csv'), study.rows,
               ['cycle', 'complete', 'steps', 'time_s', 'rut_mm', 'rut_max_mm', 'peak_kPa', 'peak_raw_kPa', 'tracking_rms_kPa',
-               'tracking_rms_raw_kPa', 'porosity_box', 'piston_z_m'] + (['grid_z_m'] if study.gridNodes else []))
+               'tracking_rms_raw_kPa', 'porosity_box', 'piston_z_m'] + (['grid_z_m'] if study.gridNodes else [])
+              + (['subgrade_mm'] if study.sub else []))
     steps = [[r[0], r[1], (r[0] - study.iterSeatEnd) * P.dt] + r[2:] for r in study.steps]
     write_csv(os.path.join(args.out, 'steps.csv'), steps,
               ['iter', 'phase', 't_s', 'p_raw_kPa', 'p_filtered_kPa', 'p_target_kPa', 'piston_z_m', 'v_mps'], '%.10g')
     write_csv(os.path.join(args.out, 'profile.csv'), study.profile)
-summary = {'params': {k: v for k, v in sorted(vars(args).items())},
+summary = {'params': params_dict(args),
            'derived': {'d': P.d, 'Lx': P.Lx, 'Ly': P.Ly, 'Lz': P.Lz, 'Z0': P.Z0, 'D': P.D, 'nSpheres': P.nSpheres, 'H0': P.H0,
                        'zGrid0': P.zGrid, 'dt': P.dt, 'stepsPerCycle': P.stepsPerCycle, 'mNode': P.mNode, 'Kp': P.Kp, 'Ki': P.Ki,
                        'alpha': P.alpha},
