@@ -52,7 +52,11 @@ pub fn read_observed(path: &Path) -> Result<Series> {
     let head: Vec<String> = rd.headers()?.iter().map(|h| h.trim().to_string()).collect();
     let col = |names: &[&str]| names.iter().find_map(|n| head.iter().position(|h| h == n));
     let c_cycle = col(&["cycle"]).with_context(|| {
-        format!("{}: no 'cycle' column (header: {})", path.display(), head.join(","))
+        format!(
+            "{}: no 'cycle' column (header: {})",
+            path.display(),
+            head.join(",")
+        )
     })?;
     let (c_rut, rut_scale) = match (col(&["rut_mm"]), col(&["rut_m"])) {
         (Some(c), _) => (c, 1.0),
@@ -70,7 +74,15 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         _ => (None, 1.0),
     };
     for h in &head {
-        let known = ["cycle", "rut_mm", "rut_m", "porosity", "porosity_box", "rebound_mm", "rebound_m"];
+        let known = [
+            "cycle",
+            "rut_mm",
+            "rut_m",
+            "porosity",
+            "porosity_box",
+            "rebound_mm",
+            "rebound_m",
+        ];
         if !known.contains(&h.as_str()) {
             bail!(
                 "{}: column '{}' is not understood (known: {}); settlement at depths is not supported yet",
@@ -88,10 +100,21 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         let num = |c: usize, what: &str| -> Result<f64> {
             let t = r.get(c).unwrap_or("").trim();
             let v: f64 = t.parse().with_context(|| {
-                format!("{}: record {}: {} '{}' is not a number", path.display(), i + 1, what, t)
+                format!(
+                    "{}: record {}: {} '{}' is not a number",
+                    path.display(),
+                    i + 1,
+                    what,
+                    t
+                )
             })?;
             if !v.is_finite() {
-                bail!("{}: record {}: {} is not finite", path.display(), i + 1, what);
+                bail!(
+                    "{}: record {}: {} is not finite",
+                    path.display(),
+                    i + 1,
+                    what
+                );
             }
             Ok(v)
         };
@@ -128,7 +151,13 @@ pub fn series_of_history(path: &Path) -> Result<Series> {
         porosity: Some(h.iter().map(|r| r.porosity_box).collect()),
         rebound_mm: Some(
             h.iter()
-                .map(|r| if r.cycle == 0 { 0.0 } else { r.rut_max_mm - r.rut_mm })
+                .map(|r| {
+                    if r.cycle == 0 {
+                        0.0
+                    } else {
+                        r.rut_max_mm - r.rut_mm
+                    }
+                })
                 .collect(),
         ),
     })
@@ -242,7 +271,11 @@ fn chi2<F: Fn(&str, usize) -> Option<f64>>(
 }
 
 /// RMS rut error [mm] over cycles.
-fn rut_rms<F: Fn(usize) -> Option<f64>>(obs: &Series, pred: F, cycles: std::ops::RangeInclusive<usize>) -> f64 {
+fn rut_rms<F: Fn(usize) -> Option<f64>>(
+    obs: &Series,
+    pred: F,
+    cycles: std::ops::RangeInclusive<usize>,
+) -> f64 {
     let mut s = 0.0;
     let mut n = 0;
     for c in cycles {
@@ -274,7 +307,12 @@ pub struct WherePart {
 pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart> {
     let mut parts = Vec::new();
     let early_end = 2.min(last);
-    let mut push = |observable: &str, phase: &str, cyc: Vec<usize>, val: &dyn Fn(&Series, usize) -> Option<f64>, base: &dyn Fn(usize) -> Option<f64>, noise: &dyn Fn(usize) -> f64| {
+    let mut push = |observable: &str,
+                    phase: &str,
+                    cyc: Vec<usize>,
+                    val: &dyn Fn(&Series, usize) -> Option<f64>,
+                    base: &dyn Fn(usize) -> Option<f64>,
+                    noise: &dyn Fn(usize) -> f64| {
         let mut x2 = 0.0;
         let mut d = 0.0;
         let mut n = 0;
@@ -309,7 +347,8 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
     // steady accumulation: rut increment per cycle after the early phase
     if last > early_end {
         let inc = |s: &Series, c: usize| Some(s.rut_mm.get(c)? - s.rut_mm.get(c - 1)?);
-        let base_inc = |c: usize| Some(lib.baseline_mean("rut_mm", c)? - lib.baseline_mean("rut_mm", c - 1)?);
+        let base_inc =
+            |c: usize| Some(lib.baseline_mean("rut_mm", c)? - lib.baseline_mean("rut_mm", c - 1)?);
         let inc_noise = |c: usize| {
             let xs: Vec<f64> = lib.baseline.iter().filter_map(|s| inc(s, c)).collect();
             let (m, sd) = crate::harness::study::mean_sd(&xs);
@@ -389,7 +428,10 @@ pub struct Diagnosis {
 pub const EVIDENCE_MARGIN: f64 = 2.0;
 
 pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagnosis> {
-    let last = obs.cycles().min(lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(0)) - 1;
+    let last = obs
+        .cycles()
+        .min(lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(0))
+        - 1;
     if lib.baseline.len() < 2 {
         bail!("the library needs at least 2 baseline seeds to estimate the seed-to-seed noise");
     }
@@ -400,7 +442,10 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
             last
         );
     }
-    let split = Split { fit_cycles, last_cycle: last };
+    let split = Split {
+        fit_cycles,
+        last_cycle: last,
+    };
     let fit = 0..=fit_cycles;
     let held = fit_cycles + 1..=last;
     let (none_chi2, n_fit) = chi2(lib, obs, |o, c| lib.baseline_mean(o, c), fit.clone());
@@ -465,7 +510,11 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
         confidence,
         heldout_rut_rms_before_mm: before,
         heldout_rut_rms_after_mm: after,
-        gap_reduction: if before > 0.0 { 1.0 - after / before } else { 0.0 },
+        gap_reduction: if before > 0.0 {
+            1.0 - after / before
+        } else {
+            0.0
+        },
     })
 }
 
@@ -534,7 +583,11 @@ mod tests {
     use super::*;
 
     fn ser(rut: &[f64]) -> Series {
-        Series { rut_mm: rut.to_vec(), porosity: None, rebound_mm: None }
+        Series {
+            rut_mm: rut.to_vec(),
+            porosity: None,
+            rebound_mm: None,
+        }
     }
 
     /// A synthetic library where the effect scales the rut linearly: the fit recovers the strength,
@@ -544,19 +597,36 @@ mod tests {
         let base = |k: f64| -> Vec<f64> { (0..8).map(|c| c as f64 * 5.0 * k).collect() };
         let mut lib = Library {
             effects: vec![
-                Effect { knob: "soft".into(), meaning: "more rut".into(), zero: 0.0, strengths: vec![0.5, 1.0] },
-                Effect { knob: "flat".into(), meaning: "no effect".into(), zero: 0.0, strengths: vec![1.0] },
+                Effect {
+                    knob: "soft".into(),
+                    meaning: "more rut".into(),
+                    zero: 0.0,
+                    strengths: vec![0.5, 1.0],
+                },
+                Effect {
+                    knob: "flat".into(),
+                    meaning: "no effect".into(),
+                    zero: 0.0,
+                    strengths: vec![1.0],
+                },
             ],
             ..Default::default()
         };
         lib.baseline = vec![ser(&base(0.95)), ser(&base(1.0)), ser(&base(1.05))];
-        lib.runs.insert(("soft".into(), 0), vec![ser(&base(1.45)), ser(&base(1.55))]);
-        lib.runs.insert(("soft".into(), 1), vec![ser(&base(1.95)), ser(&base(2.05))]);
-        lib.runs.insert(("flat".into(), 0), vec![ser(&base(0.98)), ser(&base(1.02))]);
+        lib.runs
+            .insert(("soft".into(), 0), vec![ser(&base(1.45)), ser(&base(1.55))]);
+        lib.runs
+            .insert(("soft".into(), 1), vec![ser(&base(1.95)), ser(&base(2.05))]);
+        lib.runs
+            .insert(("flat".into(), 0), vec![ser(&base(0.98)), ser(&base(1.02))]);
         let obs = ser(&base(1.7)); // strength 0.7
         let d = diagnose(&lib, &obs, 4).unwrap();
         assert_eq!(d.winner, "soft");
-        assert!((d.candidates[0].strength - 0.7).abs() < 0.01, "{}", d.candidates[0].strength);
+        assert!(
+            (d.candidates[0].strength - 0.7).abs() < 0.01,
+            "{}",
+            d.candidates[0].strength
+        );
         assert!(d.gap_reduction > 0.95);
         let d = diagnose(&lib, &ser(&base(1.0)), 4).unwrap();
         assert_eq!(d.winner, "none");
@@ -570,7 +640,11 @@ mod tests {
         std::fs::write(&p, "cycle,rut_in\n0,0\n1,1\n2,2\n").unwrap();
         let e = format!("{:#}", read_observed(&p).unwrap_err());
         assert!(e.contains("name it rut_mm or rut_m"), "{}", e);
-        std::fs::write(&p, "cycle,rut_m,porosity\n0,0,0.4\n1,0.001,0.41\n2,0.003,0.42\n").unwrap();
+        std::fs::write(
+            &p,
+            "cycle,rut_m,porosity\n0,0,0.4\n1,0.001,0.41\n2,0.003,0.42\n",
+        )
+        .unwrap();
         let s = read_observed(&p).unwrap();
         assert_eq!(s.rut_mm[2], 3.0);
         std::fs::write(&p, "cycle,rut_mm\n0,0\n2,1\n").unwrap();

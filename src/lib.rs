@@ -14,6 +14,7 @@ pub mod dispatch;
 pub mod fast;
 pub mod forces;
 pub mod gap;
+pub mod gap_run;
 pub mod geogrid;
 pub mod geom;
 pub mod harness;

@@ -166,6 +166,52 @@ enum Cmd {
         #[arg(long)]
         no_plot: bool,
     },
+    /// Sim-to-real gap diagnosis: where a model departs from an observed history, which unmodelled
+    /// effect explains it, how far adding it closes the gap on held-out cycles (yade_ref/gap/README.md).
+    Gap {
+        /// Observed history CSV (cycle, rut_mm|rut_m [, porosity, rebound_mm|rebound_m])
+        #[arg(long)]
+        observed: Option<PathBuf>,
+        /// Diagnose every case of a blind dataset DIR (cases/ and, read only after diagnosing, truth/)
+        #[arg(long)]
+        validate: Option<PathBuf>,
+        /// Build the library of simulated runs (baseline seeds + each effect at its strengths)
+        #[arg(long)]
+        make_library: bool,
+        /// Make blind datasets with Debian YADE in DIR (hidden effects, truth stored apart)
+        #[arg(long)]
+        make_observed: Option<PathBuf>,
+        #[arg(long, default_value = "r07")]
+        scenario: String,
+        #[arg(long, default_value = "G")]
+        case: String,
+        #[arg(long, default_value = "tiny")]
+        size: String,
+        /// Load cycles of every library / dataset run
+        #[arg(long, default_value_t = 6)]
+        cycles: u32,
+        /// Cycles 1..K are fitted, the later ones held out
+        #[arg(long, default_value_t = 3)]
+        fit_cycles: usize,
+        /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>)
+        #[arg(long)]
+        library: Option<PathBuf>,
+        #[arg(long, default_value_t = 6)]
+        baseline_seeds: u32,
+        #[arg(long, default_value_t = 3)]
+        effect_seeds: u32,
+        /// Blind datasets to make
+        #[arg(long, default_value_t = 12)]
+        n: usize,
+        /// Seed of the hidden-effect draw
+        #[arg(long, default_value_t = 2026)]
+        seed: u32,
+        /// Report directory for --observed
+        #[arg(long, default_value = "gap_out")]
+        out: PathBuf,
+        #[arg(short = 'j', long)]
+        jobs: Option<usize>,
+    },
     /// Run a scene file (*.scene.json) and record every step in the golden format.
     Scene {
         file: PathBuf,
@@ -474,6 +520,92 @@ fn run(cli: Cli) -> Result<ExitCode> {
             } else {
                 ExitCode::from(1)
             })
+        }
+        Cmd::Gap {
+            observed,
+            validate,
+            make_library,
+            make_observed,
+            scenario,
+            case,
+            size,
+            cycles,
+            fit_cycles,
+            library,
+            baseline_seeds,
+            effect_seeds,
+            n,
+            seed,
+            out,
+            jobs,
+        } => {
+            use ryade::harness::{study, study_run};
+            use ryade::{gap, gap_run};
+            let ratio = study::parse_scenario(&scenario)?;
+            let cases = study::parse_cases(&case)?;
+            if cases.len() != 1 {
+                bail!("--case takes one case (N, G or F)");
+            }
+            study::check_size(&size)?;
+            let root = study_run::repo_root();
+            let jobs = jobs.unwrap_or_else(cores);
+            let lib_dir = library.unwrap_or_else(|| {
+                PathBuf::from("gap_lib")
+                    .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
+            });
+            if let Some(d) = make_observed {
+                gap_run::make_observed(&root, &d, ratio, cases[0], &size, cycles, n, seed, jobs)?;
+                println!(
+                    "blind datasets in {}/cases (truth apart in {}/truth)",
+                    d.display(),
+                    d.display()
+                );
+                return Ok(ExitCode::SUCCESS);
+            }
+            if make_library || !lib_dir.join("library.json").is_file() {
+                let b: Vec<u32> = (1..=baseline_seeds).collect();
+                let e: Vec<u32> = (1..=effect_seeds).collect();
+                gap_run::make_library(
+                    &root, &lib_dir, ratio, cases[0], &size, cycles, &b, &e, jobs,
+                )?;
+            }
+            let (_, lib) = gap_run::load_library(&lib_dir)?;
+            if let Some(d) = validate {
+                let scores = gap_run::validate(&d, &lib, fit_cycles)?;
+                let table = gap_run::format_scores(&scores);
+                print!("{}", table);
+                std::fs::write(d.join("validation.md"), &table)?;
+                std::fs::write(
+                    d.join("validation.json"),
+                    serde_json::to_string_pretty(&scores)?,
+                )?;
+                return Ok(ExitCode::SUCCESS);
+            }
+            if let Some(f) = observed {
+                let obs = gap::read_observed(&f)?;
+                let d = gap::diagnose(&lib, &obs, fit_cycles)?;
+                std::fs::create_dir_all(&out)?;
+                let name = f.display().to_string();
+                let md = gap::report_markdown(&name, &d, &lib);
+                std::fs::write(out.join("report.md"), &md)?;
+                std::fs::write(out.join("report.json"), serde_json::to_string_pretty(&d)?)?;
+                gap_run::write_plot_data(&out, &lib, &obs, &d)?;
+                study_run::figures(&[
+                    "gap",
+                    &out.join("plot.csv").display().to_string(),
+                    &out.join("report.png").display().to_string(),
+                ]);
+                print!("{}", md);
+                println!("report: {}/report.{{md,json,png}}", out.display());
+                return Ok(ExitCode::SUCCESS);
+            }
+            if !make_library {
+                bail!(
+                    "give --observed FILE, --validate DIR, --make-library or --make-observed DIR"
+                );
+            }
+            println!("library in {}", lib_dir.display());
+            Ok(ExitCode::SUCCESS)
         }
         Cmd::Scene { file, steps, out } => {
             let sf = scene_json::load(&file)?;

@@ -135,11 +135,40 @@ def study(hist_csv, sdr_csv, outdir):
     fig.savefig(os.path.join(outdir, 'fig_sdr.png'), dpi=110)
 
 
+def gap(plot_csv, png):
+    plt = _plt()
+    rows = _rows(plot_csv)
+    obs = [o for o in ('rut_mm', 'porosity', 'rebound_mm') if any(r['observable'] == o for r in rows)]
+    names = {'rut_mm': 'rut [mm]', 'porosity': 'porosity under the piston', 'rebound_mm': 'resilient rebound [mm]'}
+    fig, axes = plt.subplots(1, len(obs), figsize=(4.5 * len(obs), 4), squeeze=False)
+    for j, o in enumerate(obs):
+        ax = axes[0][j]
+        rr = [r for r in rows if r['observable'] == o]
+        c = [int(r['cycle']) for r in rr]
+        m = [_f(r['model_mean']) for r in rr]
+        sd = [_f(r['model_sd']) for r in rr]
+        ax.fill_between(c, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)], color='0.85',
+                        label="today's model (mean +- seed sd)")
+        ax.plot(c, m, '-', color='0.4')
+        ax.plot(c, [_f(r['observed']) for r in rr], 'ko', label='observed')
+        w = [_f(r['winner']) for r in rr]
+        if any(x == x for x in w):
+            ax.plot(c, w, 'r--', label='with the winning effect (fitted)')
+        ax.axvline(float(rr[0]['fit_cycles']) + 0.5, color='tab:blue', ls=':', label='fit | held out')
+        ax.set_xlabel('cycle')
+        ax.set_ylabel(names[o])
+        ax.grid(alpha=0.3)
+        if j == 0:
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
 def main(argv):
-    if not argv or argv[0] not in ('diff', 'profile', 'study'):
+    if not argv or argv[0] not in ('diff', 'profile', 'study', 'gap'):
         sys.stderr.write(__doc__)
         return 2
-    {'diff': diff, 'profile': profile, 'study': study}[argv[0]](*argv[1:])
+    {'diff': diff, 'profile': profile, 'study': study, 'gap': gap}[argv[0]](*argv[1:])
     return 0
 
 
