@@ -126,6 +126,10 @@ def study(hist_csv, sdr_csv, outdir):
                         label='d/a = %s (%s%s)' % (ra, eng, ', %s seeds' % rr[0]['n_seeds'] if several else ''))
     ax.axhline(0, color='0.6', lw=0.8)
     ax.axhline(1, color='0.6', lw=0.8)
+    # the ratio explodes where F and N rut alike (small denominators): show the meaningful range
+    ax.set_ylim(-1.5, 2.5)
+    ax.text(0.01, 0.01, 'axis clipped to [-1.5, 2.5]; values in sdr.csv', transform=ax.transAxes, fontsize=7,
+            color='0.4')
     ax.set_xlabel('cycle')
     ax.set_ylabel('surface displacement ratio (G-N)/(F-N)')
     ax.set_title('Surface displacement ratio (paper Eq 1, Fig 6)')
