@@ -8,8 +8,9 @@
 //! is the seed-mean interpolated linearly between library strengths, so one diagnosis costs no new
 //! simulation once the library exists, and one library serves every observation of that scenario.
 //!
-//! Statistics: the noise of one realisation is the baseline ensemble's seed-to-seed sd per cycle and
-//! observable (floored); each effect's strength is fitted by least squares on the first cycles
+//! Statistics: the noise of one realisation is the seed-to-seed sd per cycle and observable, pooled
+//! over every library group (baseline and each effect strength; floored); the rut enters as its
+//! increment per cycle (the cumulative rut is strongly correlated from cycle to cycle); each effect's strength is fitted by least squares on the first cycles
 //! (`fit_cycles`), its evidence is BIC = chi2 + ln(n) against the baseline's chi2 (no parameter), the
 //! confidence is the BIC weight, and the gap before/after is measured on the later (held-out) cycles.
 
@@ -194,17 +195,46 @@ fn mean_at(v: &[Series], obs: &str, c: usize) -> Option<f64> {
 }
 
 impl Library {
-    /// Seed-to-seed sd of one realisation, per cycle, floored (2 % of |mean| + an absolute floor) so
-    /// that a cycle where all seeds agree does not get infinite weight.
+    /// Every group of runs that differ only by seed (baseline, each effect at each strength).
+    fn groups(&self) -> impl Iterator<Item = &Vec<Series>> {
+        std::iter::once(&self.baseline).chain(self.runs.values())
+    }
+
+    /// Seed-to-seed sd of one realisation of `x(series)`, pooled over every library group with at
+    /// least 2 seeds (the scatter of one run is not only today's model's), floored.
+    fn pooled_sd<F: Fn(&Series) -> Option<f64>>(&self, x: F) -> f64 {
+        let (mut ss, mut dof) = (0.0, 0.0);
+        for g in self.groups() {
+            let v: Vec<f64> = g.iter().filter_map(&x).collect();
+            if v.len() >= 2 {
+                let (_, sd) = crate::harness::study::mean_sd(&v);
+                ss += sd * sd * (v.len() - 1) as f64;
+                dof += (v.len() - 1) as f64;
+            }
+        }
+        if dof > 0.0 {
+            (ss / dof).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Noise of one realisation of observable `obs` at cycle c: the pooled seed-to-seed sd, floored
+    /// at 2 % of the baseline mean and an absolute floor (0.2 mm, 0.001 porosity).
     pub fn noise(&self, obs: &str, c: usize) -> f64 {
-        let xs: Vec<f64> = self
-            .baseline
-            .iter()
-            .filter_map(|s| s.get(obs).and_then(|x| x.get(c)).copied())
-            .collect();
-        let (m, sd) = crate::harness::study::mean_sd(&xs);
+        let sd = self.pooled_sd(|s| s.get(obs).and_then(|x| x.get(c)).copied());
+        let m = self.baseline_mean(obs, c).unwrap_or(0.0);
         let abs_floor = if obs == "porosity" { 1e-3 } else { 0.2 };
         sd.max(0.02 * m.abs()).max(abs_floor)
+    }
+
+    /// The same for the rut increment of cycle c (floored at 5 % of the mean increment and 0.2 mm).
+    pub fn increment_noise(&self, c: usize) -> f64 {
+        let inc = |s: &Series| Some(s.rut_mm.get(c)? - s.rut_mm.get(c.checked_sub(1)?)?);
+        let sd = self.pooled_sd(inc);
+        let xs: Vec<f64> = self.baseline.iter().filter_map(inc).collect();
+        let (m, _) = crate::harness::study::mean_sd(&xs);
+        sd.max(0.05 * m.abs()).max(0.2)
     }
 
     /// Prediction of effect `e` at strength `s` (linear between library strengths; 0 = baseline).
@@ -246,10 +276,10 @@ pub struct Split {
     pub last_cycle: usize,
 }
 
-fn chi2<F: Fn(&str, usize) -> Option<f64>>(
+fn chi2<F: Fn(&str, usize) -> Option<f64> + ?Sized>(
     lib: &Library,
     obs: &Series,
-    pred: F,
+    pred: &F,
     cycles: std::ops::RangeInclusive<usize>,
 ) -> (f64, usize) {
     let mut x2 = 0.0;
@@ -257,14 +287,26 @@ fn chi2<F: Fn(&str, usize) -> Option<f64>>(
     for o in OBSERVABLES {
         let Some(ov) = obs.get(o) else { continue };
         for c in cycles.clone() {
-            if c >= ov.len() {
+            if c >= ov.len() || c == 0 {
                 continue;
             }
-            if let Some(p) = pred(o, c) {
-                let r = (ov[c] - p) / lib.noise(o, c);
-                x2 += r * r;
-                n += 1;
-            }
+            // the rut is cumulative, so successive cycles are strongly correlated: compare its
+            // increment per cycle (nearly independent), with the ensemble's sd of increments
+            let r = if o == "rut_mm" {
+                match (pred(o, c), pred(o, c - 1)) {
+                    (Some(p1), Some(p0)) => {
+                        ((ov[c] - ov[c - 1]) - (p1 - p0)) / lib.increment_noise(c)
+                    }
+                    _ => continue,
+                }
+            } else {
+                match pred(o, c) {
+                    Some(p) => (ov[c] - p) / lib.noise(o, c),
+                    None => continue,
+                }
+            };
+            x2 += r * r;
+            n += 1;
         }
     }
     (x2, n)
@@ -410,6 +452,8 @@ pub struct Candidate {
 #[derive(Clone, Debug, Serialize)]
 pub struct Diagnosis {
     pub split: Split,
+    /// Leave-one-out calibration of the noise model on today's model (every chi2 is divided by it).
+    pub noise_inflation: f64,
     pub where_parts: Vec<WherePart>,
     pub dominant_part: String,
     pub candidates: Vec<Candidate>,
@@ -448,7 +492,36 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
     };
     let fit = 0..=fit_cycles;
     let held = fit_cycles + 1..=last;
-    let (none_chi2, n_fit) = chi2(lib, obs, |o, c| lib.baseline_mean(o, c), fit.clone());
+    // Calibrate the noise model on today's model itself: leave each baseline seed out, compare it
+    // with the mean of the others; the mean chi2 per observation (>= 1) inflates every chi2 below.
+    let mut ratios = Vec::new();
+    for i in 0..lib.baseline.len() {
+        let others: Vec<Series> = lib
+            .baseline
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != i)
+            .map(|(_, s)| s.clone())
+            .collect();
+        let (x2, n) = chi2(
+            lib,
+            &lib.baseline[i],
+            &|o, c| mean_at(&others, o, c),
+            fit.clone(),
+        );
+        if n > 0 {
+            // the left-out seed is compared with a mean of K-1 seeds: its expected chi2 is
+            // n (1 + 1/(K-1)) for a right noise model
+            ratios.push(x2 / (n as f64 * (1.0 + 1.0 / others.len() as f64)));
+        }
+    }
+    let inflation = crate::harness::study::mean_sd(&ratios).0.max(1.0);
+    let chi2 =
+        |o: &Series, p: &dyn Fn(&str, usize) -> Option<f64>, r: std::ops::RangeInclusive<usize>| {
+            let (x2, n) = chi2(lib, o, p, r);
+            (x2 / inflation, n)
+        };
+    let (none_chi2, n_fit) = chi2(obs, &|o, c| lib.baseline_mean(o, c), fit.clone());
     let none_bic = none_chi2;
     let before = rut_rms(obs, |c| lib.baseline_mean("rut_mm", c), held.clone());
     let mut cands = Vec::new();
@@ -458,7 +531,7 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
         let mut best = (f64::INFINITY, 0.0, 0);
         for k in 0..=400 {
             let s = lo + (hi - lo) * k as f64 / 400.0;
-            let (x2, n) = chi2(lib, obs, |o, c| lib.predict(e, s, o, c), fit.clone());
+            let (x2, n) = chi2(obs, &|o, c| lib.predict(e, s, o, c), fit.clone());
             if x2 < best.0 {
                 best = (x2, s, n);
             }
@@ -501,6 +574,7 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
     let _ = n_fit;
     Ok(Diagnosis {
         split,
+        noise_inflation: inflation,
         where_parts: wp,
         dominant_part,
         candidates: cands,
@@ -522,11 +596,12 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
 pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
     let mut s = format!("# Gap diagnosis: {}\n\n", name);
     s += &format!(
-        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the baseline ensemble's seed-to-seed sd ({} seeds).\n\n",
+        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the seed-to-seed sd pooled over the library's groups ({} baseline seeds), inflated by {:.2} (leave-one-out calibration on today's model).\n\n",
         d.split.fit_cycles,
         d.split.fit_cycles + 1,
         d.split.last_cycle,
-        lib.baseline.len()
+        lib.baseline.len(),
+        d.noise_inflation
     );
     s += "## Where the model departs (today's model vs observed)\n\n| observable | phase | cycles | mean (obs - model) | chi2 | share |\n|---|---|---|---|---|---|\n";
     for p in &d.where_parts {

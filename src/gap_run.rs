@@ -79,6 +79,15 @@ fn generates(k: &str) -> bool {
     k == "grading"
 }
 
+/// The study case every run of a library or dataset shares.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    pub ratio: u8,
+    pub case: char,
+    pub size: String,
+    pub cycles: u32,
+}
+
 /// One table line.
 #[derive(Clone, Debug)]
 struct Line {
@@ -159,14 +168,12 @@ pub struct LibraryIndex {
 pub fn make_library(
     root: &Path,
     dir: &Path,
-    ratio: u8,
-    case: char,
-    size: &str,
-    cycles: u32,
+    sc: &Scenario,
     baseline_seeds: &[u32],
     effect_seeds: &[u32],
     jobs: usize,
 ) -> Result<()> {
+    let (ratio, case, size, cycles) = (sc.ratio, sc.case, sc.size.as_str(), sc.cycles);
     std::fs::create_dir_all(dir)?;
     let dir = dir.canonicalize()?;
     let spec = |s: u32| {
@@ -295,14 +302,12 @@ pub struct Truth {
 pub fn make_observed(
     root: &Path,
     dir: &Path,
-    ratio: u8,
-    case: char,
-    size: &str,
-    cycles: u32,
+    sc: &Scenario,
     n: usize,
     seed: u32,
     jobs: usize,
 ) -> Result<()> {
+    let (ratio, case, size, cycles) = (sc.ratio, sc.case, sc.size.as_str(), sc.cycles);
     use rand_mt::Mt19937GenRand32 as Mt;
     std::fs::create_dir_all(dir.join("runs"))?;
     std::fs::create_dir_all(dir.join("truth"))?;

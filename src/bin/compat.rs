@@ -191,7 +191,7 @@ enum Cmd {
         #[arg(long, default_value_t = 6)]
         cycles: u32,
         /// Cycles 1..K are fitted, the later ones held out
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 4)]
         fit_cycles: usize,
         /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>)
         #[arg(long)]
@@ -549,12 +549,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
             study::check_size(&size)?;
             let root = study_run::repo_root();
             let jobs = jobs.unwrap_or_else(cores);
+            let sc = gap_run::Scenario {
+                ratio,
+                case: cases[0],
+                size: size.clone(),
+                cycles,
+            };
             let lib_dir = library.unwrap_or_else(|| {
                 PathBuf::from("gap_lib")
                     .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
             });
             if let Some(d) = make_observed {
-                gap_run::make_observed(&root, &d, ratio, cases[0], &size, cycles, n, seed, jobs)?;
+                gap_run::make_observed(&root, &d, &sc, n, seed, jobs)?;
                 println!(
                     "blind datasets in {}/cases (truth apart in {}/truth)",
                     d.display(),
@@ -565,9 +571,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if make_library || !lib_dir.join("library.json").is_file() {
                 let b: Vec<u32> = (1..=baseline_seeds).collect();
                 let e: Vec<u32> = (1..=effect_seeds).collect();
-                gap_run::make_library(
-                    &root, &lib_dir, ratio, cases[0], &size, cycles, &b, &e, jobs,
-                )?;
+                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
             }
             let (_, lib) = gap_run::load_library(&lib_dir)?;
             if let Some(d) = validate {

@@ -25,7 +25,7 @@ else:
 for pair in [p for p in T.effects.split(',') if p]:
     k, v = pair.split('=', 1)
     argv += ['--' + k.strip().replace('_', '-'), v.strip()]
-here = os.path.dirname(os.path.abspath(__file__))
+here = os.path.dirname(os.path.abspath(sys.argv[0]))  # YADE's -x sets argv[0], not __file__
 study = os.path.join(here, '..', 'study', 'study.py')
 sys.argv = [study] + argv
 print('[gap] study.py ' + ' '.join(argv), flush=True)
