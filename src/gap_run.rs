@@ -395,6 +395,22 @@ pub fn make_observed(
     Ok(())
 }
 
+/// Signal-to-noise of the dominant hidden effect: its surrogate shift of the final rut over the noise
+/// of one realisation there. Below 2 the effect is not detectable from one run, whatever the method.
+pub fn detectability(lib: &Library, t: &Truth) -> f64 {
+    let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
+    let base = lib.baseline_mean("rut_mm", last).unwrap_or(0.0);
+    let dom = dominant_truth(lib, t);
+    t.effects
+        .iter()
+        .find(|(k, _)| *k == dom)
+        .and_then(|(k, s)| {
+            let e = lib.effects.iter().find(|e| &e.knob == k)?;
+            Some((lib.predict(e, *s, "rut_mm", last)? - base).abs() / lib.noise("rut_mm", last))
+        })
+        .unwrap_or(0.0)
+}
+
 /// Dominant hidden effect: the one whose surrogate prediction alone moves the final rut most.
 pub fn dominant_truth(lib: &Library, t: &Truth) -> String {
     let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
@@ -418,6 +434,8 @@ pub struct CaseScore {
     pub case: String,
     pub truth: Vec<(String, f64)>,
     pub dominant_truth: String,
+    /// Surrogate shift of the final rut by the dominant effect / noise of one run.
+    pub detectability: f64,
     pub named: String,
     pub confidence: f64,
     pub correct: bool,
@@ -470,6 +488,7 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             case: n.clone(),
             truth: t.effects.clone(),
             dominant_truth: dom.clone(),
+            detectability: detectability(lib, &t),
             named: d.winner.clone(),
             confidence: d.confidence,
             correct: d.winner == dom,
@@ -485,10 +504,10 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
 }
 
 pub fn format_scores(s: &[CaseScore]) -> String {
-    let mut t = String::from("| case | hidden effects (strength) | dominant | named (confidence) | fitted strength (rel. error) | held-out gap reduction |\n|---|---|---|---|---|---|\n");
+    let mut t = String::from("| case | hidden effects (strength) | dominant | detectability (shift / noise) | named (confidence) | fitted strength (rel. error) | held-out gap reduction |\n|---|---|---|---|---|---|---|\n");
     for c in s {
         t += &format!(
-            "| {} | {} | {} | {} {} ({:.2}) | {} | {:.0} % |\n",
+            "| {} | {} | {} | {:.1} | {} {} ({:.2}) | {} | {:.0} % |\n",
             c.case,
             c.truth
                 .iter()
@@ -496,6 +515,7 @@ pub fn format_scores(s: &[CaseScore]) -> String {
                 .collect::<Vec<_>>()
                 .join(", "),
             c.dominant_truth,
+            c.detectability,
             if c.correct { "yes:" } else { "NO:" },
             c.named,
             c.confidence,
@@ -519,6 +539,15 @@ pub fn format_scores(s: &[CaseScore]) -> String {
     };
     let mut errs: Vec<f64> = s.iter().filter_map(|c| c.strength_error).collect();
     errs.sort_by(|a, b| a.total_cmp(b));
+    let det: Vec<&CaseScore> = s.iter().filter(|c| c.detectability >= 2.0).collect();
+    let mut det_red: Vec<f64> = det.iter().map(|c| c.gap_reduction).collect();
+    det_red.sort_by(|a, b| a.total_cmp(b));
+    t += &format!(
+        "\nDetectable cases (dominant effect shifts the final rut by >= 2 noise sd): {}; named correctly: {}; median held-out gap reduction: {}\n",
+        det.len(),
+        det.iter().filter(|c| c.correct).count(),
+        if det_red.is_empty() { "-".to_string() } else { format!("{:.0} %", 100.0 * det_red[det_red.len() / 2]) }
+    );
     t += &format!(
         "\nDominant effect named correctly: {}/{} ({:.0} %); median held-out gap reduction: {:.0} %; median relative strength error (correct cases): {}\n",
         correct as usize,
