@@ -2,7 +2,9 @@
 # E=1e8, friction 30 deg, Cundall-Strack, damping 0.2) compacted to 100 kPa mean stress, relaxed with the
 # cell held fixed until it is static and still at ~100 kPa, then exported (17 digits) as a ryade scene
 # file so that YADE and ryade time the very same loaded state.
-#   yade -n -x yade_ref/bench/make_dense.py OUT.scene.json [NUM]
+#   yade -n -x yade_ref/bench/make_dense.py OUT.scene.json [NUM] [FROM.scene.json]
+# With FROM, step 1 is skipped: the spheres, cell and engines are read from that scene file (a
+# state exported after step 1, e.g. the earlier export of this script), then steps 2-3 run.
 # Steps:
 #  1. makeCloud at solid fraction ~0.24, PeriIsoCompressor to 100 kPa (keepProportions);
 #  2. loop: cell frozen (velGrad = 0), velocities zeroed, 2,000 relaxation steps; the mean stress
@@ -23,15 +25,34 @@ r = 0.01
 O.periodic = True
 mat = O.materials.append(FrictMat(young=1e8, poisson=0.25, frictionAngle=radians(30), density=2650))
 L = (num * 4.18879 * r**3 / 0.24)**(1. / 3)   # cloud at solid fraction ~0.24 (makeCloud's limit)
-sp = pack.SpherePack()
-n = sp.makeCloud((0, 0, 0), (L, L, L), rMean=r, rRelFuzz=0.3, num=num, periodic=True, seed=1)
-sp.toSimulation(material=mat)
-O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
-             InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
-             PeriIsoCompressor(charLen=2 * r, stresses=[-target], maxUnbalanced=1e-2, doneHook='O.pause()', globalUpdateInt=20,
-                               keepProportions=True, label='comp'),
-             NewtonIntegrator(damping=0.2)]
-O.dt = 0.5 * PWaveTimeStep()
+src = sys.argv[3] if len(sys.argv) > 3 else None
+if src is None:
+    sp = pack.SpherePack()
+    n = sp.makeCloud((0, 0, 0), (L, L, L), rMean=r, rRelFuzz=0.3, num=num, periodic=True, seed=1)
+    sp.toSimulation(material=mat)
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 PeriIsoCompressor(charLen=2 * r, stresses=[-target], maxUnbalanced=1e-2, doneHook='O.pause()', globalUpdateInt=20,
+                                   keepProportions=True, label='comp'),
+                 NewtonIntegrator(damping=0.2)]
+    O.dt = 0.5 * PWaveTimeStep()
+else:
+    d0 = json.load(open(src))
+    h = d0['cell_hsize']
+    O.cell.hSize = Matrix3(*[h[i][j] for i in range(3) for j in range(3)])
+    for b in d0['bodies']:
+        body = utils.sphere(Vector3(*b['pos']), b['shape']['radius'], material=mat)
+        body.state.vel, body.state.angVel = Vector3(*b['vel']), Vector3(*b['angVel'])
+        w, x, y, z = b['ori']
+        body.state.ori = Quaternion(w, x, y, z)
+        body.state.mass, body.state.inertia = b['mass'], Vector3(*b['inertia'])
+        O.bodies.append(body)
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(damping=0.2)]
+    O.dt = d0['dt']
+    n = len(O.bodies)
+    print('read %d spheres from %s, dt %g' % (n, src, O.dt))
 
 
 def mean_stress():
@@ -40,7 +61,8 @@ def mean_stress():
 
 
 t0 = time.time()
-O.run(200000, True)
+if src is None:
+    O.run(200000, True)
 print('compressor done: %d iterations, %.0f s, cell %s, porosity %.4f, mean stress %.4g, unbalanced %.3g'
       % (O.iter, time.time() - t0, O.cell.size, utils.porosity(), mean_stress(), unbalancedForce()))
 sys.stdout.flush()
