@@ -744,17 +744,7 @@ impl FastSim {
                         t[m] = tk;
                     }
                     let e = k0 + x.len();
-                    integrate(
-                        &cfg,
-                        &inert[k0..e],
-                        f,
-                        t,
-                        x,
-                        v,
-                        w,
-                        q,
-                        &x_ref[k0..e],
-                    )
+                    integrate(&cfg, &inert[k0..e], f, t, x, v, w, q, &x_ref[k0..e])
                 })
                 .reduce(|| 0.0, f64::max)
         };
