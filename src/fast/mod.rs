@@ -46,7 +46,7 @@ impl Default for FastOptions {
     fn default() -> Self {
         FastOptions {
             threads: 1,
-            skin: 0.1,
+            skin: 0.3,
         }
     }
 }
