@@ -17,6 +17,9 @@ fn main() {
     let path = args.next().expect("SCENE.json");
     let n: u64 = args.next().map_or(500, |s| s.parse().unwrap());
     let threads: usize = args.next().map_or(1, |s| s.parse().unwrap());
+    let skin: f64 = args
+        .next()
+        .map_or(FastOptions::default().skin, |s| s.parse().unwrap());
     let s0 = ryade::io::scene_json::load(std::path::Path::new(&path))
         .unwrap()
         .scene;
@@ -44,10 +47,7 @@ fn main() {
     for (e, t) in s.engines.iter().zip(&per_engine) {
         println!("  {:24} {:.3} ms/step", e.class_name(), 1e3 * t / n as f64);
     }
-    let opt = FastOptions {
-        threads,
-        ..FastOptions::default()
-    };
+    let opt = FastOptions { threads, skin };
     let mut f = FastSim::from_scene(&s0, opt).unwrap();
     f.run(20);
     let (t0, w0) = (cpu(), std::time::Instant::now());

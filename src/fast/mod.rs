@@ -122,8 +122,112 @@ struct View<'a> {
 }
 
 /// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
-/// the bodies from `lo`. Body i's sums stay in registers while its pairs last.
+/// the bodies from `lo`. Body i's sums stay in registers while its pairs last. Compiled twice: for
+/// the baseline target and with AVX2 (chosen at run time). Neither lets the compiler contract or
+/// reorder floating-point operations, so both give the same bits.
 fn chunk_forces(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { chunk_forces_avx2(v, pairs, cs, f, t, lo) };
+    }
+    chunk_forces_impl(v, pairs, cs, f, t, lo)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn chunk_forces_avx2(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+) {
+    chunk_forces_impl(v, pairs, cs, f, t, lo)
+}
+
+/// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
+/// Dispatched like `chunk_forces`.
+#[allow(clippy::too_many_arguments)]
+fn integrate(
+    cfg: &newton::Cfg,
+    inert: &[newton::Inert],
+    f: &[V3],
+    t: &[V3],
+    x: &mut [V3],
+    v: &mut [V3],
+    w: &mut [V3],
+    q: &mut [Quat],
+    x_ref: &[V3],
+) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { integrate_avx2(cfg, inert, f, t, x, v, w, q, x_ref) };
+    }
+    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn integrate_avx2(
+    cfg: &newton::Cfg,
+    inert: &[newton::Inert],
+    f: &[V3],
+    t: &[V3],
+    x: &mut [V3],
+    v: &mut [V3],
+    w: &mut [V3],
+    q: &mut [Quat],
+    x_ref: &[V3],
+) -> f64 {
+    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn integrate_impl(
+    cfg: &newton::Cfg,
+    inert: &[newton::Inert],
+    f: &[V3],
+    t: &[V3],
+    x: &mut [V3],
+    v: &mut [V3],
+    w: &mut [V3],
+    q: &mut [Quat],
+    x_ref: &[V3],
+) -> f64 {
+    let n = x.len();
+    let (inert, f, t, v, w, q, x_ref) = (
+        &inert[..n],
+        &f[..n],
+        &t[..n],
+        &mut v[..n],
+        &mut w[..n],
+        &mut q[..n],
+        &x_ref[..n],
+    );
+    let mut md: f64 = 0.0;
+    for k in 0..n {
+        let d = newton::body(
+            cfg, &inert[k], f[k], t[k], &mut x[k], &mut v[k], &mut w[k], &mut q[k], &x_ref[k],
+        );
+        md = md.max(d);
+    }
+    md
+}
+
+#[inline(always)]
+fn chunk_forces_impl(
     v: &View,
     pairs: &[Pair],
     cs: &mut [Contact],
@@ -548,29 +652,30 @@ impl FastSim {
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         let cfg = self.cfg;
-        let mut md: f64 = 0.0;
-        for k in 0..self.pos.len() {
-            let d = newton::body(
-                &cfg,
-                &self.inert[k],
-                self.force[k],
-                self.torque[k],
-                &mut self.pos[k],
-                &mut self.vel[k],
-                &mut self.ang_vel[k],
-                &mut self.ori[k],
-                &self.x_ref[k],
-            );
-            md = md.max(d);
-        }
-        self.max_disp2 = md;
+        self.max_disp2 = integrate(
+            &cfg,
+            &self.inert,
+            &self.force,
+            &self.torque,
+            &mut self.pos,
+            &mut self.vel,
+            &mut self.ang_vel,
+            &mut self.ori,
+            &self.x_ref,
+        );
         self.timing.newton += t1.elapsed().as_secs_f64();
     }
 
+    /// One rayon `install` per step: both parallel phases run inside it.
     fn step_parallel(&mut self) {
+        let pool = self.pool.take().expect("thread pool");
+        pool.install(|| self.step_parallel_phases());
+        self.pool = Some(pool);
+    }
+
+    fn step_parallel_phases(&mut self) {
         let t0 = std::time::Instant::now();
         let dt = self.cfg.dt;
-        let pool = self.pool.as_ref().unwrap();
         // contact phase: each chunk into its own buffers
         {
             let mut slices: Vec<&mut [Contact]> = Vec::with_capacity(self.chunks.len());
@@ -591,7 +696,7 @@ impl FastSim {
                 dt,
             };
             let pairs = &self.pairs;
-            pool.install(|| {
+            {
                 self.chunks
                     .par_iter_mut()
                     .zip(slices.into_par_iter())
@@ -605,7 +710,7 @@ impl FastSim {
                             ch.lo,
                         );
                     });
-            });
+            }
         }
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
@@ -615,7 +720,7 @@ impl FastSim {
         let cfg = self.cfg;
         let chunks = &self.chunks;
         let (inert, x_ref) = (&self.inert, &self.x_ref);
-        let md = pool.install(|| {
+        let md = {
             self.pos
                 .par_chunks_mut(block)
                 .zip(self.vel.par_chunks_mut(block))
@@ -625,9 +730,9 @@ impl FastSim {
                 .zip(self.torque.par_chunks_mut(block))
                 .enumerate()
                 .map(|(bi, (((((x, v), w), q), f), t))| {
-                    let mut md: f64 = 0.0;
+                    let k0 = bi * block;
                     for m in 0..x.len() {
-                        let k = bi * block + m;
+                        let k = k0 + m;
                         let (mut fk, mut tk) = ([0.0; 3], [0.0; 3]);
                         for ch in chunks {
                             if k >= ch.lo && k < ch.hi {
@@ -637,16 +742,12 @@ impl FastSim {
                         }
                         f[m] = fk;
                         t[m] = tk;
-                        let d = newton::body(
-                            &cfg, &inert[k], fk, tk, &mut x[m], &mut v[m], &mut w[m], &mut q[m],
-                            &x_ref[k],
-                        );
-                        md = md.max(d);
                     }
-                    md
+                    let e = k0 + x.len();
+                    integrate(&cfg, &inert[k0..e], f, t, x, v, w, q, &x_ref[k0..e])
                 })
                 .reduce(|| 0.0, f64::max)
-        });
+        };
         self.max_disp2 = md;
         self.timing.newton += t1.elapsed().as_secs_f64();
     }
