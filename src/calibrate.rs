@@ -394,8 +394,7 @@ impl Runner {
         let path = self.scripts.join(script);
         let mut cmd = match self.engine {
             Engine::Ryade => {
-                let exe = std::env::current_exe().context("locating the compat executable")?;
-                let mut c = Command::new(exe);
+                let mut c = Command::new(crate::harness::env::compat_exe()?);
                 c.arg("run");
                 c
             }
@@ -522,7 +521,7 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
         None => {
             let cands = [
                 PathBuf::from("yade_ref/calibration"),
-                Path::new(env!("CARGO_MANIFEST_DIR")).join("yade_ref/calibration"),
+                crate::harness::env::repo_root().join("yade_ref/calibration"),
             ];
             cands
                 .iter()
@@ -950,7 +949,7 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
 
 /// Runs the plotting script on the result file; returns the PNG names written next to it.
 pub fn plot(result: &Path) -> Result<Vec<String>> {
-    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
+    let py = crate::harness::env::python();
     let o = Command::new(&py)
         .arg("-c")
         .arg(PLOT_PY)

@@ -237,7 +237,7 @@ fn main() -> ExitCode {
 
 /// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
 fn python(module: &str, args: &[std::ffi::OsString]) -> Result<ExitCode> {
-    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
+    let py = ryade::harness::env::python();
     let status = std::process::Command::new(&py)
         .arg("-m")
         .arg(module)
@@ -448,7 +448,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if !matches!(path.as_str(), "yade" | "fast" | "all") {
                 bail!("--path: yade, fast or all, not '{}'", path);
             }
-            let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+            let root = ryade::harness::env::repo_root();
             for sc in &scenes {
                 let r = ryade::bench::bench(&root, sc, steps, warmup, reps, &variants)?;
                 print!("{}", ryade::bench::format_report(&r));

@@ -1,5 +1,6 @@
 //! Comparison of ryade against YADE's golden records.
 
+pub mod env;
 pub mod meso;
 pub mod micro;
 pub mod study;

@@ -45,13 +45,7 @@ pub struct Run {
     pub extra: Vec<String>,
 }
 
-/// Where the repository is (for yade_ref/study/study.py): `RYADE_ROOT`, else the source tree this
-/// binary was built from.
-pub fn repo_root() -> PathBuf {
-    std::env::var_os("RYADE_ROOT")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")))
-}
+pub use super::env::repo_root;
 
 fn study_script(root: &Path) -> Result<PathBuf> {
     let p = root.join("yade_ref/study/study.py");
@@ -106,13 +100,7 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
             c
         }
         Engine::Ryade => {
-            // /proc/self/exe keeps working when the binary is rebuilt during a long sweep
-            let exe = if Path::new("/proc/self/exe").exists() {
-                PathBuf::from("/proc/self/exe")
-            } else {
-                std::env::current_exe().context("locating the compat executable")?
-            };
-            let mut c = Command::new(exe);
+            let mut c = Command::new(super::env::compat_exe()?);
             c.arg("run").arg(&script);
             c
         }
@@ -567,7 +555,7 @@ fn write_diff_outputs(rep: &DiffReport, out: &Path) -> Result<()> {
 /// Draw figures with the compat package's matplotlib helper (`python3 -m yade._ryade_figures`).
 /// Figures are a convenience: a missing matplotlib is reported, never fatal.
 pub fn figures(args: &[&str]) -> bool {
-    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
+    let py = super::env::python();
     match Command::new(&py)
         .arg("-m")
         .arg("yade._ryade_figures")
