@@ -391,18 +391,13 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
         let inc = |s: &Series, c: usize| Some(s.rut_mm.get(c)? - s.rut_mm.get(c - 1)?);
         let base_inc =
             |c: usize| Some(lib.baseline_mean("rut_mm", c)? - lib.baseline_mean("rut_mm", c - 1)?);
-        let inc_noise = |c: usize| {
-            let xs: Vec<f64> = lib.baseline.iter().filter_map(|s| inc(s, c)).collect();
-            let (m, sd) = crate::harness::study::mean_sd(&xs);
-            sd.max(0.05 * m.abs()).max(0.2)
-        };
         push(
             "rut_mm",
             "steady accumulation (rut increment per cycle)",
             (early_end + 1..=last).collect(),
             &inc,
             &base_inc,
-            &inc_noise,
+            &|c| lib.increment_noise(c),
         );
     }
     if obs.rebound_mm.is_some() {

@@ -98,44 +98,54 @@ struct Line {
     out: PathBuf,
 }
 
-fn write_table(
+/// Run, as one yade-batch table `path`, the lines whose run has no history.csv yet (a sweep resumes
+/// where it stopped): with `compat batch` (ryade), or with Debian YADE as the command (`yade`).
+fn run_missing(
+    root: &Path,
     path: &Path,
-    ratio: f64,
-    case: char,
-    size: &str,
-    cycles: u32,
+    sc: &Scenario,
     lines: &[Line],
+    jobs: usize,
+    yade: bool,
 ) -> Result<()> {
+    let todo: Vec<&Line> = lines
+        .iter()
+        .filter(|l| !l.out.join("history.csv").is_file())
+        .collect();
+    if todo.is_empty() {
+        return Ok(());
+    }
     let mut f =
         std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
     writeln!(
         f,
         "description ratio case size seed cycles specimen effects out"
     )?;
-    for l in lines {
+    for l in &todo {
         writeln!(
             f,
             "{} {} '{}' '{}' {} {} '{}' '{}' '{}'",
             l.description,
-            ratio,
-            case,
-            size,
+            sc.ratio as f64 / 10.0,
+            sc.case,
+            sc.size,
             l.seed,
-            cycles,
+            sc.cycles,
             l.specimen,
             l.effects,
             l.out.display()
         )?;
     }
-    Ok(())
-}
-
-/// Run a table with `compat batch` (ryade) or with YADE as the command.
-fn run_table(root: &Path, table: &Path, jobs: usize, yade: bool) -> Result<()> {
-    let py = std::env::var_os("RYADE_PYTHON").unwrap_or_else(|| "python3".into());
-    let mut c = Command::new(py);
+    drop(f);
+    eprintln!(
+        "[gap] {} runs to do in {} ({})",
+        todo.len(),
+        if yade { "Debian YADE" } else { "ryade" },
+        path.display()
+    );
+    let mut c = Command::new(crate::harness::env::python());
     c.args(["-m", "yade.batch"])
-        .arg(table)
+        .arg(path)
         .arg(root.join("yade_ref/gap/run_case.py"))
         .args(["-j", &jobs.to_string()]);
     if yade {
@@ -145,7 +155,7 @@ fn run_table(root: &Path, table: &Path, jobs: usize, yade: bool) -> Result<()> {
     if !st.success() {
         eprintln!(
             "warning: some jobs of {} failed (see its .logs/summary.csv); finished runs are kept",
-            table.display()
+            path.display()
         );
     }
     Ok(())
@@ -173,13 +183,12 @@ pub fn make_library(
     effect_seeds: &[u32],
     jobs: usize,
 ) -> Result<()> {
-    let (ratio, case, size, cycles) = (sc.ratio, sc.case, sc.size.as_str(), sc.cycles);
     std::fs::create_dir_all(dir)?;
     let dir = dir.canonicalize()?;
     let spec = |s: u32| {
         let p = root.join(format!(
             "golden/study/r{:02}_{}_{}_s{}/specimen.json",
-            ratio, case, size, s
+            sc.ratio, sc.case, sc.size, s
         ));
         if p.is_file() {
             p.display().to_string()
@@ -215,16 +224,11 @@ pub fn make_library(
             }
         }
     }
-    // skip runs that already have a history (resume)
-    let todo: Vec<Line> = lines
-        .into_iter()
-        .filter(|l| !l.out.join("history.csv").is_file())
-        .collect();
     let idx = LibraryIndex {
-        scenario: format!("r{:02}", ratio),
-        case,
-        size: size.into(),
-        cycles,
+        scenario: format!("r{:02}", sc.ratio),
+        case: sc.case,
+        size: sc.size.clone(),
+        cycles: sc.cycles,
         baseline_seeds: baseline_seeds.to_vec(),
         effect_seeds: effect_seeds.to_vec(),
         effects,
@@ -233,17 +237,7 @@ pub fn make_library(
         dir.join("library.json"),
         serde_json::to_string_pretty(&idx)?,
     )?;
-    if !todo.is_empty() {
-        let t = dir.join("library.table");
-        write_table(&t, ratio as f64 / 10.0, case, size, cycles, &todo)?;
-        eprintln!(
-            "[gap] library: {} runs to do in ryade ({})",
-            todo.len(),
-            t.display()
-        );
-        run_table(root, &t, jobs, false)?;
-    }
-    Ok(())
+    run_missing(root, &dir.join("library.table"), sc, &lines, jobs, false)
 }
 
 /// Load a library directory (library.json + run directories with history.csv).
@@ -307,7 +301,6 @@ pub fn make_observed(
     seed: u32,
     jobs: usize,
 ) -> Result<()> {
-    let (ratio, case, size, cycles) = (sc.ratio, sc.case, sc.size.as_str(), sc.cycles);
     use rand_mt::Mt19937GenRand32 as Mt;
     std::fs::create_dir_all(dir.join("runs"))?;
     std::fs::create_dir_all(dir.join("truth"))?;
@@ -353,21 +346,7 @@ pub fn make_observed(
             out: dir.join("runs").join(&name),
         });
     }
-    let todo: Vec<Line> = lines
-        .iter()
-        .filter(|l| !l.out.join("history.csv").is_file())
-        .cloned()
-        .collect();
-    if !todo.is_empty() {
-        let t = dir.join("observed.table");
-        write_table(&t, ratio as f64 / 10.0, case, size, cycles, &todo)?;
-        eprintln!(
-            "[gap] blind datasets: {} YADE runs ({})",
-            todo.len(),
-            t.display()
-        );
-        run_table(root, &t, jobs, true)?;
-    }
+    run_missing(root, &dir.join("observed.table"), sc, &lines, jobs, true)?;
     for l in &lines {
         let h = l.out.join("history.csv");
         let Ok(s) = gap::series_of_history(&h) else {
@@ -395,24 +374,9 @@ pub fn make_observed(
     Ok(())
 }
 
-/// Signal-to-noise of the dominant hidden effect: its surrogate shift of the final rut over the noise
-/// of one realisation there. Below 2 the effect is not detectable from one run, whatever the method.
-pub fn detectability(lib: &Library, t: &Truth) -> f64 {
-    let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
-    let base = lib.baseline_mean("rut_mm", last).unwrap_or(0.0);
-    let dom = dominant_truth(lib, t);
-    t.effects
-        .iter()
-        .find(|(k, _)| *k == dom)
-        .and_then(|(k, s)| {
-            let e = lib.effects.iter().find(|e| &e.knob == k)?;
-            Some((lib.predict(e, *s, "rut_mm", last)? - base).abs() / lib.noise("rut_mm", last))
-        })
-        .unwrap_or(0.0)
-}
-
-/// Dominant hidden effect: the one whose surrogate prediction alone moves the final rut most.
-pub fn dominant_truth(lib: &Library, t: &Truth) -> String {
+/// The hidden effect that moves the final rut most by itself (its surrogate prediction at the true
+/// strength against today's model), with that shift in mm; ("none", 0) without a known effect.
+fn dominant_shift(lib: &Library, t: &Truth) -> (String, f64) {
     let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
     let base = lib.baseline_mean("rut_mm", last).unwrap_or(0.0);
     t.effects
@@ -425,8 +389,19 @@ pub fn dominant_truth(lib: &Library, t: &Truth) -> String {
             ))
         })
         .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|x| x.0)
-        .unwrap_or_else(|| "none".into())
+        .unwrap_or_else(|| ("none".into(), 0.0))
+}
+
+/// Dominant hidden effect: the one whose surrogate prediction alone moves the final rut most.
+pub fn dominant_truth(lib: &Library, t: &Truth) -> String {
+    dominant_shift(lib, t).0
+}
+
+/// Signal-to-noise of the dominant hidden effect: its surrogate shift of the final rut over the noise
+/// of one realisation there. Below 2 the effect is not detectable from one run, whatever the method.
+pub fn detectability(lib: &Library, t: &Truth) -> f64 {
+    let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
+    dominant_shift(lib, t).1 / lib.noise("rut_mm", last)
 }
 
 #[derive(Serialize)]
