@@ -148,6 +148,19 @@ class State(Serializable):
     def _bind(self, omega, body_id):
         object.__setattr__(self, '_owner', (omega, body_id))
 
+    def __setattr__(self, k, v):
+        # hot path (controllers set velocities every step): a Vector3 into pos/vel/angVel/inertia,
+        # the same effect as the generic _convert + _changed below
+        if type(v) is Vector3 and k in _STATE_VEC:
+            a = v._r()
+            t = (a[0], a[1], a[2])
+            self._values[k] = t
+            o = self._owner
+            if o is not None:
+                o[0]._sim.set_vec3(o[1], k, t)
+            return
+        Serializable.__setattr__(self, k, v)
+
     def _convert(self, k, v):
         if k in _STATE_VEC or k in ('refPos', 'angMom'):
             return to_vec3(v, 'State.' + k)
@@ -272,6 +285,16 @@ class Body(Serializable):
     @property
     def isClumpMember(self):
         return False
+
+    # `b.state` as a property: read every step by controllers (same value as the generic path)
+    @property
+    def state(self):
+        return self._values['state']
+
+    @state.setter
+    def state(self, v):
+        self._values['state'] = self._convert('state', v)
+        self._changed('state')
 
     def _changed(self, k):
         if self._owner is None:
@@ -585,10 +608,10 @@ class ForceContainer(object):
         self._o = omega
 
     def f(self, bid, sync=False):
-        return Vector3(*self._o._sim.force(bid))
+        return Vector3._new(list(self._o._sim.force(bid)))
 
     def t(self, bid, sync=False):
-        return Vector3(*self._o._sim.torque(bid))
+        return Vector3._new(list(self._o._sim.torque(bid)))
 
     def m(self, bid, sync=False):
         return self.t(bid)

@@ -787,6 +787,12 @@ class Vector3(_VecF):
         self._init_generic(args, kw, ('x', 'y', 'z'), 0)
 
     # fast paths for the most used operations
+    def __getitem__(self, i):
+        if type(i) is int and 0 <= i < 3:
+            g = self._g
+            return self._v[i] if g is None else g()[i]
+        return _VecF.__getitem__(self, i)
+
     def __add__(self, o):
         b = o._r() if type(o) is Vector3 else self._conv(o)
         if b is None:

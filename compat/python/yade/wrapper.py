@@ -43,13 +43,17 @@ class Serializable(object):
 
     @classmethod
     def _all_attrs(cls):
-        out = {}
-        for c in reversed(cls.__mro__):
-            out.update(c.__dict__.get('_attrs', {}))
+        # merged once per class (scripts set attributes every step: the hot path of PyRunner loops)
+        out = cls.__dict__.get('_merged_attrs')
+        if out is None:
+            out = {}
+            for c in reversed(cls.__mro__):
+                out.update(c.__dict__.get('_attrs', {}))
+            cls._merged_attrs = out
         return out
 
     def __setattr__(self, k, v):
-        if k.startswith('_'):
+        if k[0] == '_':
             object.__setattr__(self, k, v)
             return
         prop = getattr(type(self), k, None)
@@ -567,8 +571,12 @@ class PyRunner(PeriodicEngine):
         if not cmd:
             return
         import __main__
+        code = self.__dict__.get('_code')
+        if code is None or code[0] != cmd:  # compiled once per command string
+            code = (cmd, compile(cmd, '<PyRunner %s>' % (self._values['label'] or 'command'), 'exec'))
+            object.__setattr__(self, '_code', code)
         try:
-            exec(compile(cmd, '<PyRunner %s>' % (self._values['label'] or 'command'), 'exec'), __main__.__dict__)
+            exec(code[1], __main__.__dict__)
         except Exception:
             if not self._values['ignoreErrors']:
                 raise
