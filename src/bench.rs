@@ -43,6 +43,17 @@ pub struct Sample {
     pub contact_updates_per_s: f64,
     pub bodies: usize,
     pub contacts: usize,
+    /// Where the fast path's time went over the timed steps (None for the other variants).
+    pub phases: Option<Phases>,
+}
+
+/// The fast path's time per step by phase (ms, wall clock) and its Verlet list builds.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct Phases {
+    pub contacts_ms: f64,
+    pub integration_ms: f64,
+    pub rebuild_ms: f64,
+    pub rebuilds: u64,
 }
 
 /// Memory held per particle and per real contact (bytes, from container sizes and capacities).
@@ -93,6 +104,7 @@ pub fn scene_memory(s: &Scene) -> Memory {
 pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(Sample, Memory)> {
     let s = scene_json::load(scene)?.scene;
     let n = s.bodies.len();
+    let mut phases = None;
     let (dt, nc, mem) = match v {
         Variant::Yade => bail!("run_ryade cannot run YADE"),
         Variant::YadeOrder => {
@@ -114,9 +126,17 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
             };
             let mut f = FastSim::from_scene(&s, opt).map_err(|e| anyhow!("{}", e))?;
             f.run(warmup);
+            let (tm0, nb0) = (f.timing, f.rebuilds);
             let t0 = Instant::now();
             f.run(steps);
             let dt = t0.elapsed().as_secs_f64();
+            let ms = 1e3 / steps.max(1) as f64;
+            phases = Some(Phases {
+                contacts_ms: (f.timing.contacts - tm0.contacts) * ms,
+                integration_ms: (f.timing.newton - tm0.newton) * ms,
+                rebuild_ms: (f.timing.rebuild - tm0.rebuild) * ms,
+                rebuilds: f.rebuilds - nb0,
+            });
             let m = f.memory();
             (
                 dt,
@@ -136,6 +156,7 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
             contact_updates_per_s: steps as f64 * nc as f64 / dt,
             bodies: n,
             contacts: nc,
+            phases,
         },
         mem,
     ))
@@ -178,6 +199,7 @@ pub fn run_yade(root: &Path, scene: &Path, steps: u64, warmup: u64) -> Result<Sa
         contact_updates_per_s: field("contact_updates_per_s")?,
         bodies: field("bodies")? as usize,
         contacts: field("contacts")? as usize,
+        phases: None,
     })
 }
 
@@ -202,6 +224,110 @@ pub fn stats(v: &[f64]) -> Stats {
         median,
         max: s[n - 1],
     }
+}
+
+/// A bench scene that is a YADE script run unchanged by both engines (`*.study.json`): `yade -n -x
+/// SCRIPT ARGS --out DIR` against `compat run SCRIPT ARGS --out DIR` (the YADE-order path; the fast
+/// path models spheres only). The script writes `DIR/summary.json` with `timings` (phase, steps,
+/// cpu_s) and `derived.nSpheres`; the CPU seconds of `phase` are timed, so start-up, the specimen
+/// import and the other phases are not.
+#[derive(Clone, Debug, serde::Deserialize)]
+pub struct ScriptScene {
+    pub label: String,
+    /// The script, relative to the repository.
+    pub script: String,
+    /// Its arguments (paths relative to the repository; `--out` is added).
+    pub args: Vec<String>,
+    /// The timed phase in summary.json's `timings`.
+    pub phase: String,
+}
+
+/// Is this a script scene (`*.study.json`) rather than a scene file?
+pub fn is_script_scene(p: &Path) -> bool {
+    p.to_string_lossy().ends_with(".study.json")
+}
+
+pub fn load_script_scene(p: &Path) -> Result<ScriptScene> {
+    let text = std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
+    serde_json::from_str(&text).with_context(|| {
+        format!(
+            "{}: expected {{\"label\", \"script\", \"args\": [..], \"phase\"}}",
+            p.display()
+        )
+    })
+}
+
+/// Run a script scene once in YADE or in ryade's YADE-order path and time its phase.
+pub fn run_script(root: &Path, sc: &ScriptScene, v: Variant) -> Result<Sample> {
+    static RUN: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("ryade_bench_{}_{}", std::process::id(), k));
+    std::fs::create_dir_all(&dir)?;
+    let res = run_script_in(root, sc, v, &dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    res
+}
+
+fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Result<Sample> {
+    let mut cmd = match v {
+        Variant::Yade => {
+            let mut c = Command::new("yade");
+            c.env("OMP_NUM_THREADS", "1").args(["-n", "-x"]);
+            c
+        }
+        Variant::YadeOrder => {
+            let mut c = Command::new(crate::harness::env::compat_exe()?);
+            c.arg("run");
+            c
+        }
+        Variant::Fast(_) => bail!("the fast path cannot run script scenes"),
+    };
+    let out = cmd
+        .current_dir(root)
+        .arg(root.join(&sc.script))
+        .args(&sc.args)
+        .arg("--out")
+        .arg(dir)
+        .output()
+        .with_context(|| format!("starting {} for {}", v.name(), sc.label))?;
+    if !out.status.success() {
+        bail!(
+            "{} failed on {} ({}):\n{}",
+            v.name(),
+            sc.label,
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let sum: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("summary.json"))
+            .context("the script wrote no summary.json")?,
+    )?;
+    let ph = sum["timings"]
+        .as_array()
+        .and_then(|t| t.iter().find(|p| p["phase"] == sc.phase.as_str()))
+        .ok_or_else(|| anyhow!("summary.json has no timing for phase '{}'", sc.phase))?;
+    let steps = ph["steps"].as_f64().unwrap_or(0.0);
+    let cpu = ph["cpu_s"].as_f64().unwrap_or(0.0);
+    let n = sum["derived"]["nSpheres"].as_f64().unwrap_or(0.0);
+    if steps <= 0.0 || cpu <= 0.0 || n <= 0.0 {
+        bail!(
+            "summary.json: phase '{}' has steps {} cpu {} spheres {}",
+            sc.phase,
+            steps,
+            cpu,
+            n
+        );
+    }
+    Ok(Sample {
+        engine: v.name(),
+        seconds: cpu,
+        particle_steps_per_s: steps * n / cpu,
+        contact_updates_per_s: 0.0,
+        bodies: n as usize,
+        contacts: 0,
+        phases: None,
+    })
 }
 
 /// The results of one variant over the repetitions.
@@ -252,14 +378,33 @@ pub fn bench(
     if variants.is_empty() {
         bail!("nothing to time");
     }
+    let script = if is_script_scene(scene) {
+        Some(load_script_scene(scene)?)
+    } else {
+        None
+    };
+    // script scenes: YADE and the YADE-order path only (the fast path models spheres only)
+    let variants: Vec<Variant> = variants
+        .iter()
+        .copied()
+        .filter(|v| script.is_none() || !matches!(v, Variant::Fast(_)))
+        .collect();
+    let variants = &variants[..];
+    if variants.is_empty() {
+        bail!(
+            "{}: nothing to time (a script scene runs in YADE and the YADE-order path only)",
+            scene.display()
+        );
+    }
     let load_before = loadavg();
     let mut samples = Vec::new();
     let mut per: Vec<Vec<Sample>> = vec![Vec::new(); variants.len()];
     let mut mem: Vec<Option<Memory>> = vec![None; variants.len()];
     for _ in 0..reps {
         for (k, v) in variants.iter().enumerate() {
-            let s = match v {
-                Variant::Yade => run_yade(root, scene, steps, warmup)?,
+            let s = match (v, &script) {
+                (_, Some(sc)) => run_script(root, sc, *v)?,
+                (Variant::Yade, None) => run_yade(root, scene, steps, warmup)?,
                 _ => {
                     let (s, m) = run_ryade(scene, *v, steps, warmup)?;
                     mem[k] = Some(m);
@@ -349,9 +494,29 @@ pub fn format_report(r: &BenchReport) -> String {
             v.name,
             p(&v.particle_steps)
         );
-        out += &format!("  {:18} contact updates/s: {}\n", "", p(&v.contact_updates));
+        if v.contact_updates.max > 0.0 {
+            out += &format!("  {:18} contact updates/s: {}\n", "", p(&v.contact_updates));
+        }
         if let Some(x) = &v.ratio_to_yade {
             out += &format!("  {:18} ratio to YADE:     {}\n", "", q(x));
+        }
+        let ph: Vec<Phases> = r
+            .samples
+            .iter()
+            .filter(|s| s.engine == v.name)
+            .filter_map(|s| s.phases)
+            .collect();
+        if !ph.is_empty() {
+            let med =
+                |f: &dyn Fn(&Phases) -> f64| stats(&ph.iter().map(f).collect::<Vec<_>>()).median;
+            out += &format!(
+                "  {:18} per step (median): contacts {:.3} ms, integration {:.3} ms, list builds {:.3} ms ({:.0} builds)\n",
+                "",
+                med(&|p| p.contacts_ms),
+                med(&|p| p.integration_ms),
+                med(&|p| p.rebuild_ms),
+                med(&|p| p.rebuilds as f64)
+            );
         }
         if let Some(m) = &v.memory {
             out += &format!(
@@ -359,6 +524,9 @@ pub fn format_report(r: &BenchReport) -> String {
                 "", m.per_particle, m.per_contact
             );
         }
+    }
+    if b > 0 && c == 0 {
+        out += "  (script scene: CPU seconds of the timed phase, particles = spheres; contacts not counted; the fast path models spheres only)\n";
     }
     for (name, s) in &r.ratios {
         out += &format!("  {:30} {}\n", name, q(s));

@@ -474,7 +474,7 @@ impl FastSim {
                 }
             }
         }
-        sim.rebuild_with(known);
+        sim.rebuild_with(known, false);
         Ok(sim)
     }
 
@@ -537,8 +537,8 @@ impl FastSim {
     }
 
     /// Build the Verlet list again (bodies re-sorted), keeping every contact's state.
-    fn rebuild_with(&mut self, known: FxHashMap<(u32, u32), Contact>) {
-        let built = neighbors::build(&self.pos, &self.radius, self.period, self.skin);
+    fn rebuild_with(&mut self, known: FxHashMap<(u32, u32), Contact>, par: bool) {
+        let built = neighbors::build(&self.pos, &self.radius, self.period, self.skin, par);
         let ord = &built.order;
         fn perm<T: Copy>(v: &mut Vec<T>, ord: &[u32]) {
             *v = ord.iter().map(|&o| v[o as usize]).collect();
@@ -556,18 +556,20 @@ impl FastSim {
         self.pairs = built.pairs;
         self.shifts = built.shifts;
         self.shift_cells = built.shift_cells;
-        self.contacts = self
-            .pairs
-            .iter()
-            .map(|p| {
-                let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
-                if a < b {
-                    known.get(&(a, b)).copied().unwrap_or_default()
-                } else {
-                    known.get(&(b, a)).map(flipped).unwrap_or_default()
-                }
-            })
-            .collect();
+        let ids = &self.ids;
+        let state = |p: &Pair| {
+            let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
+            if a < b {
+                known.get(&(a, b)).copied().unwrap_or_default()
+            } else {
+                known.get(&(b, a)).map(flipped).unwrap_or_default()
+            }
+        };
+        self.contacts = if par {
+            self.pairs.par_iter().map(state).collect()
+        } else {
+            self.pairs.iter().map(state).collect()
+        };
         self.x_ref = self.pos.clone();
         self.max_disp2 = 0.0;
         self.rebuilds += 1;
@@ -611,7 +613,13 @@ impl FastSim {
         if self.max_disp2 > half * half {
             let t0 = std::time::Instant::now();
             let known = self.known_contacts();
-            self.rebuild_with(known);
+            if self.threads > 1 {
+                let pool = self.pool.take().expect("thread pool");
+                pool.install(|| self.rebuild_with(known, true));
+                self.pool = Some(pool);
+            } else {
+                self.rebuild_with(known, false);
+            }
             self.timing.rebuild += t0.elapsed().as_secs_f64();
         }
         if self.threads == 1 {

@@ -5,7 +5,11 @@
 //! interact is decided by the contact kernel's distance test, as in YADE.
 
 use super::contact::{Pair, V3};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
+
+/// Bodies per block of the pair search (the unit of parallel work).
+const BLOCK: usize = 256;
 
 /// The cell grid over the (wrapped) positions.
 struct Grid {
@@ -125,8 +129,9 @@ pub struct Built {
 }
 
 /// Sort the bodies by cell and list every pair closer than `r_i + r_j + skin` (minimum image in a
-/// periodic cell, which needs spheres smaller than half the cell, as YADE's collider does).
-pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64) -> Built {
+/// periodic cell, which needs spheres smaller than half the cell, as YADE's collider does). With
+/// `par` the search runs on the current rayon pool; the result does not depend on it.
+pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: bool) -> Built {
     let n = pos.len();
     let rmax = radius.iter().cloned().fold(0.0, f64::max);
     let reach = 2.0 * rmax + skin;
@@ -155,74 +160,88 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64) -> Built
     for (new, &old) in order.iter().enumerate() {
         new_of[old as usize] = new as u32;
     }
+    // the pair search, in blocks of bodies (in parallel when `par`: the blocks are concatenated in
+    // order, so the list is the same for any thread count); periodic images are numbered after
+    let search = |b: usize| -> Vec<(Pair, [i32; 3])> {
+        let mut out = Vec::with_capacity(BLOCK * 8);
+        let mut neigh: Vec<usize> = Vec::with_capacity(27);
+        for ni in b * BLOCK..((b + 1) * BLOCK).min(n) {
+            let i = order[ni] as usize;
+            let c = grid.cell_of(&wrapped[i]);
+            neigh.clear();
+            let (ax, mx) = grid.around(0, c[0]);
+            let (ay, my) = grid.around(1, c[1]);
+            let (az, mz) = grid.around(2, c[2]);
+            for &x in &ax[..mx] {
+                for &y in &ay[..my] {
+                    for &z in &az[..mz] {
+                        neigh.push(grid.linear([x, y, z]));
+                    }
+                }
+            }
+            neigh.sort_unstable();
+            for &cell in &neigh {
+                for &j_old in &order[start[cell]..start[cell + 1]] {
+                    let j = j_old as usize;
+                    let nj = new_of[j];
+                    if nj as usize <= ni {
+                        continue;
+                    }
+                    let mut d = [
+                        wrapped[j][0] - wrapped[i][0],
+                        wrapped[j][1] - wrapped[i][1],
+                        wrapped[j][2] - wrapped[i][2],
+                    ];
+                    let mut cd = [0i32; 3];
+                    if let Some(l) = period {
+                        // minimum image of the wrapped difference, then the period of the unwrapped one
+                        for k in 0..3 {
+                            let m = (d[k] / l[k]).round();
+                            d[k] -= m * l[k];
+                            let s = d[k] - (pos[j][k] - pos[i][k]);
+                            cd[k] = (s / l[k]).round() as i32;
+                        }
+                    }
+                    let lim = radius[i] + radius[j] + skin;
+                    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim {
+                        continue;
+                    }
+                    let pair = Pair {
+                        i: ni as u32,
+                        j: nj,
+                        img: 0,
+                    };
+                    out.push((pair, cd));
+                }
+            }
+        }
+        out
+    };
+    let nb = n.div_ceil(BLOCK);
+    let found: Vec<Vec<(Pair, [i32; 3])>> = if par {
+        (0..nb).into_par_iter().map(search).collect()
+    } else {
+        (0..nb).map(search).collect()
+    };
     let mut shifts = vec![[0.0; 3]];
     let mut shift_cells = vec![[0i32; 3]];
     let mut shift_index: FxHashMap<[i32; 3], u32> = FxHashMap::default();
     shift_index.insert([0; 3], 0);
-    let mut pairs = Vec::with_capacity(n * 8);
-    let mut neigh: Vec<usize> = Vec::with_capacity(27);
-    for ni in 0..n {
-        let i = order[ni] as usize;
-        let c = grid.cell_of(&wrapped[i]);
-        neigh.clear();
-        let (ax, mx) = grid.around(0, c[0]);
-        let (ay, my) = grid.around(1, c[1]);
-        let (az, mz) = grid.around(2, c[2]);
-        for &x in &ax[..mx] {
-            for &y in &ay[..my] {
-                for &z in &az[..mz] {
-                    neigh.push(grid.linear([x, y, z]));
-                }
-            }
+    let mut pairs = Vec::with_capacity(found.iter().map(Vec::len).sum());
+    for (mut pair, cd) in found.into_iter().flatten() {
+        if cd != [0; 3] {
+            pair.img = *shift_index.entry(cd).or_insert_with(|| {
+                let l = period.unwrap();
+                shifts.push([
+                    l[0] * cd[0] as f64,
+                    l[1] * cd[1] as f64,
+                    l[2] * cd[2] as f64,
+                ]);
+                shift_cells.push(cd);
+                (shifts.len() - 1) as u32
+            });
         }
-        neigh.sort_unstable();
-        for &cell in &neigh {
-            for &j_old in &order[start[cell]..start[cell + 1]] {
-                let j = j_old as usize;
-                let nj = new_of[j];
-                if nj as usize <= ni {
-                    continue;
-                }
-                let mut d = [
-                    wrapped[j][0] - wrapped[i][0],
-                    wrapped[j][1] - wrapped[i][1],
-                    wrapped[j][2] - wrapped[i][2],
-                ];
-                let mut cd = [0i32; 3];
-                if let Some(l) = period {
-                    // minimum image of the wrapped difference, then the period of the unwrapped one
-                    for k in 0..3 {
-                        let m = (d[k] / l[k]).round();
-                        d[k] -= m * l[k];
-                        let s = d[k] - (pos[j][k] - pos[i][k]);
-                        cd[k] = (s / l[k]).round() as i32;
-                    }
-                }
-                let lim = radius[i] + radius[j] + skin;
-                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim {
-                    continue;
-                }
-                let img = if cd == [0; 3] {
-                    0
-                } else {
-                    *shift_index.entry(cd).or_insert_with(|| {
-                        let l = period.unwrap();
-                        shifts.push([
-                            l[0] * cd[0] as f64,
-                            l[1] * cd[1] as f64,
-                            l[2] * cd[2] as f64,
-                        ]);
-                        shift_cells.push(cd);
-                        (shifts.len() - 1) as u32
-                    })
-                };
-                pairs.push(Pair {
-                    i: ni as u32,
-                    j: nj,
-                    img,
-                });
-            }
-        }
+        pairs.push(pair);
     }
     Built {
         order,
@@ -255,7 +274,15 @@ mod tests {
         let radius: Vec<f64> = (0..n).map(|_| 0.03 + 0.04 * rnd()).collect();
         let skin = 0.02;
         for period in [Some(l), None] {
-            let b = build(&pos, &radius, period, skin);
+            let b = build(&pos, &radius, period, skin, false);
+            let bp = build(&pos, &radius, period, skin, true);
+            assert_eq!(b.pairs.len(), bp.pairs.len());
+            assert!(b
+                .pairs
+                .iter()
+                .zip(&bp.pairs)
+                .all(|(x, y)| (x.i, x.j, x.img) == (y.i, y.j, y.img)));
+            assert_eq!(b.shift_cells, bp.shift_cells);
             let mut got: Vec<(u32, u32, [i32; 3])> = b
                 .pairs
                 .iter()
