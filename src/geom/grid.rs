@@ -172,17 +172,6 @@ pub fn sphere_gridco(
     zero_tiny(&mut branch);
     zero_tiny(&mut branch_n);
     let mut rel_pos = dot(&branch, &segt) / (len * len);
-    if is_new {
-        // not in YADE (a shortcut with the same result): a new pair farther than 2 (r + R) from the
-        // segment stays virtual. The neighbour handling below has no effect on a new pair unless a
-        // neighbour connection holds a real contact with this sphere near the shared node, which
-        // needs the sphere within r + R of that node, i.e. of this segment, one step ago.
-        let d = p_n1 + segt * rel_pos.clamp(0.0, 1.0) - sphere_pos;
-        let reach = 2.0 * (radius + gc.radius);
-        if dot(&d, &d) > reach * reach {
-            return Ok(false);
-        }
-    }
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
         return Ok(true);
