@@ -576,13 +576,32 @@ impl FastSim {
         self.make_chunks();
     }
 
-    /// Cut the pair list into one chunk per thread (equal pair counts).
+    /// Cut the pair list into one chunk per thread (equal estimated cost).
     fn make_chunks(&mut self) {
         let np = self.pairs.len();
         let t = self.threads;
+        // cut at equal estimated cost: a touching pair (the full law) costs about 4 distance tests
+        let cost = |c: &Contact| if c.active { 4 } else { 1 };
+        let total: usize = self.contacts.iter().map(cost).sum();
+        let mut cuts = vec![0usize; t + 1];
+        cuts[t] = np;
+        if t > 1 {
+            let (mut acc, mut k) = (0usize, 1usize);
+            for (m, c) in self.contacts.iter().enumerate() {
+                while k < t && acc >= total * k / t {
+                    cuts[k] = m;
+                    k += 1;
+                }
+                acc += cost(c);
+            }
+            while k < t {
+                cuts[k] = np;
+                k += 1;
+            }
+        }
         self.chunks = (0..t)
             .map(|k| {
-                let r = (np * k / t)..(np * (k + 1) / t);
+                let r = cuts[k]..cuts[k + 1];
                 let (lo, hi) = if r.is_empty() {
                     (0, 0)
                 } else {
