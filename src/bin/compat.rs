@@ -238,7 +238,13 @@ fn main() -> ExitCode {
 /// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
 fn python(module: &str, args: &[std::ffi::OsString]) -> Result<ExitCode> {
     let py = ryade::harness::env::python();
-    let status = std::process::Command::new(&py)
+    let mut cmd = std::process::Command::new(&py);
+    // numpy (in YADE's script namespace) would start OpenBLAS threads that spin after any numpy
+    // call and burn the other cores; the simulation itself runs on one
+    if std::env::var_os("OPENBLAS_NUM_THREADS").is_none() {
+        cmd.env("OPENBLAS_NUM_THREADS", "1");
+    }
+    let status = cmd
         .arg("-m")
         .arg(module)
         .args(args)
