@@ -346,6 +346,8 @@ pub struct VariantReport {
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct BenchReport {
     pub scene: String,
+    /// The label of a script scene (None for a scene file).
+    pub script: Option<String>,
     pub steps: u64,
     pub reps: usize,
     pub samples: Vec<Sample>,
@@ -459,6 +461,7 @@ pub fn bench(
     }
     Ok(BenchReport {
         scene: scene.display().to_string(),
+        script: script.map(|s| format!("{}, timed phase '{}'", s.label, s.phase)),
         steps,
         reps,
         samples,
@@ -477,10 +480,16 @@ pub fn format_report(r: &BenchReport) -> String {
         .last()
         .map(|s| (s.bodies, s.contacts))
         .unwrap_or((0, 0));
-    out += &format!(
-        "{}: {} bodies, ~{} contacts, {} steps x {} reps (alternating)\n",
-        r.scene, b, c, r.steps, r.reps
-    );
+    out += &match &r.script {
+        Some(label) => format!(
+            "{}: {}; {} spheres, {} reps (alternating)\n",
+            r.scene, label, b, r.reps
+        ),
+        None => format!(
+            "{}: {} bodies, ~{} contacts, {} steps x {} reps (alternating)\n",
+            r.scene, b, c, r.steps, r.reps
+        ),
+    };
     let p = |s: &Stats| {
         format!(
             "min {:.3e} median {:.3e} max {:.3e}",
@@ -525,7 +534,7 @@ pub fn format_report(r: &BenchReport) -> String {
             );
         }
     }
-    if b > 0 && c == 0 {
+    if r.script.is_some() {
         out += "  (script scene: CPU seconds of the timed phase, particles = spheres; contacts not counted; the fast path models spheres only)\n";
     }
     for (name, s) in &r.ratios {
@@ -538,4 +547,41 @@ pub fn format_report(r: &BenchReport) -> String {
         std::thread::available_parallelism().map_or(0, |n| n.get())
     );
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed script scenes parse, and every file they name exists in the repository.
+    #[test]
+    fn committed_script_scenes_name_existing_files() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut n = 0;
+        for e in std::fs::read_dir(root.join("bench/scenes")).unwrap() {
+            let p = e.unwrap().path();
+            if !is_script_scene(&p) {
+                continue;
+            }
+            let sc = load_script_scene(&p).unwrap();
+            assert!(root.join(&sc.script).is_file(), "{}", sc.script);
+            for a in sc.args.iter().filter(|a| a.ends_with(".json")) {
+                assert!(root.join(a).is_file(), "{}: {} missing", p.display(), a);
+            }
+            assert_eq!(sc.phase, "cycles");
+            n += 1;
+        }
+        assert_eq!(n, 2, "scenes (b) and (c)");
+    }
+
+    #[test]
+    fn a_malformed_script_scene_says_what_is_expected() {
+        let d = std::env::temp_dir().join(format!("ryade_bench_test_{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let p = d.join("bad.study.json");
+        std::fs::write(&p, "{\"label\": \"x\"}").unwrap();
+        let e = format!("{:#}", load_script_scene(&p).unwrap_err());
+        assert!(e.contains("expected") && e.contains("script"), "{}", e);
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 }
