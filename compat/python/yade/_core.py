@@ -152,7 +152,7 @@ class State(Serializable):
         # hot path (controllers set velocities every step): a Vector3 into pos/vel/angVel/inertia,
         # the same effect as the generic _convert + _changed below
         if type(v) is Vector3 and k in _STATE_VEC:
-            a = v._r()
+            a = v._v if v._g is None else v._r()
             t = (a[0], a[1], a[2])
             self._values[k] = t
             o = self._owner
@@ -160,6 +160,10 @@ class State(Serializable):
                 o[0]._sim.set_vec3(o[1], k, t)
             return
         Serializable.__setattr__(self, k, v)
+
+    def _set_generic(self, k, v):
+        self._values[k] = self._convert(k, v)
+        self._changed(k)
 
     def _convert(self, k, v):
         if k in _STATE_VEC or k in ('refPos', 'angMom'):
@@ -234,6 +238,28 @@ class State(Serializable):
         d.update({'pos': list(v['pos']), 'vel': list(v['vel']), 'angVel': list(v['angVel']), 'ori': list(v['ori']),
                   'mass': float(v['mass']), 'inertia': list(v['inertia']), 'blockedDOFs': _blocked_bits(v['blockedDOFs']),
                   'isDamped': bool(v['isDamped'])})
+
+
+def _state_vec_property(k):
+    """`State.pos/vel/angVel` as properties (read by controllers every step); the same values as
+    `State._read`: pos a copy (YADE computes it), vel/angVel live views."""
+    def get(self):
+        o = self._owner
+        if o is None:
+            return Vector3(*self._values[k])
+        sim, bid = o[0]._sim, o[1]
+        if k == 'pos':
+            return Vector3._new(list(sim.get_vec3(bid, 'pos')))
+        return Vector3._view(lambda: sim.get_vec3(bid, k), lambda t: sim.set_vec3(bid, k, tuple(t)))
+
+    def set(self, v):
+        self._set_generic(k, v)
+    return property(get, set)
+
+
+for _k in ('pos', 'vel', 'angVel'):
+    setattr(State, _k, _state_vec_property(_k))
+del _k
 
 
 class Body(Serializable):
