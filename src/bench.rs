@@ -45,6 +45,9 @@ pub struct Sample {
     pub contacts: usize,
     /// Where the fast path's time went over the timed steps (None for the other variants).
     pub phases: Option<Phases>,
+    /// A script scene's history.csv (compared between the engines, not logged).
+    #[serde(skip)]
+    pub history: Option<String>,
 }
 
 /// The fast path's time per step by phase (ms, wall clock) and its Verlet list builds.
@@ -157,6 +160,7 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
             bodies: n,
             contacts: nc,
             phases,
+            history: None,
         },
         mem,
     ))
@@ -200,6 +204,7 @@ pub fn run_yade(root: &Path, scene: &Path, steps: u64, warmup: u64) -> Result<Sa
         bodies: field("bodies")? as usize,
         contacts: field("contacts")? as usize,
         phases: None,
+        history: None,
     })
 }
 
@@ -327,6 +332,7 @@ fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Resul
         bodies: n as usize,
         contacts: 0,
         phases: None,
+        history: std::fs::read_to_string(dir.join("history.csv")).ok(),
     })
 }
 
@@ -348,6 +354,8 @@ pub struct BenchReport {
     pub scene: String,
     /// The label of a script scene (None for a scene file).
     pub script: Option<String>,
+    /// Script scenes: every run of every engine wrote the same history.csv.
+    pub histories_identical: Option<bool>,
     pub steps: u64,
     pub reps: usize,
     pub samples: Vec<Sample>,
@@ -461,6 +469,10 @@ pub fn bench(
     }
     Ok(BenchReport {
         scene: scene.display().to_string(),
+        histories_identical: script.as_ref().map(|_| {
+            let h: Vec<&Option<String>> = samples.iter().map(|s: &Sample| &s.history).collect();
+            h.iter().all(|x| x.is_some() && *x == h[0])
+        }),
         script: script.map(|s| format!("{}, timed phase '{}'", s.label, s.phase)),
         steps,
         reps,
@@ -536,6 +548,14 @@ pub fn format_report(r: &BenchReport) -> String {
     }
     if r.script.is_some() {
         out += "  (script scene: CPU seconds of the timed phase, particles = spheres; contacts not counted; the fast path models spheres only)\n";
+        out += &format!(
+            "  history.csv of every run, both engines: {}\n",
+            if r.histories_identical == Some(true) {
+                "byte-identical"
+            } else {
+                "DIFFERENT (the engines did not compute the same run)"
+            }
+        );
     }
     for (name, s) in &r.ratios {
         out += &format!("  {:30} {}\n", name, q(s));
