@@ -222,7 +222,7 @@ fn tridiagonal_qr_step(
         x = sub[k];
         if k < end - 1 {
             z = -s * sub[k + 1];
-            sub[k + 1] = c * sub[k + 1];
+            sub[k + 1] *= c;
         }
         // Q = Q * G: columns k and k+1 rotated by the transposed rotation (c, -s)
         if !(c == 1.0 && s == 0.0) {
@@ -290,7 +290,7 @@ pub fn update_properties(bodies: &mut Bodies, mats: &[FrictMat], cid: usize) -> 
             let off = Vec3::new(-p[0], -p[1], -p[2]);
             ig += inertia_translate(&own, m, &off);
         }
-        if !(mass > 0.0) {
+        if mass.is_nan() || mass <= 0.0 {
             return Err(format!(
                 "clump #{}: total mass {} is not positive",
                 cid, mass

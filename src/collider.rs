@@ -158,10 +158,9 @@ impl Collider {
     fn may_collide(&self, bodies: &Bodies, a: u32, b: u32) -> bool {
         let (a, b) = (a as usize, b as usize);
         let (ca, cb) = (bodies.clump_id[a], bodies.clump_id[b]);
-        if ca.is_some() || cb.is_some() {
-            if ca == cb || bodies.is_clump(a) || bodies.is_clump(b) {
-                return false;
-            }
+        if (ca.is_some() || cb.is_some()) && (ca == cb || bodies.is_clump(a) || bodies.is_clump(b))
+        {
+            return false;
         }
         let (ma, mb) = (bodies.mask[a], bodies.mask[b]);
         (ma & mb) != 0 && !(ma == mb && (ma & self.p.avoid_self_interaction_mask) != 0)
