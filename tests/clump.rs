@@ -71,54 +71,44 @@ fn update_properties_reproduces_yade_bit_for_bit() {
         }
         let ours = clump::make_clump(&mut bodies, &mats, &ids, 0).unwrap();
         assert_eq!(ours, ids.len(), "the clump is appended after its members");
-        assert_eq!(
-            bodies.mass[ours].to_bits(),
-            yade.mass[cid].to_bits(),
-            "clump #{} mass",
-            cid
-        );
-        assert_eq!(
-            bits3(&bodies.pos[ours]),
-            bits3(&yade.pos[cid]),
-            "clump #{} pos",
-            cid
-        );
-        assert_eq!(
-            bits3(&bodies.inertia[ours]),
-            bits3(&yade.inertia[cid]),
-            "clump #{} inertia",
-            cid
-        );
-        assert_eq!(
-            bitsq(&bodies.ori[ours]),
-            bitsq(&yade.ori[cid]),
-            "clump #{} ori",
-            cid
-        );
-        assert_eq!(
-            bodies.aspherical[ours], yade.aspherical[cid],
-            "clump #{} aspherical",
-            cid
-        );
+        let checks = [
+            (
+                "mass",
+                vec![bodies.mass[ours].to_bits()],
+                vec![yade.mass[cid].to_bits()],
+            ),
+            (
+                "pos",
+                bits3(&bodies.pos[ours]).to_vec(),
+                bits3(&yade.pos[cid]).to_vec(),
+            ),
+            (
+                "inertia",
+                bits3(&bodies.inertia[ours]).to_vec(),
+                bits3(&yade.inertia[cid]).to_vec(),
+            ),
+            (
+                "ori",
+                bitsq(&bodies.ori[ours]).to_vec(),
+                bitsq(&yade.ori[cid]).to_vec(),
+            ),
+            (
+                "aspherical",
+                vec![bodies.aspherical[ours] as u64],
+                vec![yade.aspherical[cid] as u64],
+            ),
+        ];
+        for (what, ours_bits, yade_bits) in checks {
+            assert_eq!(ours_bits, yade_bits, "clump #{} {}", cid, what);
+        }
         n_aspherical += yade.aspherical[cid] as usize;
         let Shape::Clump(oc) = &bodies.shape[ours] else {
             panic!("not a clump")
         };
         for (a, b) in oc.members.iter().zip(yc.members.iter()) {
-            assert_eq!(
-                bits3(&a.rel_pos),
-                bits3(&b.rel_pos),
-                "clump #{} member {} relPos",
-                cid,
-                b.id
-            );
-            assert_eq!(
-                bitsq(&a.rel_ori),
-                bitsq(&b.rel_ori),
-                "clump #{} member {} relOri",
-                cid,
-                b.id
-            );
+            let ours_pose = (bits3(&a.rel_pos), bitsq(&a.rel_ori));
+            let yade_pose = (bits3(&b.rel_pos), bitsq(&b.rel_ori));
+            assert_eq!(ours_pose, yade_pose, "clump #{} member {} pose", cid, b.id);
         }
         for &m in &ids {
             assert!(bodies.is_clump_member(m));

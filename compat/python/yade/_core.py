@@ -454,32 +454,25 @@ class BodyContainer(object):
         ids = self.append(list(bodies))
         return (self.clump(ids, discretization), ids)
 
-    def replaceByClumps(self, *a, **kw):
-        unsupported('O.bodies.replaceByClumps (clump templates)', 'build the clumps with O.bodies.appendClumped')
-
-    def addToClump(self, *a, **kw):
-        unsupported('O.bodies.addToClump')
-
-    def releaseFromClump(self, *a, **kw):
-        unsupported('O.bodies.releaseFromClump')
-
-    def deleteClumpMember(self, *a, **kw):
-        unsupported('O.bodies.deleteClumpMember')
-
-    def deleteClumpBody(self, *a, **kw):
-        unsupported('O.bodies.deleteClumpBody')
-
-    def updateClumpProperties(self, *a, **kw):
-        unsupported('O.bodies.updateClumpProperties')
-
-    def getRoundness(self, *a, **kw):
-        unsupported('O.bodies.getRoundness')
-
     def clear(self):
         unsupported('O.bodies.clear')
 
     def replace(self, bodies):
         unsupported('O.bodies.replace')
+
+
+def _unsupported_clump_op(name, hint=None):
+    def op(self, *a, **kw):
+        unsupported('O.bodies.' + name, hint)
+    op.__name__ = name
+    return op
+
+
+# the clump operations beyond appendClumped/clump (YADE's BodyContainer has them)
+for _name, _hint in (('replaceByClumps', 'build the clumps with O.bodies.appendClumped'), ('addToClump', None),
+                     ('releaseFromClump', None), ('deleteClumpMember', None), ('deleteClumpBody', None),
+                     ('updateClumpProperties', None), ('getRoundness', None)):
+    setattr(BodyContainer, _name, _unsupported_clump_op(_name, _hint))
 
 
 class MaterialContainer(object):
