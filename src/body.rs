@@ -89,6 +89,13 @@ pub struct Bodies {
     /// `None` until the bound dispatcher first gives the body a bound (or never, for unbounded
     /// bodies and shapes without a bound functor).
     pub bound: Vec<Option<Bound>>,
+    /// `Body::clumpId`: `None` for a standalone body, the clump's id for a clump member and for the
+    /// clump itself (core/Body.hpp).
+    pub clump_id: Vec<Option<u32>>,
+    /// `State::angMom`, the state of the aspherical rotation integrator (clumps).
+    pub ang_mom: Vec<Vec3>,
+    /// `Body::aspherical`: rotation integrated with `leapfrogAsphericalRotate` when unblocked.
+    pub aspherical: Vec<bool>,
 }
 
 impl Bodies {
@@ -116,7 +123,40 @@ impl Bodies {
         self.blocked.push(b.blocked);
         self.is_damped.push(b.is_damped);
         self.bound.push(None);
+        self.clump_id.push(None);
+        self.ang_mom.push(Vec3::zeros());
+        self.aspherical.push(false);
         id
+    }
+
+    /// Drop the bodies from id `n` on (undoes a failed append).
+    pub fn truncate(&mut self, n: usize) {
+        self.shape.truncate(n);
+        self.material.truncate(n);
+        self.mask.truncate(n);
+        self.bounded.truncate(n);
+        self.pos.truncate(n);
+        self.vel.truncate(n);
+        self.ang_vel.truncate(n);
+        self.ori.truncate(n);
+        self.mass.truncate(n);
+        self.inertia.truncate(n);
+        self.blocked.truncate(n);
+        self.is_damped.truncate(n);
+        self.bound.truncate(n);
+        self.clump_id.truncate(n);
+        self.ang_mom.truncate(n);
+        self.aspherical.truncate(n);
+    }
+
+    /// `Body::isClump()`: the body holds a `Clump` shape.
+    pub fn is_clump(&self, id: usize) -> bool {
+        matches!(self.shape[id], Shape::Clump(_))
+    }
+
+    /// `Body::isClumpMember()`: `clumpId` set and different from the body's own id.
+    pub fn is_clump_member(&self, id: usize) -> bool {
+        matches!(self.clump_id[id], Some(c) if c as usize != id)
     }
 
     /// `Body::isDynamic()`: not all DOFs blocked.

@@ -41,6 +41,8 @@ pub fn aabb(
 ) -> Result<Option<(Vec3, Vec3)>, String> {
     let pos = bodies.pos[id];
     Ok(match shape {
+        // clumps are never bounded (Clump::add clears their `bounded` flag)
+        Shape::Clump(_) => None,
         Shape::GridConnection(gc) if f.grid_connection => {
             // Bo1_GridConnection_Aabb::go (pkg/common/Grid.cpp)
             let mut o1 = bodies.pos[gc.node1 as usize];

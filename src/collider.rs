@@ -151,10 +151,18 @@ impl Collider {
             + (self.minima.capacity() + self.maxima.capacity()) * std::mem::size_of::<f64>()
     }
 
-    /// `Collider::mayCollide`: masks only (no clumps here, no "one must be dynamic" rule).
+    /// `Collider::mayCollide` (pkg/common/Collider.cpp): not two members of one clump, no clump
+    /// itself, masks sharing a bit and the avoidSelfInteractionMask rule (no "one must be dynamic"
+    /// rule).
     #[inline(always)]
     fn may_collide(&self, bodies: &Bodies, a: u32, b: u32) -> bool {
-        let (ma, mb) = (bodies.mask[a as usize], bodies.mask[b as usize]);
+        let (a, b) = (a as usize, b as usize);
+        let (ca, cb) = (bodies.clump_id[a], bodies.clump_id[b]);
+        if (ca.is_some() || cb.is_some()) && (ca == cb || bodies.is_clump(a) || bodies.is_clump(b))
+        {
+            return false;
+        }
+        let (ma, mb) = (bodies.mask[a], bodies.mask[b]);
         (ma & mb) != 0 && !(ma == mb && (ma & self.p.avoid_self_interaction_mask) != 0)
     }
 

@@ -1,18 +1,27 @@
 //! `NewtonIntegrator` (pkg/dem/NewtonIntegrator.cpp): leap-frog with Cundall's non-viscous damping.
 //!
 //! Forces were computed from x_n and v_{n-1/2}; this computes v_{n+1/2} then x_{n+1}. Fixed bodies
-//! (all DOFs blocked) skip the acceleration but still move with their velocity.
+//! (all DOFs blocked) skip the acceleration but still move with their velocity. Clump members are
+//! skipped; a clump takes its members' forces and torques (`Clump::addForceTorqueFromMembers`), is
+//! integrated as a rigid body (aspherical rotation when its principal inertia differs) and then
+//! places its members (`Clump::moveMembers`).
 
 use crate::body::{Bodies, DOF_ALL};
 use crate::cell::Cell;
 use crate::forces::Forces;
-use crate::math::{mat_vec, norm2, sign, Mat3, Quat, Vec3};
+use crate::math::{cross, mat_vec, norm2, sign, Mat3, Quat, Vec3};
+use crate::shape::Shape;
+
+/// `State::DOF_RXRYRZ`: the three rotational DOF bits.
+const DOF_ROT: u8 = 8 | 16 | 32;
 
 #[derive(Clone, Debug)]
 pub struct Newton {
     pub damping: f64,
     pub gravity: Vec3,
     pub damp_gravity: bool,
+    /// `exactAsphericalRot`: integrate aspherical bodies (clumps) from their angular momentum.
+    pub exact_aspherical_rot: bool,
     /// -1: every body; otherwise only bodies whose groupMask shares a bit.
     pub mask: i32,
     /// YADE's `maxVelocitySq`, reused by the collider as a displacement indicator:
@@ -28,6 +37,7 @@ impl Default for Newton {
             damping: 0.2,
             gravity: Vec3::zeros(),
             damp_gravity: true,
+            exact_aspherical_rot: true,
             mask: -1,
             max_velocity_sq: 0.0,
             prev_vel_grad: Mat3::zeros(),
@@ -53,11 +63,36 @@ impl Newton {
         }
     }
 
-    /// One `NewtonIntegrator::action` over all bodies (YADE order: forces already synced).
+    /// `NewtonIntegrator::cundallDamp1st`: damp each torque component by the sign of its product
+    /// with the current angular velocity (aspherical rotation).
+    #[inline(always)]
+    fn damp1st(&self, w: &Vec3, m: &mut Vec3) {
+        for i in 0..3 {
+            m[i] *= 1.0 - self.damping * sign(m[i] * w[i]);
+        }
+    }
+
+    /// `saveMaximaDisplacement`: 0.5 while a bounded body is inside its swept bound, 2 otherwise.
+    #[inline(always)]
+    fn save_maxima_displacement(&mut self, bodies: &Bodies, id: usize) {
+        if let Some(b) = &bodies.bound[id] {
+            let d = bodies.pos[id] - b.ref_pos;
+            let md = d[0].abs().max(d[1].abs().max(d[2].abs()));
+            let ind = if md == 0.0 || md < b.sweep_length {
+                0.5
+            } else {
+                2.0
+            };
+            self.max_velocity_sq = self.max_velocity_sq.max(ind);
+        }
+    }
+
+    /// One `NewtonIntegrator::action` over all bodies (YADE order: forces already synced). Clumps
+    /// add their members' forces to their own entry in `forces`, as YADE does.
     pub fn step(
         &mut self,
         bodies: &mut Bodies,
-        forces: &Forces,
+        forces: &mut Forces,
         cell: Option<&mut Cell>,
         dt: f64,
     ) -> Result<(), NewtonError> {
@@ -85,12 +120,30 @@ impl Newton {
         }
         let g = self.gravity;
         for id in 0..bodies.len() {
+            // clump members are moved by their clump
+            if bodies.is_clump_member(id) {
+                continue;
+            }
             if self.mask > 0 && (bodies.mask[id] & self.mask) == 0 {
                 continue;
             }
+            let is_clump = matches!(bodies.shape[id], Shape::Clump(_));
+            if let Shape::Clump(c) = &bodies.shape[id] {
+                let (cf, ct) = crate::clump::force_torque_from_members(
+                    c,
+                    bodies,
+                    &forces.force,
+                    &forces.torque,
+                    &bodies.pos[id],
+                );
+                forces.torque[id] += ct;
+                forces.force[id] += cf;
+            }
             let f = forces.force[id];
-            let m = forces.torque[id];
+            let mut m = forces.torque[id];
             let blocked = bodies.blocked[id];
+            let use_aspherical =
+                self.exact_aspherical_rot && bodies.aspherical[id] && (blocked & DOF_ROT) == 0;
             let fluct = if periodic {
                 bodies.vel[id] - mat_vec(&self.prev_vel_grad, &bodies.pos[id])
             } else {
@@ -141,22 +194,30 @@ impl Newton {
                     a += mat_vec(&self.prev_vel_grad, &bodies.vel[id]);
                 }
                 bodies.vel[id] += a * dt;
-                let inertia = bodies.inertia[id];
-                let mut aa = Vec3::zeros();
-                if blocked == 0 {
-                    aa = Vec3::new(m[0] / inertia[0], m[1] / inertia[1], m[2] / inertia[2]);
+                if use_aspherical {
+                    // torque-driven: no DOF is blocked here, only the torque is damped
+                    if bodies.is_damped[id] {
+                        let w = bodies.ang_vel[id];
+                        self.damp1st(&w, &mut m);
+                    }
                 } else {
-                    for i in 0..3 {
-                        if blocked & (8 << i) == 0 {
-                            aa[i] += m[i] / inertia[i];
+                    let inertia = bodies.inertia[id];
+                    let mut aa = Vec3::zeros();
+                    if blocked == 0 {
+                        aa = Vec3::new(m[0] / inertia[0], m[1] / inertia[1], m[2] / inertia[2]);
+                    } else {
+                        for i in 0..3 {
+                            if blocked & (8 << i) == 0 {
+                                aa[i] += m[i] / inertia[i];
+                            }
                         }
                     }
+                    if bodies.is_damped[id] {
+                        let w = bodies.ang_vel[id];
+                        self.damp(dt, &w, &mut aa);
+                    }
+                    bodies.ang_vel[id] += aa * dt;
                 }
-                if bodies.is_damped[id] {
-                    let w = bodies.ang_vel[id];
-                    self.damp(dt, &w, &mut aa);
-                }
-                bodies.ang_vel[id] += aa * dt;
             } else if periodic && homo_deform > 1 {
                 let v = bodies.vel[id];
                 bodies.vel[id] += mat_vec(&(self.prev_vel_grad * dt), &v);
@@ -168,29 +229,26 @@ impl Newton {
             }
             let v = bodies.vel[id];
             bodies.pos[id] += v * dt;
-            // leapfrogSphericalRotate
-            if periodic && homo_deform != 0 {
-                bodies.ang_vel[id] += dspin;
+            if use_aspherical {
+                leapfrog_aspherical_rotate(bodies, id, dt, &m);
+            } else {
+                // leapfrogSphericalRotate
+                if periodic && homo_deform != 0 {
+                    bodies.ang_vel[id] += dspin;
+                }
+                let w = bodies.ang_vel[id];
+                let w2 = norm2(&w);
+                if w2 != 0.0 {
+                    let wn = w2.sqrt();
+                    let axis = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
+                    let q = Quat::from_angle_axis(wn * dt, &axis);
+                    bodies.ori[id] = q.mul(&bodies.ori[id]);
+                }
+                bodies.ori[id].normalize();
             }
-            let w = bodies.ang_vel[id];
-            let w2 = norm2(&w);
-            if w2 != 0.0 {
-                let wn = w2.sqrt();
-                let axis = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
-                let q = Quat::from_angle_axis(wn * dt, &axis);
-                bodies.ori[id] = q.mul(&bodies.ori[id]);
-            }
-            bodies.ori[id].normalize();
-            // saveMaximaDisplacement
-            if let Some(b) = &bodies.bound[id] {
-                let d = bodies.pos[id] - b.ref_pos;
-                let md = d[0].abs().max(d[1].abs().max(d[2].abs()));
-                let ind = if md == 0.0 || md < b.sweep_length {
-                    0.5
-                } else {
-                    2.0
-                };
-                self.max_velocity_sq = self.max_velocity_sq.max(ind);
+            self.save_maxima_displacement(bodies, id);
+            if is_clump {
+                self.move_members(bodies, id);
             }
             if !(bodies.pos[id].iter().all(|x| x.is_finite())
                 && bodies.vel[id].iter().all(|x| x.is_finite()))
@@ -212,4 +270,83 @@ impl Newton {
         }
         Ok(())
     }
+
+    /// `Clump::moveMembers` (core/Clump.hpp): each member's pose and velocity from the clump's,
+    /// then `saveMaximaDisplacement` for the member.
+    fn move_members(&mut self, bodies: &mut Bodies, cid: usize) {
+        let Shape::Clump(c) = &bodies.shape[cid] else {
+            return;
+        };
+        let members: Vec<(usize, Vec3, Quat)> = c
+            .members
+            .iter()
+            .map(|m| (m.id as usize, m.rel_pos, m.rel_ori))
+            .collect();
+        let (cp, co, cv, cw) = (
+            bodies.pos[cid],
+            bodies.ori[cid],
+            bodies.vel[cid],
+            bodies.ang_vel[cid],
+        );
+        for (id, rp, ro) in members {
+            let p = cp + co.rotate(&rp);
+            bodies.pos[id] = p;
+            bodies.ori[id] = co.mul(&ro);
+            bodies.vel[id] = cv + cross(&cw, &(p - cp));
+            bodies.ang_vel[id] = cw;
+            self.save_maxima_displacement(bodies, id);
+        }
+    }
+}
+
+/// `NewtonIntegrator::DotQ`: the quaternion derivative for a body-frame angular velocity `w`.
+#[inline(always)]
+fn dot_q(w: &Vec3, q: &Quat) -> Quat {
+    Quat {
+        w: (-q.x * w[0] - q.y * w[1] - q.z * w[2]) / 2.0,
+        x: (q.w * w[0] - q.z * w[1] + q.y * w[2]) / 2.0,
+        y: (q.z * w[0] + q.w * w[1] - q.x * w[2]) / 2.0,
+        z: (-q.y * w[0] + q.x * w[1] + q.w * w[2]) / 2.0,
+    }
+}
+
+/// `NewtonIntegrator::leapfrogAsphericalRotate`: angular momentum leap-frog with a mid-step
+/// quaternion; `angVel` is recomputed from the momentum (the stored `angVel` of an aspherical body
+/// is output only: YADE quirk, setting it by hand has no effect on the motion).
+fn leapfrog_aspherical_rotate(bodies: &mut Bodies, id: usize, dt: f64, m: &Vec3) {
+    let ori = bodies.ori[id];
+    let inertia = bodies.inertia[id];
+    let a = ori.conjugate().to_rotation_matrix();
+    let half = dt / 2.0;
+    let l_n = bodies.ang_mom[id] + Vec3::new(half * m[0], half * m[1], half * m[2]);
+    let l_b_n = mat_vec(&a, &l_n);
+    let w_b_n = Vec3::new(
+        l_b_n[0] / inertia[0],
+        l_b_n[1] / inertia[1],
+        l_b_n[2] / inertia[2],
+    );
+    let dq_n = dot_q(&w_b_n, &ori);
+    let q_half = Quat {
+        x: ori.x + half * dq_n.x,
+        y: ori.y + half * dq_n.y,
+        z: ori.z + half * dq_n.z,
+        w: ori.w + half * dq_n.w,
+    };
+    bodies.ang_mom[id] += Vec3::new(dt * m[0], dt * m[1], dt * m[2]);
+    let l_b_half = mat_vec(&a, &bodies.ang_mom[id]);
+    let w_b_half = Vec3::new(
+        l_b_half[0] / inertia[0],
+        l_b_half[1] / inertia[1],
+        l_b_half[2] / inertia[2],
+    );
+    let dq_half = dot_q(&w_b_half, &q_half);
+    let mut q = Quat {
+        x: ori.x + dt * dq_half.x,
+        y: ori.y + dt * dq_half.y,
+        z: ori.z + dt * dq_half.z,
+        w: ori.w + dt * dq_half.w,
+    };
+    bodies.ang_vel[id] = q.rotate(&w_b_half);
+    q.normalize();
+    bodies.ori[id] = q;
 }

@@ -9,6 +9,7 @@ pub mod body;
 pub mod bound;
 pub mod calibrate;
 pub mod cell;
+pub mod clump;
 pub mod collider;
 pub mod dispatch;
 pub mod fast;

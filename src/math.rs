@@ -169,6 +169,61 @@ impl Quat {
         }
     }
 
+    /// Eigen `q * v` for a 3-vector (`QuaternionBase::_transformVector`, Geometry/Quaternion.h):
+    /// `uv = q.vec × v; uv += uv; v + w·uv + q.vec × uv`, which assumes a unit quaternion (YADE also
+    /// applies it to the not yet normalised quaternion in `leapfrogAsphericalRotate`).
+    #[inline(always)]
+    pub fn rotate(&self, v: &Vec3) -> Vec3 {
+        let qv = Vec3::new(self.x, self.y, self.z);
+        let mut uv = cross(&qv, v);
+        uv += uv;
+        let c = cross(&qv, &uv);
+        Vec3::new(
+            v[0] + self.w * uv[0] + c[0],
+            v[1] + self.w * uv[1] + c[1],
+            v[2] + self.w * uv[2] + c[2],
+        )
+    }
+
+    /// Eigen `Quaternion(Matrix3)` (Shoemake's algorithm, `quaternionbase_assign_impl<Other,3,3>`):
+    /// from the trace when it is positive, otherwise from the largest diagonal entry.
+    pub fn from_rotation_matrix(m: &Mat3) -> Quat {
+        let t = m[(0, 0)] + (m[(1, 1)] + m[(2, 2)]);
+        if t > 0.0 {
+            let t = (t + 1.0).sqrt();
+            let h = 0.5 / t;
+            Quat {
+                w: 0.5 * t,
+                x: (m[(2, 1)] - m[(1, 2)]) * h,
+                y: (m[(0, 2)] - m[(2, 0)]) * h,
+                z: (m[(1, 0)] - m[(0, 1)]) * h,
+            }
+        } else {
+            let mut i = 0;
+            if m[(1, 1)] > m[(0, 0)] {
+                i = 1;
+            }
+            if m[(2, 2)] > m[(i, i)] {
+                i = 2;
+            }
+            let j = (i + 1) % 3;
+            let k = (j + 1) % 3;
+            let t = (m[(i, i)] - m[(j, j)] - m[(k, k)] + 1.0).sqrt();
+            let mut c = [0.0; 3];
+            c[i] = 0.5 * t;
+            let h = 0.5 / t;
+            let w = (m[(k, j)] - m[(j, k)]) * h;
+            c[j] = (m[(j, i)] + m[(i, j)]) * h;
+            c[k] = (m[(k, i)] + m[(i, k)]) * h;
+            Quat {
+                w,
+                x: c[0],
+                y: c[1],
+                z: c[2],
+            }
+        }
+    }
+
     /// Eigen `toRotationMatrix()` (Quaternion.h): `tx = 2x`, `twx = tx*w`, ..., `R00 = 1-(tyy+tzz)`.
     pub fn to_rotation_matrix(&self) -> Mat3 {
         let (x, y, z, w) = (self.x, self.y, self.z, self.w);

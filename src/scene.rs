@@ -410,8 +410,13 @@ impl Scene {
             Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
             Engine::Newton(n) => {
                 self.forces.sync();
-                n.step(&mut self.bodies, &self.forces, self.cell.as_mut(), self.dt)
-                    .map_err(|e| self.newton_error(e))
+                n.step(
+                    &mut self.bodies,
+                    &mut self.forces,
+                    self.cell.as_mut(),
+                    self.dt,
+                )
+                .map_err(|e| self.newton_error(e))
             }
             Engine::TimeStepper(ts) => {
                 if ts.is_activated(self.iter) {

@@ -107,6 +107,8 @@ pub enum Shape {
     },
     GridNode(Box<GridNode>),
     GridConnection(Box<GridConnection>),
+    /// A rigid aggregate of member bodies (core/Clump.hpp); never bounded, never in contact.
+    Clump(Box<crate::clump::Clump>),
 }
 
 impl Shape {
@@ -118,6 +120,7 @@ impl Shape {
             Shape::Box { .. } => "Box",
             Shape::GridNode(_) => "GridNode",
             Shape::GridConnection(_) => "GridConnection",
+            Shape::Clump(_) => "Clump",
         }
     }
 
@@ -151,6 +154,7 @@ pub enum ShapeClass {
     Facet,
     Wall,
     Box,
+    Clump,
 }
 
 impl crate::dispatch::Hierarchy for ShapeClass {
@@ -172,6 +176,7 @@ impl Shape {
             Shape::Box { .. } => ShapeClass::Box,
             Shape::GridNode(_) => ShapeClass::GridNode,
             Shape::GridConnection(_) => ShapeClass::GridConnection,
+            Shape::Clump(_) => ShapeClass::Clump,
         }
     }
 }

@@ -156,6 +156,26 @@ impl Sim {
         self.scene.forces.resize(self.scene.bodies.len());
         Ok(id)
     }
+    /// `O.bodies.clump(ids, discretization)`: a clump body appended after `ids` (Clump::add +
+    /// Clump::updateProperties); returns its id.
+    fn make_clump(&mut self, ids: Vec<usize>, discretization: u32) -> PyResult<usize> {
+        let cid = ryade::clump::make_clump(
+            &mut self.scene.bodies,
+            &self.scene.materials,
+            &ids,
+            discretization,
+        )
+        // YADE raises ValueError (std::invalid_argument) for a body listed twice
+        .map_err(|e| {
+            if e.contains("already part of this clump") {
+                PyValueError::new_err(e)
+            } else {
+                PyRuntimeError::new_err(e)
+            }
+        })?;
+        self.scene.forces.resize(self.scene.bodies.len());
+        Ok(cid)
+    }
     fn n_bodies(&self) -> usize {
         self.scene.bodies.len()
     }
@@ -167,6 +187,7 @@ impl Sim {
             "vel" => v3(&b.vel[id]),
             "angVel" => v3(&b.ang_vel[id]),
             "inertia" => v3(&b.inertia[id]),
+            "angMom" => v3(&b.ang_mom[id]),
             _ => {
                 return Err(PyKeyError::new_err(format!(
                     "State has no vector attribute '{}' in ryade",
@@ -183,6 +204,7 @@ impl Sim {
             "vel" => b.vel[id] = vec(v),
             "angVel" => b.ang_vel[id] = vec(v),
             "inertia" => b.inertia[id] = vec(v),
+            "angMom" => b.ang_mom[id] = vec(v),
             _ => {
                 return Err(PyKeyError::new_err(format!(
                     "State has no vector attribute '{}' in ryade",
@@ -255,6 +277,8 @@ impl Sim {
             "mask" => b.mask[id] as i64,
             "isDamped" => b.is_damped[id] as i64,
             "bounded" => b.bounded[id] as i64,
+            "clumpId" => b.clump_id[id].map_or(-1, |c| c as i64),
+            "aspherical" => b.aspherical[id] as i64,
             _ => {
                 return Err(PyKeyError::new_err(format!(
                     "no integer attribute '{}' in ryade",
@@ -276,6 +300,7 @@ impl Sim {
             "mask" => b.mask[id] = v as i32,
             "isDamped" => b.is_damped[id] = v != 0,
             "bounded" => b.bounded[id] = v != 0,
+            "aspherical" => b.aspherical[id] = v != 0,
             _ => {
                 return Err(PyKeyError::new_err(format!(
                     "no integer attribute '{}' in ryade",

@@ -367,8 +367,10 @@ pub fn from_value(v: &Value, name: String) -> Result<SceneFile> {
             );
         }
         let spec = body(b, &mut scene.materials).with_context(|| format!("body #{}", id))?;
-        scene.bodies.push(spec);
+        let id = scene.bodies.push(spec);
+        body_extras(b, &mut scene.bodies, id).with_context(|| format!("body #{}", id))?;
     }
+    check_clumps(&scene.bodies)?;
     let engines = v
         .get("engines")
         .and_then(Value::as_array)
@@ -507,16 +509,41 @@ pub fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
                 cell_dist: ivec3(s, "cellDist")?.unwrap_or([0; 3]),
             }))
         }
+        "Clump" => {
+            let ms = s
+                .get("members")
+                .and_then(Value::as_array)
+                .ok_or_else(|| anyhow!("clump without a 'members' array"))?;
+            let mut members = Vec::with_capacity(ms.len());
+            for m in ms {
+                members.push(crate::clump::ClumpMember {
+                    id: m
+                        .get("id")
+                        .and_then(Value::as_u64)
+                        .ok_or_else(|| anyhow!("clump member without an integer 'id'"))?
+                        as u32,
+                    rel_pos: vec3(m, "relPos")?,
+                    rel_ori: quat_of(
+                        m.get("relOri")
+                            .ok_or_else(|| anyhow!("clump member without 'relOri'"))?,
+                    )?,
+                });
+            }
+            if members.is_empty() || members.windows(2).any(|w| w[0].id >= w[1].id) {
+                bail!("clump members must be listed once each, by increasing id");
+            }
+            Shape::Clump(Box::new(crate::clump::Clump { members }))
+        }
         other => bail!(
-            "shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box, GridNode, GridConnection)",
+            "shape class '{}' is not supported by ryade yet (supported: Sphere, Facet, Wall, Box, GridNode, GridConnection, Clump)",
             other
         ),
     };
-    let material = material(
-        b.get("material")
-            .ok_or_else(|| anyhow!("missing 'material'"))?,
-        mats,
-    )?;
+    let material = match b.get("material") {
+        // a clump has no material in YADE; `body_extras` gives it its first member's
+        Some(Value::Null) | None if matches!(shape, Shape::Clump(_)) => 0,
+        m => material(m.ok_or_else(|| anyhow!("missing 'material'"))?, mats)?,
+    };
     let ori = b
         .get("ori")
         .and_then(Value::as_array)
@@ -545,6 +572,84 @@ pub fn body(b: &Value, mats: &mut Vec<FrictMat>) -> Result<BodySpec> {
         blocked: blocked as u8,
         is_damped: bo(b, "isDamped", true)?,
     })
+}
+
+/// The body attributes `BodySpec` does not carry: `aspherical`, `angMom` and `clumpId` (all
+/// optional; a clump body's material is taken from its first member, YADE leaves it empty).
+pub fn body_extras(b: &Value, bodies: &mut crate::body::Bodies, id: usize) -> Result<()> {
+    bodies.aspherical[id] = bo(b, "aspherical", false)?;
+    bodies.ang_mom[id] = vec3_or(b, "angMom", Vec3::zeros())?;
+    match b.get("clumpId") {
+        None | Some(Value::Null) => {}
+        Some(c) => {
+            let c = c
+                .as_i64()
+                .ok_or_else(|| anyhow!("'clumpId' must be an integer"))?;
+            bodies.clump_id[id] = if c < 0 { None } else { Some(c as u32) };
+        }
+    }
+    if let Shape::Clump(c) = &bodies.shape[id] {
+        if bodies.clump_id[id] != Some(id as u32) {
+            bail!("a clump's 'clumpId' must be its own id");
+        }
+        let first = c.members.first().map(|m| m.id as usize);
+        match first {
+            Some(m) if m < id => bodies.material[id] = bodies.material[m],
+            _ => bail!("a clump needs members with ids below its own"),
+        }
+    }
+    Ok(())
+}
+
+/// Clump bookkeeping must agree both ways: every member names its clump and every clump lists
+/// exactly the bodies that name it.
+fn check_clumps(bodies: &crate::body::Bodies) -> Result<()> {
+    let mut listed = vec![None; bodies.len()];
+    for id in 0..bodies.len() {
+        if let Shape::Clump(c) = &bodies.shape[id] {
+            for m in &c.members {
+                let mi = m.id as usize;
+                if mi >= bodies.len() || bodies.is_clump(mi) {
+                    bail!(
+                        "clump #{}: member #{} is not a body that can be clumped",
+                        id,
+                        mi
+                    );
+                }
+                if bodies.clump_id[mi] != Some(id as u32) {
+                    bail!(
+                        "clump #{} lists body #{} whose clumpId is not {}",
+                        id,
+                        mi,
+                        id
+                    );
+                }
+                listed[mi] = Some(id);
+            }
+        }
+    }
+    for (id, l) in listed.iter().enumerate() {
+        if bodies.is_clump_member(id) && l.is_none() {
+            bail!(
+                "body #{} has clumpId {} but that clump does not list it",
+                id,
+                bodies.clump_id[id].unwrap()
+            );
+        }
+    }
+    Ok(())
+}
+
+fn quat_of(v: &Value) -> Result<Quat> {
+    let a = v
+        .as_array()
+        .filter(|a| a.len() == 4)
+        .ok_or_else(|| anyhow!("a quaternion must be [w, x, y, z]"))?;
+    let c = |i: usize| {
+        a[i].as_f64()
+            .ok_or_else(|| anyhow!("quaternion component {} is not a number", i))
+    };
+    Ok(Quat::new(c(0)?, c(1)?, c(2)?, c(3)?))
 }
 
 pub fn engine(e: &Value) -> Result<Engine> {
@@ -708,6 +813,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             damping: fo(e, "damping", 0.2)?,
             gravity: if e.get("gravity").is_some() { vec3(e, "gravity")? } else { Vec3::zeros() },
             damp_gravity: bo(e, "dampGravity", true)?,
+            exact_aspherical_rot: bo(e, "exactAsphericalRot", true)?,
             mask: fo(e, "mask", -1.0)? as i32,
             ..Default::default()
         })),
@@ -753,6 +859,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 Shape::GridNode(n) => json!({"class": "GridNode", "radius": n.radius, "connections": n.conn_list}),
                 Shape::GridConnection(c) => json!({"class": "GridConnection", "radius": c.radius,
                     "node1": c.node1, "node2": c.node2, "periodic": c.periodic, "cellDist": c.cell_dist}),
+                Shape::Clump(c) => json!({"class": "Clump", "members": c.members.iter().map(|m| json!({
+                    "id": m.id, "relPos": v3(&m.rel_pos),
+                    "relOri": [m.rel_ori.w, m.rel_ori.x, m.rel_ori.y, m.rel_ori.z]})).collect::<Vec<_>>()}),
             };
             let m = &scene.materials[b.material[id]];
             let q = b.ori[id];
@@ -773,14 +882,24 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
-            json!({
+            let mut body = json!({
                 "id": id, "shape": shape,
                 "material": mat,
                 "mask": b.mask[id], "bounded": b.bounded[id],
                 "pos": v3(&b.pos[id]), "vel": v3(&b.vel[id]), "angVel": v3(&b.ang_vel[id]),
                 "ori": [q.w, q.x, q.y, q.z], "mass": b.mass[id], "inertia": v3(&b.inertia[id]),
                 "blockedDOFs": b.blocked[id], "isDamped": b.is_damped[id],
-            })
+            });
+            // clump attributes only where they matter, so other scenes export as before
+            if let Some(c) = b.clump_id[id] {
+                body["clumpId"] = json!(c);
+            }
+            if b.is_clump(id) {
+                body["material"] = Value::Null;
+                body["aspherical"] = json!(b.aspherical[id]);
+                body["angMom"] = v3(&b.ang_mom[id]);
+            }
+            body
         })
         .collect();
     let engines: Vec<Value> = scene
@@ -875,7 +994,13 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
-            Engine::Newton(n) => json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask}),
+            Engine::Newton(n) => {
+                let mut e = json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask});
+                if !n.exact_aspherical_rot {
+                    e["exactAsphericalRot"] = json!(false);
+                }
+                e
+            }
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),

@@ -161,9 +161,26 @@ def _material(b, grid=False):
             'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label)}
 
 
+def _clump_body(b):
+    """A clump (golden/FORMAT.md, clump extension): members with their pose in the clump frame as
+    YADE stores it (Clump.members), no material, the aspherical flag and the angular momentum."""
+    st = b.state
+    _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
+    mem = b.shape.members
+    members = [{'id': int(i), 'relPos': _v3(mem[i][0]), 'relOri': _quat_wxyz(mem[i][1])} for i in sorted(mem.keys())]
+    return {'id': int(b.id), 'shape': {'class': 'Clump', 'members': members}, 'material': None,
+            'mask': int(b.mask), 'bounded': bool(b.bounded),
+            'pos': _v3(st.pos), 'vel': _v3(st.vel), 'angVel': _v3(st.angVel), 'ori': _quat_wxyz(st.ori),
+            'mass': float(st.mass), 'inertia': _v3(st.inertia), 'blockedDOFs': dof_bits(st.blockedDOFs),
+            'isDamped': bool(st.isDamped), 'clumpId': int(b.clumpId), 'aspherical': bool(b.aspherical),
+            'angMom': _v3(st.angMom)}
+
+
 def _body(b, grid=False):
     _require(b is not None, 'erased body (None) in O.bodies: ids must be dense')
-    _require(not b.isClump and not b.isClumpMember, 'body %d: clumps are not supported' % b.id)
+    if b.isClump:
+        _require(not grid, 'body %d: clumps are not supported in grid scenes' % b.id)
+        return _clump_body(b)
     st = b.state
     _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
     shape = _shape(b, grid)
@@ -176,6 +193,9 @@ def _body(b, grid=False):
          'isDamped': bool(st.isDamped)}
     if grid:
         d['aspherical'] = bool(b.aspherical)
+    if b.isClumpMember:
+        _require(not grid, 'body %d: clump members are not supported in grid scenes' % b.id)
+        d['clumpId'] = int(b.clumpId)
     return d
 
 
@@ -273,6 +293,7 @@ def _engine(e, grid=False):
         _require(not e.densityScaling, 'NewtonIntegrator.densityScaling=True is not supported')
         _require(e.mask == -1, 'NewtonIntegrator.mask != -1 is not supported')
         _require(_is_zero_m3(e.prevVelGrad), 'NewtonIntegrator.prevVelGrad != 0 is not supported')
+        _require(e.exactAsphericalRot, 'NewtonIntegrator.exactAsphericalRot=False is not supported')
         return {'class': c, 'damping': float(e.damping), 'gravity': _v3(e.gravity),
                 'dampGravity': bool(e.dampGravity)}
     if c == 'TranslationEngine':

@@ -48,14 +48,14 @@ SIZES = {  # nx x ny rectangular lattice periods, piston diameter [m], default c
 # parameters an imported specimen fixes (the others come from the command line)
 SPECIMEN_PARAMS = ('ratio', 'case', 'size', 'seed', 'rib', 'nx', 'ny', 'young', 'poisson', 'friction', 'density',
                    'grid_young', 'grid_poisson', 'grid_density', 'grid_radius', 'mid_rib', 'layer', 'target_porosity',
-                   'cloud_fraction', 'oedo_kpa', 'oedo_cycles', 'settle_tol', 'freq', 'psd_fuzz')
+                   'cloud_fraction', 'oedo_kpa', 'oedo_cycles', 'settle_tol', 'freq', 'psd_fuzz', 'clump_size')
 
 
 # unmodelled-effect knobs (README "Unmodelled-effect knobs"): at these values the model is exactly the
 # study's. They are written to specimen.json / summary.json only when they differ, so default runs
 # write the same files as before the knobs existed. Only psd_fuzz changes the generation (it is a
 # SPECIMEN_PARAM; specimens written before it existed read as 0); the others act on the loading.
-KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
+KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'clump_size': 0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
                  'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None}
 
 
@@ -129,6 +129,8 @@ def parse_args(argv):
     ap.add_argument('--subgrade-zeta', type=float, default=0.2, help='spring-bed dashpot as a fraction of the plate-alone critical damping')
     ap.add_argument('--grid-kn-scale', type=float, default=1.0, help='loading: multiply kn and ks of every grid bond')
     ap.add_argument('--grid-kr-scale', type=float, default=1.0, help='loading: multiply kr and ktw of every grid bond')
+    ap.add_argument('--clump-size', type=int, default=0, choices=[0, 2, 3, 4],
+                    help='generation: replace every sphere by a clump of K overlapping spheres of the same total volume (0: spheres)')
     ap.add_argument('--load-friction', type=float, default=None,
                     help='loading: friction angle [deg] of the grain and rib materials from the rebuild on (default: the specimen\'s --friction)')
     a = ap.parse_args(argv)
@@ -152,7 +154,7 @@ def parse_args(argv):
         ap.error('a periodic triaxial grid needs nx >= 3 and ny >= 2')
     if not 0 <= a.psd_fuzz < 1:
         ap.error('--psd-fuzz must be in [0, 1)')
-    if a.no_rebuild and any(getattr(a, k) != v for k, v in KNOB_DEFAULTS.items() if k != 'psd_fuzz'):
+    if a.no_rebuild and any(getattr(a, k) != v for k, v in KNOB_DEFAULTS.items() if k not in ('psd_fuzz', 'clump_size')):
         ap.error('the loading knobs act at the specimen rebuild: not with --no-rebuild')
     if a.roll_plates and not a.eta_roll > 0:
         ap.error('--roll-plates needs --eta-roll > 0')
@@ -397,10 +399,48 @@ class Study:
             got = sp.makeCloud((0, 0, z0), (P.Lx, P.Ly, z1), rMean=P.r, rRelFuzz=a.psd_fuzz, num=n, periodic=True, seed=seed)
             if got != n:
                 raise RuntimeError('makeCloud placed %d of %d spheres (cloud too dense)' % (got, n))
+            if a.clump_size:
+                self.make_clumps(sp, seed)
+                continue
             for c, rad in sp:
                 self.spheres.append(O.bodies.append(utils.sphere(c, rad, material=self.matGrain, mask=3)))
         if a.case == 'G':
             self.make_grid(P.zGrid)
+
+    # regular unit directions of K members: a pair, an equilateral triangle, a regular tetrahedron
+    CLUMP_DIRS = {2: [(1.0, 0.0, 0.0), (-1.0, 0.0, 0.0)],
+                  3: [(1.0, 0.0, 0.0), (-0.5, math.sqrt(3) / 2, 0.0), (-0.5, -math.sqrt(3) / 2, 0.0)],
+                  4: [(s3 * x, s3 * y, s3 * z) for s3 in (1 / math.sqrt(3),)
+                      for (x, y, z) in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1))]}
+
+    def make_clumps(self, sp, seed):
+        """Knob --clump-size K: each cloud sphere (centre c, radius R) becomes a clump of K equal spheres of
+        radius R/K^(1/3) (the same total volume, overlaps counted twice as YADE's clump mass does) whose
+        centres sit at distance R - R/K^(1/3) from c along K regular directions turned by a random
+        rotation, so that the clump stays inside the original sphere (makeCloud's non-overlap holds).
+        The rotations come from Python's Mersenne Twister seeded with the cloud seed: the same in YADE
+        and ryade. self.spheres lists the member spheres; O.bodies.appendClumped (discretization 0)."""
+        import random
+        K = self.a.clump_size
+        rng = random.Random(seed)
+        dirs = self.CLUMP_DIRS[K]
+        for c, rad in sp:
+            rm = rad / K ** (1.0 / 3.0)
+            off = rad - rm
+            # uniform random rotation (Shoemake) as a matrix
+            u1, u2, u3 = rng.random(), rng.random(), rng.random()
+            qx, qy = math.sqrt(1 - u1) * math.sin(2 * math.pi * u2), math.sqrt(1 - u1) * math.cos(2 * math.pi * u2)
+            qz, qw = math.sqrt(u1) * math.sin(2 * math.pi * u3), math.sqrt(u1) * math.cos(2 * math.pi * u3)
+            R = ((1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)),
+                 (2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)),
+                 (2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)))
+            members = []
+            for d in dirs:
+                e = [R[i][0] * d[0] + R[i][1] * d[1] + R[i][2] * d[2] for i in range(3)]
+                members.append(utils.sphere((c[0] + off * e[0], c[1] + off * e[1], c[2] + off * e[2]), rm,
+                                            material=self.matGrain, mask=3))
+            cid, ids = O.bodies.appendClumped(members)
+            self.spheres.extend(ids)
 
     def grid_layout(self, z):
         """Junctions (row j, column i) and ribs (node1, node2, cellDist), as study.md "Geogrid"."""
@@ -551,11 +591,16 @@ class Study:
                 sh['node1'] = b.shape.node1.id
                 sh['node2'] = b.shape.node2.id
                 sh['cellDist'] = [int(x) for x in b.shape.cellDist]
+            elif cls == 'Clump':  # knob --clump-size
+                sh['members'] = sorted(int(i) for i in b.shape.members.keys())
             else:
                 raise RuntimeError('specimen export: unexpected shape %s' % cls)
-            bodies.append({'id': b.id, 'shape': sh, 'material': b.material.id, 'mask': b.mask, 'bounded': b.bounded,
-                           'pos': list(s.pos), 'ori': [q[3], q[0], q[1], q[2]], 'vel': list(s.vel), 'angVel': list(s.angVel),
-                           'mass': s.mass, 'inertia': list(s.inertia), 'blockedDOFs': s.blockedDOFs})
+            bd = {'id': b.id, 'shape': sh, 'material': -1 if cls == 'Clump' else b.material.id, 'mask': b.mask, 'bounded': b.bounded,
+                  'pos': list(s.pos), 'ori': [q[3], q[0], q[1], q[2]], 'vel': list(s.vel), 'angVel': list(s.angVel),
+                  'mass': s.mass, 'inertia': list(s.inertia), 'blockedDOFs': s.blockedDOFs}
+            if cls == 'Clump':
+                bd['angMom'] = list(s.angMom)  # the aspherical integrator's state
+            bodies.append(bd)
         P = self.P
         return {'format': 'ryade-study-specimen-1', 'source': 'yade_ref/study/study.py',
                 'params': params_dict(self.a, RUN_OPTIONS),
@@ -601,11 +646,22 @@ class Study:
                 from yade.minieigenHP import Vector3i
                 b = gridConnection(sh['node1'], sh['node2'], sh['radius'], material=bd['material'], mask=bd['mask'],
                                    cellDist=Vector3i(*sh['cellDist']))
+            elif sh['class'] == 'Clump':  # knob --clump-size: the members exist already, at their positions
+                i = O.bodies.clump(sh['members'])
+                if i != bd['id']:
+                    raise RuntimeError('specimen import: clump %d came out as #%d' % (bd['id'], i))
+                continue
             i = O.bodies.append(b)
             if i != bd['id']:
                 raise RuntimeError('specimen import: body %d came out as #%d' % (bd['id'], i))
         for bd in spec['bodies']:  # states last (gridConnection adds node masses)
             s = O.bodies[bd['id']].state
+            if bd['shape']['class'] == 'Clump':
+                # keep the frame O.bodies.clump computed (the members' poses in it come with it); the
+                # motion is the velocity and the angular momentum
+                s.vel = Vector3(*bd['vel'])
+                s.angMom = Vector3(*bd['angMom'])
+                continue
             s.pos = Vector3(*bd['pos'])
             w, x, y, z = bd['ori']
             s.ori = Quaternion(w, x, y, z)

@@ -14,7 +14,7 @@ from .minieigen import Matrix3, Quaternion, Vector2, Vector3, Vector3i  # noqa: 
 
 globals().update(_wrapper.all_classes())
 
-from ._core import (Body, Box, Cell, Facet, GridConnection, GridNode, Interaction, Omega, Shape, Sphere,  # noqa: E402,F401
+from ._core import (Body, Box, Cell, Clump, Facet, GridConnection, GridNode, Interaction, Omega, Shape, Sphere,  # noqa: E402,F401
                     State, Wall)
 from ._errors import UnsupportedError  # noqa: E402,F401
 from .export import VTKRecorder  # noqa: E402,F401  (a YADE engine class implemented in Python)

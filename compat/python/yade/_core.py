@@ -133,6 +133,29 @@ class Box(Shape):
         return {'class': 'Box', 'extents': list(self._values['extents'])}
 
 
+class Clump(Shape):
+    """`Clump`: a rigid aggregate of spheres, made by `O.bodies.appendClumped` or `O.bodies.clump`
+    (discretization 0). The members and their poses in the clump frame live in the Rust core."""
+
+    def _json(self):
+        unsupported('appending a Clump body directly', 'use O.bodies.appendClumped or O.bodies.clump')
+
+    def _members(self):
+        if self._owner is None:
+            return []
+        omega, bid = self._owner
+        return json.loads(omega._sim.shape_json(bid))['members']
+
+    @property
+    def members(self):
+        """{memberId: (relPos, relOri)}, the members' poses in the clump's principal frame."""
+        return {m['id']: (Vector3(*m['relPos']), Quaternion(*m['relOri'])) for m in self._members()}
+
+    @property
+    def ids(self):
+        return [m['id'] for m in self._members()]
+
+
 # ---------------------------------------------------------------- state and body
 
 _STATE_VEC = ('pos', 'vel', 'angVel', 'inertia')
@@ -194,6 +217,8 @@ class State(Serializable):
             sim.set_int(bid, 'blockedDOFs', _blocked_bits(v))
         elif k == 'isDamped':
             sim.set_int(bid, 'isDamped', int(bool(v)))
+        elif k == 'angMom':
+            sim.set_vec3(bid, 'angMom', tuple(v))
         elif k in ('refPos', 'refOri'):
             pass  # bookkeeping only (used by utils displacement helpers)
         else:
@@ -223,6 +248,8 @@ class State(Serializable):
             return _blocked_str(sim.get_int(bid, 'blockedDOFs'))
         if k == 'isDamped':
             return bool(sim.get_int(bid, 'isDamped'))
+        if k == 'angMom':
+            return Vector3(*sim.get_vec3(bid, 'angMom'))
         if k == 'refPos':
             return Vector3(*self._values['refPos'])
         if k == 'refOri':
@@ -301,16 +328,24 @@ class Body(Serializable):
         self.state.blockedDOFs = '' if d else 'xyzXYZ'
 
     @property
+    def clumpId(self):
+        """Id of the clump this body belongs to (its own id for a clump), -1 for a standalone body."""
+        if self._owner is None:
+            return -1
+        return self._owner[0]._sim.get_int(self._id, 'clumpId')
+
+    @property
     def isClump(self):
-        return False
+        return isinstance(self._values['shape'], Clump)
 
     @property
     def isStandalone(self):
-        return True
+        return self.clumpId < 0
 
     @property
     def isClumpMember(self):
-        return False
+        c = self.clumpId
+        return c >= 0 and c != self._id
 
     # `b.state` as a property: read every step by controllers (same value as the generic path)
     @property
@@ -420,14 +455,50 @@ class BodyContainer(object):
     def erase(self, i, eraseClumpMembers=False):
         unsupported('O.bodies.erase')
 
-    def appendClumped(self, *a, **kw):
-        unsupported('clumps (O.bodies.appendClumped)')
+    def clump(self, ids, discretization=0):
+        """Clump the bodies `ids` (standalone spheres) into a new rigid clump body appended after them
+        (YADE's `Clump::add` + `Clump::updateProperties` with discretization 0); returns its id."""
+        if discretization:
+            unsupported('clump discretization=%d (inertia by volume integration of the overlaps)' % discretization,
+                        'use discretization=0, the default')
+        o = self._o
+        if o._sim.in_step():
+            unsupported('making clumps from inside a PyRunner during a step', 'make them between O.run calls')
+        ids = [int(i) for i in ids]
+        cid = o._sim.make_clump(ids, 0)
+        b = self._adopt(cid, Clump(), None)
+        b._values['aspherical'] = bool(o._sim.get_int(cid, 'aspherical'))
+        b._values['iterBorn'] = o.iter
+        b._values['timeBorn'] = o.time
+        return cid
+
+    def appendClumped(self, bodies, discretization=0):
+        """Append `bodies` and clump them; returns (clumpId, [memberIds])."""
+        if discretization:
+            unsupported('clump discretization=%d (inertia by volume integration of the overlaps)' % discretization,
+                        'use discretization=0, the default')
+        ids = self.append(list(bodies))
+        return (self.clump(ids, discretization), ids)
 
     def clear(self):
         unsupported('O.bodies.clear')
 
     def replace(self, bodies):
         unsupported('O.bodies.replace')
+
+
+def _unsupported_clump_op(name, hint=None):
+    def op(self, *a, **kw):
+        unsupported('O.bodies.' + name, hint)
+    op.__name__ = name
+    return op
+
+
+# the clump operations beyond appendClumped/clump (YADE's BodyContainer has them)
+for _name, _hint in (('replaceByClumps', 'build the clumps with O.bodies.appendClumped'), ('addToClump', None),
+                     ('releaseFromClump', None), ('deleteClumpMember', None), ('deleteClumpBody', None),
+                     ('updateClumpProperties', None), ('getRoundness', None)):
+    setattr(BodyContainer, _name, _unsupported_clump_op(_name, _hint))
 
 
 class MaterialContainer(object):
