@@ -20,7 +20,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Observables compared, in the observed file's units after conversion to mm / -.
-pub const OBSERVABLES: [&str; 3] = ["rut_mm", "porosity", "rebound_mm"];
+pub const OBSERVABLES: [&str; 4] = ["rut_mm", "porosity", "rebound_mm", "grid_settlement_mm"];
 
 /// Per-cycle observed (or simulated) series; index = cycle (0 = end of seating).
 #[derive(Clone, Debug, Default, Serialize)]
@@ -28,6 +28,9 @@ pub struct Series {
     pub rut_mm: Vec<f64>,
     pub porosity: Option<Vec<f64>>,
     pub rebound_mm: Option<Vec<f64>>,
+    /// Settlement of the geogrid level since the end of seating [mm, positive down] (a settlement
+    /// gauge on the grid; case G only).
+    pub grid_settlement_mm: Option<Vec<f64>>,
 }
 
 impl Series {
@@ -36,6 +39,7 @@ impl Series {
             "rut_mm" => Some(&self.rut_mm),
             "porosity" => self.porosity.as_ref(),
             "rebound_mm" => self.rebound_mm.as_ref(),
+            "grid_settlement_mm" => self.grid_settlement_mm.as_ref(),
             _ => None,
         }
     }
@@ -74,6 +78,11 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         (None, Some(c)) => (Some(c), 1e3),
         _ => (None, 1.0),
     };
+    let (c_grid, grid_scale) = match (col(&["grid_settlement_mm"]), col(&["grid_settlement_m"])) {
+        (Some(c), _) => (Some(c), 1.0),
+        (None, Some(c)) => (Some(c), 1e3),
+        _ => (None, 1.0),
+    };
     for h in &head {
         let known = [
             "cycle",
@@ -83,10 +92,12 @@ pub fn read_observed(path: &Path) -> Result<Series> {
             "porosity_box",
             "rebound_mm",
             "rebound_m",
+            "grid_settlement_mm",
+            "grid_settlement_m",
         ];
         if !known.contains(&h.as_str()) {
             bail!(
-                "{}: column '{}' is not understood (known: {}); settlement at depths is not supported yet",
+                "{}: column '{}' is not understood (known: {}); settlement at other depths than the grid is not supported yet",
                 path.display(),
                 h,
                 known.join(", ")
@@ -96,6 +107,7 @@ pub fn read_observed(path: &Path) -> Result<Series> {
     let mut s = Series::default();
     let mut por = Vec::new();
     let mut reb = Vec::new();
+    let mut grid = Vec::new();
     for (i, r) in rd.records().enumerate() {
         let r = r.with_context(|| format!("{}: record {} is malformed", path.display(), i + 1))?;
         let num = |c: usize, what: &str| -> Result<f64> {
@@ -135,16 +147,21 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         if let Some(c) = c_reb {
             reb.push(num(c, "rebound")? * reb_scale);
         }
+        if let Some(c) = c_grid {
+            grid.push(num(c, "grid settlement")? * grid_scale);
+        }
     }
     if s.rut_mm.len() < 3 {
         bail!("{}: at least cycles 0-2 are needed", path.display());
     }
     s.porosity = c_por.map(|_| por);
     s.rebound_mm = c_reb.map(|_| reb);
+    s.grid_settlement_mm = c_grid.map(|_| grid);
     Ok(s)
 }
 
-/// A study run's history.csv as a Series (rebound = rut_max - rut; NaN at cycle 0).
+/// A study run's history.csv as a Series (rebound = rut_max - rut, 0 at cycle 0; grid settlement =
+/// grid_z(0) - grid_z in mm when the run has a grid).
 pub fn series_of_history(path: &Path) -> Result<Series> {
     let h = crate::harness::study::read_history(path)?;
     Ok(Series {
@@ -161,6 +178,10 @@ pub fn series_of_history(path: &Path) -> Result<Series> {
                 })
                 .collect(),
         ),
+        grid_settlement_mm: h
+            .iter()
+            .map(|r| Some((h[0].grid_z_m? - r.grid_z_m?) * 1e3))
+            .collect(),
     })
 }
 
@@ -182,15 +203,25 @@ pub struct Effect {
 pub struct Library {
     pub effects: Vec<Effect>,
     pub baseline: Vec<Series>,
+    /// Seeds of `baseline`, in order (empty when unknown: no pairing).
+    pub baseline_seeds: Vec<u32>,
     /// (knob, strength index) -> seeds' series
     pub runs: BTreeMap<(String, usize), Vec<Series>>,
+    /// Seeds of each group of `runs`, in order (missing when unknown: no pairing).
+    pub run_seeds: BTreeMap<(String, usize), Vec<u32>>,
+    /// Effects whose runs have specimens of their own (they change the generation): not paired.
+    pub unpaired: Vec<String>,
+}
+
+fn value(s: &Series, obs: &str, c: usize) -> Option<f64> {
+    s.get(obs)
+        .and_then(|x| x.get(c))
+        .copied()
+        .filter(|v| v.is_finite())
 }
 
 fn mean_at(v: &[Series], obs: &str, c: usize) -> Option<f64> {
-    let xs: Vec<f64> = v
-        .iter()
-        .filter_map(|s| s.get(obs).and_then(|x| x.get(c)).copied())
-        .collect();
+    let xs: Vec<f64> = v.iter().filter_map(|s| value(s, obs, c)).collect();
     (!xs.is_empty()).then(|| crate::harness::study::mean_sd(&xs).0)
 }
 
@@ -220,11 +251,16 @@ impl Library {
     }
 
     /// Noise of one realisation of observable `obs` at cycle c: the pooled seed-to-seed sd, floored
-    /// at 2 % of the baseline mean and an absolute floor (0.2 mm, 0.001 porosity).
+    /// at 2 % of the baseline mean and an absolute floor (0.2 mm rut, 0.05 mm rebound and grid
+    /// settlement, 0.001 porosity).
     pub fn noise(&self, obs: &str, c: usize) -> f64 {
-        let sd = self.pooled_sd(|s| s.get(obs).and_then(|x| x.get(c)).copied());
+        let sd = self.pooled_sd(|s| value(s, obs, c));
         let m = self.baseline_mean(obs, c).unwrap_or(0.0);
-        let abs_floor = if obs == "porosity" { 1e-3 } else { 0.2 };
+        let abs_floor = match obs {
+            "porosity" => 1e-3,
+            "rut_mm" => 0.2,
+            _ => 0.05,
+        };
         sd.max(0.02 * m.abs()).max(abs_floor)
     }
 
@@ -237,36 +273,75 @@ impl Library {
         sd.max(0.05 * m.abs()).max(0.2)
     }
 
-    /// Prediction of effect `e` at strength `s` (linear between library strengths; 0 = baseline).
-    pub fn predict(&self, e: &Effect, s: f64, obs: &str, c: usize) -> Option<f64> {
-        let mut pts: Vec<(f64, f64)> = vec![(0.0, mean_at(&self.baseline, obs, c)?)];
-        for (k, st) in e.strengths.iter().enumerate() {
-            if let Some(v) = self.runs.get(&(e.knob.clone(), k)) {
-                if let Some(m) = mean_at(v, obs, c) {
-                    pts.push((*st, m));
+    /// Mean of the group (knob, strength index k). Paired (common random numbers) when the group's
+    /// runs reuse baseline specimens: the baseline mean plus the mean of (run - baseline run of the
+    /// same seed), which removes the specimen-to-specimen scatter from the effect's estimate.
+    pub fn group_mean(&self, knob: &str, k: usize, obs: &str, c: usize) -> Option<f64> {
+        let key = (knob.to_string(), k);
+        let v = self.runs.get(&key)?;
+        let paired = !self.unpaired.iter().any(|u| u == knob)
+            && self.baseline_seeds.len() == self.baseline.len();
+        if let (true, Some(seeds)) = (paired, self.run_seeds.get(&key)) {
+            let mut d = Vec::new();
+            for (s, run) in seeds.iter().zip(v) {
+                if let Some(i) = self.baseline_seeds.iter().position(|b| b == s) {
+                    if let (Some(x), Some(b)) =
+                        (value(run, obs, c), value(&self.baseline[i], obs, c))
+                    {
+                        d.push(x - b);
+                    }
                 }
             }
-        }
-        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let (lo, hi) = (pts[0], pts[pts.len() - 1]);
-        if s <= lo.0 {
-            return Some(lo.1);
-        }
-        if s >= hi.0 {
-            return Some(hi.1);
-        }
-        for w in pts.windows(2) {
-            if s >= w[0].0 && s <= w[1].0 {
-                let t = (s - w[0].0) / (w[1].0 - w[0].0);
-                return Some(w[0].1 + t * (w[1].1 - w[0].1));
+            if !d.is_empty() {
+                return Some(self.baseline_mean(obs, c)? + crate::harness::study::mean_sd(&d).0);
             }
         }
-        None
+        mean_at(v, obs, c)
+    }
+
+    /// Prediction of effect `e` at strength `s` (linear between library strengths; 0 = baseline).
+    pub fn predict(&self, e: &Effect, s: f64, obs: &str, c: usize) -> Option<f64> {
+        let mut pts: Vec<(f64, f64)> = vec![(0.0, self.baseline_mean(obs, c)?)];
+        for (k, st) in e.strengths.iter().enumerate() {
+            if let Some(m) = self.group_mean(&e.knob, k, obs, c) {
+                pts.push((*st, m));
+            }
+        }
+        Some(interpolate(&mut pts, s))
     }
 
     pub fn baseline_mean(&self, obs: &str, c: usize) -> Option<f64> {
         mean_at(&self.baseline, obs, c)
     }
+
+    /// Last cycle every baseline run has.
+    pub fn last_cycle(&self) -> usize {
+        self.baseline
+            .iter()
+            .map(|s| s.cycles())
+            .min()
+            .unwrap_or(1)
+            .saturating_sub(1)
+    }
+}
+
+/// Piecewise-linear interpolation through (strength, value) points, constant outside.
+fn interpolate(pts: &mut [(f64, f64)], s: f64) -> f64 {
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (lo, hi) = (pts[0], pts[pts.len() - 1]);
+    if s <= lo.0 {
+        return lo.1;
+    }
+    if s >= hi.0 {
+        return hi.1;
+    }
+    for w in pts.windows(2) {
+        if s >= w[0].0 && s <= w[1].0 {
+            let t = (s - w[0].0) / (w[1].0 - w[0].0);
+            return w[0].1 + t * (w[1].1 - w[0].1);
+        }
+    }
+    hi.1
 }
 
 /// Cycles used to fit (1..=fit_cycles), held out (fit_cycles+1..).
@@ -274,6 +349,164 @@ impl Library {
 pub struct Split {
     pub fit_cycles: usize,
     pub last_cycle: usize,
+}
+
+/// The library tabulated for fast fitting: today's model, each effect's shift at its library
+/// strengths (interpolated linearly; several effects add their shifts), and the noise of one
+/// realisation per observable and cycle (the rut as its increment per cycle).
+pub struct Surrogate {
+    last: usize,
+    /// [observable][cycle]
+    base: Vec<Vec<Option<f64>>>,
+    noise: Vec<Vec<f64>>,
+    /// per effect: (strength, shift[observable][cycle]) sorted by strength, strength 0 included
+    shifts: Vec<Vec<(f64, Vec<Vec<f64>>)>>,
+    pub effects: Vec<Effect>,
+}
+
+impl Surrogate {
+    pub fn new(lib: &Library) -> Surrogate {
+        let last = lib.last_cycle();
+        let nobs = OBSERVABLES.len();
+        let base: Vec<Vec<Option<f64>>> = OBSERVABLES
+            .iter()
+            .map(|o| (0..=last).map(|c| lib.baseline_mean(o, c)).collect())
+            .collect();
+        let noise = OBSERVABLES
+            .iter()
+            .map(|o| {
+                (0..=last)
+                    .map(|c| {
+                        if *o == "rut_mm" {
+                            if c == 0 {
+                                1.0
+                            } else {
+                                lib.increment_noise(c)
+                            }
+                        } else {
+                            lib.noise(o, c)
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let shifts = lib
+            .effects
+            .iter()
+            .map(|e| {
+                let mut pts = vec![(0.0, vec![vec![0.0; last + 1]; nobs])];
+                for (k, st) in e.strengths.iter().enumerate() {
+                    if !lib.runs.contains_key(&(e.knob.clone(), k)) {
+                        continue;
+                    }
+                    let d = OBSERVABLES
+                        .iter()
+                        .enumerate()
+                        .map(|(i, o)| {
+                            (0..=last)
+                                .map(|c| match (lib.group_mean(&e.knob, k, o, c), base[i][c]) {
+                                    (Some(g), Some(b)) => g - b,
+                                    _ => 0.0,
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    pts.push((*st, d));
+                }
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                pts
+            })
+            .collect();
+        Surrogate {
+            last,
+            base,
+            noise,
+            shifts,
+            effects: lib.effects.clone(),
+        }
+    }
+
+    /// Library range of effect i (0 included).
+    pub fn range(&self, i: usize) -> (f64, f64) {
+        let p = &self.shifts[i];
+        (p[0].0, p[p.len() - 1].0)
+    }
+
+    fn shift(&self, i: usize, s: f64, o: usize, c: usize) -> f64 {
+        let p = &self.shifts[i];
+        let mut v: Vec<(f64, f64)> = p.iter().map(|(st, d)| (*st, d[o][c])).collect();
+        interpolate(&mut v, s)
+    }
+
+    /// Prediction of today's model plus effects (index, strength) for observable o at cycle c.
+    pub fn predict(&self, effects: &[(usize, f64)], o: usize, c: usize) -> Option<f64> {
+        let b = self.base[o].get(c).copied().flatten()?;
+        Some(
+            b + effects
+                .iter()
+                .map(|(i, s)| self.shift(*i, *s, o, c))
+                .sum::<f64>(),
+        )
+    }
+
+    /// Normalised residuals of an observation against today's model plus `effects` over `cycles`
+    /// (the rut as its increment per cycle, the others as levels), each over the noise of one run.
+    pub fn residuals(
+        &self,
+        obs: &Series,
+        effects: &[(usize, f64)],
+        cycles: std::ops::RangeInclusive<usize>,
+    ) -> Vec<f64> {
+        let mut r = Vec::new();
+        for (oi, o) in OBSERVABLES.iter().enumerate() {
+            let Some(ov) = obs.get(o) else { continue };
+            for c in cycles.clone() {
+                if c == 0 || c > self.last || c >= ov.len() || !ov[c].is_finite() {
+                    continue;
+                }
+                let x = if oi == 0 {
+                    match (self.predict(effects, 0, c), self.predict(effects, 0, c - 1)) {
+                        (Some(p1), Some(p0)) => (ov[c] - ov[c - 1]) - (p1 - p0),
+                        _ => continue,
+                    }
+                } else {
+                    match self.predict(effects, oi, c) {
+                        Some(p) => ov[c] - p,
+                        None => continue,
+                    }
+                };
+                r.push(x / self.noise[oi][c]);
+            }
+        }
+        r
+    }
+
+    /// Normalised size of the shift of `effects` against today's model over `cycles`, for an
+    /// observation that has the observables in `like` (the noiseless signal: sqrt of the chi2 it adds).
+    pub fn signal(
+        &self,
+        effects: &[(usize, f64)],
+        like: &Series,
+        cycles: std::ops::RangeInclusive<usize>,
+    ) -> f64 {
+        let mut b = like.clone();
+        for (oi, o) in OBSERVABLES.iter().enumerate() {
+            let v: Vec<f64> = (0..=self.last)
+                .map(|c| self.predict(&[], oi, c).unwrap_or(f64::NAN))
+                .collect();
+            match *o {
+                "rut_mm" => b.rut_mm = v,
+                "porosity" => b.porosity = b.porosity.as_ref().map(|_| v),
+                "rebound_mm" => b.rebound_mm = b.rebound_mm.as_ref().map(|_| v),
+                _ => b.grid_settlement_mm = b.grid_settlement_mm.as_ref().map(|_| v),
+            }
+        }
+        self.residuals(&b, effects, cycles)
+            .iter()
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt()
+    }
 }
 
 fn chi2<F: Fn(&str, usize) -> Option<f64> + ?Sized>(
@@ -287,7 +520,7 @@ fn chi2<F: Fn(&str, usize) -> Option<f64> + ?Sized>(
     for o in OBSERVABLES {
         let Some(ov) = obs.get(o) else { continue };
         for c in cycles.clone() {
-            if c >= ov.len() || c == 0 {
+            if c >= ov.len() || c == 0 || !ov[c].is_finite() {
                 continue;
             }
             // the rut is cumulative, so successive cycles are strongly correlated: compare its
@@ -333,6 +566,31 @@ fn rut_rms<F: Fn(usize) -> Option<f64>>(
     }
 }
 
+/// Held-out gap over every observed observable: RMS of (observed - predicted) / noise of one run,
+/// with every observable as its level (the rut too: the gap a user sees).
+fn norm_rms(
+    lib: &Library,
+    obs: &Series,
+    pred: &dyn Fn(&str, usize) -> Option<f64>,
+    cycles: std::ops::RangeInclusive<usize>,
+) -> f64 {
+    let (mut s, mut n) = (0.0, 0);
+    for o in OBSERVABLES {
+        let Some(ov) = obs.get(o) else { continue };
+        for c in cycles.clone() {
+            if let (Some(x), Some(p)) = (ov.get(c).filter(|v| v.is_finite()), pred(o, c)) {
+                let r = (x - p) / lib.noise(o, c);
+                s += r * r;
+                n += 1;
+            }
+        }
+    }
+    if n == 0 {
+        f64::NAN
+    } else {
+        (s / n as f64).sqrt()
+    }
+}
 /// "Where": the baseline's discrepancy split by observable and phase.
 #[derive(Clone, Debug, Serialize)]
 pub struct WherePart {
@@ -410,6 +668,16 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
             &|c| lib.noise("rebound_mm", c),
         );
     }
+    if obs.grid_settlement_mm.is_some() {
+        push(
+            "grid_settlement_mm",
+            "settlement of the geogrid level",
+            (1..=last).collect(),
+            &|s, c| s.grid_settlement_mm.as_ref()?.get(c).copied(),
+            &|c| lib.baseline_mean("grid_settlement_mm", c),
+            &|c| lib.noise("grid_settlement_mm", c),
+        );
+    }
     if obs.porosity.is_some() {
         push(
             "porosity",
@@ -427,21 +695,27 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
     parts
 }
 
-/// "Which": one candidate's fit and evidence.
+/// One model of the gap: today's model plus one or two effects at fitted strengths.
 #[derive(Clone, Debug, Serialize)]
 pub struct Candidate {
+    /// Effect name, or "a+b" for two effects.
     pub knob: String,
     pub meaning: String,
-    /// Fitted strength (knob value = zero + strength).
+    /// Fitted strengths (knob value = zero + strength), the dominant effect first.
+    pub effects: Vec<(String, f64)>,
+    /// Fitted strength of the dominant effect.
     pub strength: f64,
     pub knob_value: f64,
     pub chi2_fit: f64,
     pub n_fit: usize,
-    pub bic: f64,
-    /// BIC weight among the candidates and "none".
+    /// chi2 + penalty per fitted strength (multiple-comparison aware, see `penalties`).
+    pub ic: f64,
+    /// IC weight among every model and "none".
     pub weight: f64,
-    /// Held-out rut RMS [mm] with this effect at the fitted strength.
+    /// Held-out rut RMS [mm] with this model.
     pub heldout_rut_rms_mm: f64,
+    /// Held-out normalised RMS over every observed observable with this model.
+    pub heldout_norm_rms: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -449,46 +723,96 @@ pub struct Diagnosis {
     pub split: Split,
     /// Leave-one-out calibration of the noise model on today's model (every chi2 is divided by it).
     pub noise_inflation: f64,
+    /// Penalty for the first and for a second fitted strength.
+    pub penalties: (f64, f64),
     pub where_parts: Vec<WherePart>,
     pub dominant_part: String,
+    /// One-effect models, best first.
     pub candidates: Vec<Candidate>,
-    pub none_bic: f64,
+    /// Two-effect models, best first (the five best).
+    pub pairs: Vec<Candidate>,
+    pub none_chi2: f64,
     pub none_weight: f64,
-    /// Winning knob, or "none" when no candidate beats today's model by the evidence margin.
+    /// Dominant effect of the chosen model, or "none" when no model beats today's model.
     pub winner: String,
+    /// The chosen model's effects and fitted strengths (empty for "none").
+    pub model: Vec<(String, f64)>,
+    /// Summed IC weight of the models whose dominant effect is the winner (or of "none").
     pub confidence: f64,
     pub heldout_rut_rms_before_mm: f64,
     pub heldout_rut_rms_after_mm: f64,
-    /// 1 - after / before (held-out cycles; 0 when the winner is none).
+    /// 1 - after / before of the held-out rut RMS (0 when the winner is none).
     pub gap_reduction: f64,
+    pub heldout_norm_rms_before: f64,
+    pub heldout_norm_rms_after: f64,
+    /// 1 - after / before of the held-out normalised RMS over every observed observable.
+    pub norm_gap_reduction: f64,
 }
 
-/// BIC margin an effect must win by (about "positive evidence" on Kass & Raftery's scale).
-pub const EVIDENCE_MARGIN: f64 = 2.0;
+/// Family-wise false-alarm rate of the effect tests (one per candidate).
+pub const FAMILY_ALPHA: f64 = 0.05;
 
-pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagnosis> {
-    let last = obs
-        .cycles()
-        .min(lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(0))
-        - 1;
-    if lib.baseline.len() < 2 {
-        bail!("the library needs at least 2 baseline seeds to estimate the seed-to-seed noise");
+/// erfc(x), x >= 0 (Numerical Recipes' erfcc, fractional error < 1.2e-7).
+fn erfc(x: f64) -> f64 {
+    let z = x.abs();
+    let t = 1.0 / (1.0 + 0.5 * z);
+    let r = t
+        * (-z * z - 1.26551223
+            + t * (1.00002368
+                + t * (0.37409196
+                    + t * (0.09678418
+                        + t * (-0.18628806
+                            + t * (0.27886807
+                                + t * (-1.13520398
+                                    + t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))))
+            .exp();
+    if x >= 0.0 {
+        r
+    } else {
+        2.0 - r
     }
-    if fit_cycles < 1 || fit_cycles >= last {
-        bail!(
-            "fit cycles {} leave nothing to fit or nothing held out (observed and simulated cycles: {})",
-            fit_cycles,
-            last
-        );
+}
+
+/// Upper quantile of chi2 with one degree of freedom: x with P(chi2_1 > x) = p.
+pub fn chi2_1_quantile(p: f64) -> f64 {
+    let (mut lo, mut hi): (f64, f64) = (0.0, 200.0);
+    for _ in 0..200 {
+        let m = 0.5 * (lo + hi);
+        if erfc((m / 2.0).sqrt()) > p {
+            lo = m
+        } else {
+            hi = m
+        }
     }
-    let split = Split {
-        fit_cycles,
-        last_cycle: last,
-    };
-    let fit = 0..=fit_cycles;
-    let held = fit_cycles + 1..=last;
-    // Calibrate the noise model on today's model itself: leave each baseline seed out, compare it
-    // with the mean of the others; the mean chi2 per observation (>= 1) inflates every chi2 below.
+    0.5 * (lo + hi)
+}
+
+/// Penalties of the first and of a second fitted strength among m candidates: the chi2 drop one
+/// strength gives by chance with family-wise probability FAMILY_ALPHA (Bonferroni over the m, then
+/// the m - 1 remaining, candidates).
+pub fn penalties(m: usize) -> (f64, f64) {
+    (
+        chi2_1_quantile(FAMILY_ALPHA / m.max(1) as f64),
+        chi2_1_quantile(FAMILY_ALPHA / (m.max(2) - 1) as f64),
+    )
+}
+
+fn best_1d(f: &dyn Fn(f64) -> f64, lo: f64, hi: f64, n: usize) -> (f64, f64) {
+    let mut best = (f64::INFINITY, 0.0);
+    for k in 0..=n {
+        let s = lo + (hi - lo) * k as f64 / n as f64;
+        let v = f(s);
+        if v < best.0 {
+            best = (v, s);
+        }
+    }
+    best
+}
+
+/// Calibrate the noise model on today's model itself: leave each baseline seed out, compare it with
+/// the mean of the others on cycles 1..=fit_cycles; the mean chi2 per observation (>= 1) inflates
+/// every chi2 of a diagnosis.
+pub fn noise_inflation(lib: &Library, fit_cycles: usize) -> f64 {
     let mut ratios = Vec::new();
     for i in 0..lib.baseline.len() {
         let others: Vec<Series> = lib
@@ -502,7 +826,7 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
             lib,
             &lib.baseline[i],
             &|o, c| mean_at(&others, o, c),
-            fit.clone(),
+            0..=fit_cycles,
         );
         if n > 0 {
             // the left-out seed is compared with a mean of K-1 seeds: its expected chi2 is
@@ -510,88 +834,193 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
             ratios.push(x2 / (n as f64 * (1.0 + 1.0 / others.len() as f64)));
         }
     }
-    let inflation = crate::harness::study::mean_sd(&ratios).0.max(1.0);
-    let chi2 =
-        |o: &Series, p: &dyn Fn(&str, usize) -> Option<f64>, r: std::ops::RangeInclusive<usize>| {
-            let (x2, n) = chi2(lib, o, p, r);
-            (x2 / inflation, n)
-        };
-    let (none_chi2, n_fit) = chi2(obs, &|o, c| lib.baseline_mean(o, c), fit.clone());
-    let none_bic = none_chi2;
-    let before = rut_rms(obs, |c| lib.baseline_mean("rut_mm", c), held.clone());
-    let mut cands = Vec::new();
-    for e in &lib.effects {
-        let lo = e.strengths.iter().cloned().fold(0.0, f64::min);
-        let hi = e.strengths.iter().cloned().fold(0.0, f64::max);
-        let mut best = (f64::INFINITY, 0.0, 0);
-        for k in 0..=400 {
-            let s = lo + (hi - lo) * k as f64 / 400.0;
-            let (x2, n) = chi2(obs, &|o, c| lib.predict(e, s, o, c), fit.clone());
-            if x2 < best.0 {
-                best = (x2, s, n);
-            }
-        }
-        let s = best.1;
-        cands.push(Candidate {
-            knob: e.knob.clone(),
-            meaning: e.meaning.clone(),
-            strength: s,
-            knob_value: e.zero + s,
-            chi2_fit: best.0,
-            n_fit: best.2,
-            bic: best.0 + (best.2.max(1) as f64).ln(),
-            weight: 0.0,
-            heldout_rut_rms_mm: rut_rms(obs, |c| lib.predict(e, s, "rut_mm", c), held.clone()),
-        });
+    crate::harness::study::mean_sd(&ratios).0.max(1.0)
+}
+
+pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagnosis> {
+    if lib.baseline.len() < 2 {
+        bail!("the library needs at least 2 baseline seeds to estimate the seed-to-seed noise");
     }
-    let bmin = cands.iter().map(|c| c.bic).fold(none_bic, f64::min);
-    let mut z = (-(none_bic - bmin) / 2.0).exp();
-    for c in &cands {
-        z += (-(c.bic - bmin) / 2.0).exp();
+    let last = obs.cycles().min(lib.last_cycle() + 1) - 1;
+    if fit_cycles < 1 || fit_cycles >= last {
+        bail!(
+            "fit cycles {} leave nothing to fit or nothing held out (observed and simulated cycles: {})",
+            fit_cycles,
+            last
+        );
     }
-    for c in cands.iter_mut() {
-        c.weight = (-(c.bic - bmin) / 2.0).exp() / z;
-    }
-    let none_weight = (-(none_bic - bmin) / 2.0).exp() / z;
-    cands.sort_by(|a, b| a.bic.total_cmp(&b.bic));
-    let (winner, confidence, after) = match cands.first() {
-        Some(c) if c.bic + EVIDENCE_MARGIN < none_bic => {
-            (c.knob.clone(), c.weight, c.heldout_rut_rms_mm)
-        }
-        _ => ("none".to_string(), none_weight, before),
+    let split = Split {
+        fit_cycles,
+        last_cycle: last,
     };
+    let fit = 0..=fit_cycles;
+    let held = fit_cycles + 1..=last;
+    let inflation = noise_inflation(lib, fit_cycles);
+    let sur = Surrogate::new(lib);
+    let x2 = |eff: &[(usize, f64)], r: std::ops::RangeInclusive<usize>| -> (f64, usize) {
+        let v = sur.residuals(obs, eff, r);
+        (v.iter().map(|x| x * x).sum::<f64>() / inflation, v.len())
+    };
+    let m = lib.effects.len();
+    let (p1, p2) = penalties(m);
+    let (none_chi2, _) = x2(&[], fit.clone());
+    let knob_pred = |eff: &[(usize, f64)]| {
+        let eff = eff.to_vec();
+        let sur = &sur;
+        move |o: &str, c: usize| -> Option<f64> {
+            let oi = OBSERVABLES.iter().position(|x| *x == o)?;
+            sur.predict(&eff, oi, c)
+        }
+    };
+    let before = rut_rms(obs, |c| lib.baseline_mean("rut_mm", c), held.clone());
+    let norm_before = norm_rms(lib, obs, &knob_pred(&[]), held.clone());
+    let make = |eff: Vec<(usize, f64)>, chi: f64, n: usize, pen: f64| -> Candidate {
+        // dominant first: the larger noiseless signal over every cycle
+        let mut eff = eff;
+        eff.sort_by(|a, b| {
+            sur.signal(&[*b], obs, 1..=last)
+                .total_cmp(&sur.signal(&[*a], obs, 1..=last))
+        });
+        let p = knob_pred(&eff);
+        Candidate {
+            knob: eff
+                .iter()
+                .map(|(i, _)| lib.effects[*i].knob.clone())
+                .collect::<Vec<_>>()
+                .join("+"),
+            meaning: eff
+                .iter()
+                .map(|(i, _)| lib.effects[*i].meaning.clone())
+                .collect::<Vec<_>>()
+                .join("; "),
+            effects: eff
+                .iter()
+                .map(|(i, s)| (lib.effects[*i].knob.clone(), *s))
+                .collect(),
+            strength: eff[0].1,
+            knob_value: lib.effects[eff[0].0].zero + eff[0].1,
+            chi2_fit: chi,
+            n_fit: n,
+            ic: chi + pen,
+            weight: 0.0,
+            heldout_rut_rms_mm: rut_rms(obs, |c| p("rut_mm", c), held.clone()),
+            heldout_norm_rms: norm_rms(lib, obs, &p, held.clone()),
+        }
+    };
+    let mut singles = Vec::new();
+    let mut fits1 = Vec::new();
+    for i in 0..m {
+        let (lo, hi) = sur.range(i);
+        let (chi, s) = best_1d(&|s| x2(&[(i, s)], fit.clone()).0, lo, hi, 400);
+        let n = x2(&[(i, s)], fit.clone()).1;
+        fits1.push(s);
+        singles.push(make(vec![(i, s)], chi, n, p1));
+    }
+    let mut pairs = Vec::new();
+    for a in 0..m {
+        for b in a + 1..m {
+            let (la, ha) = sur.range(a);
+            let (lb, hb) = sur.range(b);
+            let g = 40usize;
+            let mut best = (f64::INFINITY, fits1[a], fits1[b]);
+            for ka in 0..=g {
+                let sa = la + (ha - la) * ka as f64 / g as f64;
+                for kb in 0..=g {
+                    let sb = lb + (hb - lb) * kb as f64 / g as f64;
+                    let v = x2(&[(a, sa), (b, sb)], fit.clone()).0;
+                    if v < best.0 {
+                        best = (v, sa, sb);
+                    }
+                }
+            }
+            // refine: coordinate descent on fine 1-d grids
+            for _ in 0..3 {
+                let (_, sb) = (best.0, best.2);
+                let (v, sa) = best_1d(&|s| x2(&[(a, s), (b, sb)], fit.clone()).0, la, ha, 400);
+                let (v2, sb2) = best_1d(&|s| x2(&[(a, sa), (b, s)], fit.clone()).0, lb, hb, 400);
+                best = (v.min(v2), sa, sb2);
+            }
+            let n = x2(&[(a, best.1), (b, best.2)], fit.clone()).1;
+            pairs.push(make(vec![(a, best.1), (b, best.2)], best.0, n, p1 + p2));
+        }
+    }
+    // weights over none, singles, pairs
+    let icmin = singles
+        .iter()
+        .chain(pairs.iter())
+        .map(|c| c.ic)
+        .fold(none_chi2, f64::min);
+    let w = |ic: f64| (-(ic - icmin) / 2.0).exp();
+    let z = w(none_chi2)
+        + singles
+            .iter()
+            .chain(pairs.iter())
+            .map(|c| w(c.ic))
+            .sum::<f64>();
+    for c in singles.iter_mut().chain(pairs.iter_mut()) {
+        c.weight = w(c.ic) / z;
+    }
+    let none_weight = w(none_chi2) / z;
+    singles.sort_by(|a, b| a.ic.total_cmp(&b.ic));
+    pairs.sort_by(|a, b| a.ic.total_cmp(&b.ic));
+    let best = singles
+        .iter()
+        .chain(pairs.iter())
+        .min_by(|a, b| a.ic.total_cmp(&b.ic))
+        .cloned();
+    let (winner, model, confidence, after, norm_after) = match best {
+        Some(c) if c.ic < none_chi2 => {
+            let dom = c.effects[0].0.clone();
+            let conf: f64 = singles
+                .iter()
+                .chain(pairs.iter())
+                .filter(|x| x.effects[0].0 == dom)
+                .map(|x| x.weight)
+                .sum();
+            (
+                dom,
+                c.effects.clone(),
+                conf,
+                c.heldout_rut_rms_mm,
+                c.heldout_norm_rms,
+            )
+        }
+        _ => ("none".to_string(), vec![], none_weight, before, norm_before),
+    };
+    pairs.truncate(5);
     let wp = where_analysis(lib, obs, last);
     let dominant_part = wp
         .iter()
         .max_by(|a, b| a.chi2.total_cmp(&b.chi2))
         .map(|p| format!("{}: {}", p.observable, p.phase))
         .unwrap_or_default();
-    let _ = n_fit;
+    let red = |b: f64, a: f64| if b > 0.0 { 1.0 - a / b } else { 0.0 };
     Ok(Diagnosis {
         split,
         noise_inflation: inflation,
+        penalties: (p1, p2),
         where_parts: wp,
         dominant_part,
-        candidates: cands,
-        none_bic,
+        candidates: singles,
+        pairs,
+        none_chi2,
         none_weight,
         winner,
+        model,
         confidence,
         heldout_rut_rms_before_mm: before,
         heldout_rut_rms_after_mm: after,
-        gap_reduction: if before > 0.0 {
-            1.0 - after / before
-        } else {
-            0.0
-        },
+        gap_reduction: red(before, after),
+        heldout_norm_rms_before: norm_before,
+        heldout_norm_rms_after: norm_after,
+        norm_gap_reduction: red(norm_before, norm_after),
     })
 }
-
 /// Markdown report of one diagnosis.
 pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
     let mut s = format!("# Gap diagnosis: {}\n\n", name);
     s += &format!(
-        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the seed-to-seed sd pooled over the library's groups ({} baseline seeds), inflated by {:.2} (leave-one-out calibration on today's model).\n\n",
+        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the seed-to-seed sd pooled over the library's groups ({} baseline seeds), inflated by {:.2} (leave-one-out calibration on today's model). Effect shifts are paired with the baseline run of the same specimen where the library allows it.\n\n",
         d.split.fit_cycles,
         d.split.fit_cycles + 1,
         d.split.last_cycle,
@@ -611,39 +1040,69 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         );
     }
     s += &format!("\nDominant part: **{}**.\n\n", d.dominant_part);
-    s += "## Which unmodelled effect explains it\n\n| rank | effect | meaning | fitted knob value | chi2 (fit) | BIC | weight | held-out rut RMS [mm] |\n|---|---|---|---|---|---|---|---|\n";
-    for (i, c) in d.candidates.iter().enumerate() {
+    s += &format!(
+        "## Which unmodelled effect explains it\n\nEvery model's strengths are fitted on cycles 1-{} (rut increments, rebound, grid settlement, porosity; chi2 over the noise). IC = chi2 + {:.2} per first strength + {:.2} for a second: the chi2 drop a fitted strength gives by chance with a family-wise probability of {} over the {} candidates. A model must have a lower IC than today's model (IC = its chi2).\n\n| rank | model | fitted strengths (knob change) | chi2 (fit) | IC | weight | held-out rut RMS [mm] | held-out normalised RMS |\n|---|---|---|---|---|---|---|---|\n",
+        d.split.fit_cycles,
+        d.penalties.0,
+        d.penalties.1,
+        FAMILY_ALPHA,
+        lib.effects.len()
+    );
+    let fmt_eff = |c: &Candidate| {
+        c.effects
+            .iter()
+            .map(|(k, v)| format!("{} {:.4}", k, v))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut all: Vec<&Candidate> = d.candidates.iter().chain(d.pairs.iter()).collect();
+    all.sort_by(|a, b| a.ic.total_cmp(&b.ic));
+    for (i, c) in all.iter().enumerate() {
         s += &format!(
-            "| {} | {} | {} | {:.4} | {:.1} | {:.1} | {:.2} | {:.2} |\n",
+            "| {} | {} | {} | {:.1} | {:.1} | {:.2} | {:.2} | {:.2} |\n",
             i + 1,
             c.knob,
-            c.meaning,
-            c.knob_value,
+            fmt_eff(c),
             c.chi2_fit,
-            c.bic,
+            c.ic,
             c.weight,
-            c.heldout_rut_rms_mm
+            c.heldout_rut_rms_mm,
+            c.heldout_norm_rms
         );
     }
     s += &format!(
-        "| - | none | today's model | - | {:.1} | {:.1} | {:.2} | {:.2} |\n\n",
-        d.none_bic, d.none_bic, d.none_weight, d.heldout_rut_rms_before_mm
+        "| - | none | today's model | {:.1} | {:.1} | {:.2} | {:.2} | {:.2} |\n\n(the five best two-effect models are listed)\n\n",
+        d.none_chi2,
+        d.none_chi2,
+        d.none_weight,
+        d.heldout_rut_rms_before_mm,
+        d.heldout_norm_rms_before
     );
     s += &format!(
-        "Verdict: **{}** (confidence {:.2}; an effect must beat today's model by {} in BIC).\n\n",
+        "Verdict: **{}** (confidence {:.2}: the summed weight of the models whose dominant effect it is).\n\n",
         if d.winner == "none" {
             "none of the candidates explains the gap".to_string()
         } else {
-            d.winner.clone()
+            format!(
+                "{} (model: {})",
+                d.winner,
+                d.model
+                    .iter()
+                    .map(|(k, v)| format!("{} {:.4}", k, v))
+                    .collect::<Vec<_>>()
+                    .join(" + ")
+            )
         },
-        d.confidence,
-        EVIDENCE_MARGIN
+        d.confidence
     );
     s += &format!(
-        "## How far it closes\n\nHeld-out rut RMS: {:.2} mm with today's model, {:.2} mm with the winning effect: gap reduced by {:.0} %.\n",
+        "## How far it closes\n\nHeld-out rut RMS: {:.2} mm with today's model, {:.2} mm with the chosen model: gap reduced by {:.0} %.\nHeld-out normalised RMS over every observed observable: {:.2} with today's model, {:.2} with the chosen model: gap reduced by {:.0} %.\n",
         d.heldout_rut_rms_before_mm,
         d.heldout_rut_rms_after_mm,
-        100.0 * d.gap_reduction
+        100.0 * d.gap_reduction,
+        d.heldout_norm_rms_before,
+        d.heldout_norm_rms_after,
+        100.0 * d.norm_gap_reduction
     );
     s
 }
@@ -657,6 +1116,7 @@ mod tests {
             rut_mm: rut.to_vec(),
             porosity: None,
             rebound_mm: None,
+            grid_settlement_mm: None,
         }
     }
 
