@@ -22,6 +22,13 @@ use std::path::Path;
 /// Observables compared, in the observed file's units after conversion to mm / -.
 pub const OBSERVABLES: [&str; 4] = ["rut_mm", "porosity", "rebound_mm", "grid_settlement_mm"];
 
+/// Cumulative observables (rut, grid settlement, porosity under the piston) carry a specimen's
+/// offset from cycle to cycle, so their successive levels are strongly correlated: a residual
+/// compares their increment per cycle (nearly independent). The rebound is a per-cycle quantity.
+pub fn cumulative(obs: &str) -> bool {
+    obs != "rebound_mm"
+}
+
 /// Per-cycle observed (or simulated) series; index = cycle (0 = end of seating).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Series {
@@ -266,11 +273,33 @@ impl Library {
 
     /// The same for the rut increment of cycle c (floored at 5 % of the mean increment and 0.2 mm).
     pub fn increment_noise(&self, c: usize) -> f64 {
-        let inc = |s: &Series| Some(s.rut_mm.get(c)? - s.rut_mm.get(c.checked_sub(1)?)?);
+        self.increment_noise_of("rut_mm", c)
+    }
+
+    /// Noise of the increment of a cumulative observable from cycle c-1 to c: the pooled
+    /// seed-to-seed sd, floored at 5 % of the mean increment and an absolute floor (0.2 mm rut,
+    /// 0.02 mm grid settlement, 2e-4 porosity).
+    pub fn increment_noise_of(&self, obs: &str, c: usize) -> f64 {
+        let inc = |s: &Series| Some(value(s, obs, c)? - value(s, obs, c.checked_sub(1)?)?);
         let sd = self.pooled_sd(inc);
         let xs: Vec<f64> = self.baseline.iter().filter_map(inc).collect();
         let (m, _) = crate::harness::study::mean_sd(&xs);
-        sd.max(0.05 * m.abs()).max(0.2)
+        let abs_floor = match obs {
+            "rut_mm" => 0.2,
+            "porosity" => 2e-4,
+            _ => 0.02,
+        };
+        sd.max(0.05 * m.abs()).max(abs_floor)
+    }
+
+    /// Noise of the quantity a residual compares at cycle c (>= 1): the increment of a cumulative
+    /// observable, the level of the rebound.
+    pub fn residual_noise(&self, obs: &str, c: usize) -> f64 {
+        if cumulative(obs) {
+            self.increment_noise_of(obs, c)
+        } else {
+            self.noise(obs, c)
+        }
     }
 
     /// Mean of the group (knob, strength index k). Paired (common random numbers) when the group's
@@ -361,6 +390,11 @@ pub struct Surrogate {
     noise: Vec<Vec<f64>>,
     /// per effect: (strength, shift[observable][cycle]) sorted by strength, strength 0 included
     shifts: Vec<Vec<(f64, Vec<Vec<f64>>)>>,
+    /// per effect, same points: variance of the estimated shift [observable][cycle] (of the rut
+    /// increment for the rut), from the finite number of library seeds
+    shift_var: Vec<Vec<Vec<Vec<f64>>>>,
+    /// number of baseline seeds (the baseline mean's own variance is noise^2 / n)
+    n_base: usize,
     pub effects: Vec<Effect>,
 }
 
@@ -372,22 +406,94 @@ impl Surrogate {
             .iter()
             .map(|o| (0..=last).map(|c| lib.baseline_mean(o, c)).collect())
             .collect();
-        let noise = OBSERVABLES
+        let noise: Vec<Vec<f64>> = OBSERVABLES
             .iter()
             .map(|o| {
                 (0..=last)
                     .map(|c| {
-                        if *o == "rut_mm" {
-                            if c == 0 {
-                                1.0
-                            } else {
-                                lib.increment_noise(c)
-                            }
+                        if c == 0 {
+                            1.0
                         } else {
-                            lib.noise(o, c)
+                            lib.residual_noise(o, c)
                         }
                     })
                     .collect()
+            })
+            .collect();
+        let noise_of = |oi: usize, c: usize| noise[oi][c];
+        // the quantity a residual compares: the rut increment, the other observables' levels
+        let q = |sr: &Series, oi: usize, c: usize| -> Option<f64> {
+            if cumulative(OBSERVABLES[oi]) {
+                Some(
+                    value(sr, OBSERVABLES[oi], c)? - value(sr, OBSERVABLES[oi], c.checked_sub(1)?)?,
+                )
+            } else {
+                value(sr, OBSERVABLES[oi], c)
+            }
+        };
+        let paired_knob = |knob: &str| {
+            !lib.unpaired.iter().any(|u| u == knob)
+                && lib.baseline_seeds.len() == lib.baseline.len()
+        };
+        // paired differences (run - baseline run of the same specimen): their scatter, pooled over
+        // every paired group, per observable and cycle
+        let mut pd = vec![vec![(0.0, 0.0); last + 1]; nobs];
+        for ((knob, k), runs) in &lib.runs {
+            let Some(seeds) = lib.run_seeds.get(&(knob.clone(), *k)) else {
+                continue;
+            };
+            if !paired_knob(knob) {
+                continue;
+            }
+            for (oi, row) in pd.iter_mut().enumerate() {
+                for (c, acc) in row.iter_mut().enumerate() {
+                    let d: Vec<f64> = seeds
+                        .iter()
+                        .zip(runs)
+                        .filter_map(|(sd, run)| {
+                            let i = lib.baseline_seeds.iter().position(|b| b == sd)?;
+                            Some(q(run, oi, c)? - q(&lib.baseline[i], oi, c)?)
+                        })
+                        .collect();
+                    if d.len() >= 2 {
+                        let (_, sd) = crate::harness::study::mean_sd(&d);
+                        acc.0 += sd * sd * (d.len() - 1) as f64;
+                        acc.1 += (d.len() - 1) as f64;
+                    }
+                }
+            }
+        }
+        let n_base = lib.baseline.len().max(1);
+        let shift_var = lib
+            .effects
+            .iter()
+            .map(|e| {
+                let mut pts: Vec<(f64, Vec<Vec<f64>>)> =
+                    vec![(0.0, vec![vec![0.0; last + 1]; nobs])];
+                for (k, st) in e.strengths.iter().enumerate() {
+                    let Some(runs) = lib.runs.get(&(e.knob.clone(), k)) else {
+                        continue;
+                    };
+                    let n = runs.len().max(1) as f64;
+                    let v = (0..nobs)
+                        .map(|oi| {
+                            (0..=last)
+                                .map(|c| {
+                                    let sig2 = noise_of(oi, c).powi(2);
+                                    let (ss, dof) = pd[oi][c];
+                                    if paired_knob(&e.knob) && dof > 0.0 {
+                                        (ss / dof) / n
+                                    } else {
+                                        sig2 * (1.0 / n + 1.0 / n_base as f64)
+                                    }
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    pts.push((*st, v));
+                }
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                pts.into_iter().map(|(_, v)| v).collect()
             })
             .collect();
         let shifts = lib
@@ -422,6 +528,8 @@ impl Surrogate {
             base,
             noise,
             shifts,
+            shift_var,
+            n_base,
             effects: lib.effects.clone(),
         }
     }
@@ -436,6 +544,72 @@ impl Surrogate {
         let p = &self.shifts[i];
         let mut v: Vec<(f64, f64)> = p.iter().map(|(st, d)| (*st, d[o][c])).collect();
         interpolate(&mut v, s)
+    }
+
+    /// Variance of the estimated shift of effect i at strength s (linear interpolation of two
+    /// independent group means: (1-t)^2 v0 + t^2 v1; the extreme point's outside the range).
+    fn shift_variance(&self, i: usize, s: f64, o: usize, c: usize) -> f64 {
+        let p = &self.shifts[i];
+        let v = &self.shift_var[i];
+        if s <= p[0].0 {
+            return v[0][o][c];
+        }
+        let n = p.len() - 1;
+        if s >= p[n].0 {
+            return v[n][o][c];
+        }
+        for k in 0..n {
+            if s >= p[k].0 && s <= p[k + 1].0 {
+                let t = (s - p[k].0) / (p[k + 1].0 - p[k].0);
+                return (1.0 - t).powi(2) * v[k][o][c] + t * t * v[k + 1][o][c];
+            }
+        }
+        v[n][o][c]
+    }
+
+    /// -2 ln(likelihood) of an observation under today's model plus `effects` on `cycles`, up to a
+    /// constant that today's model has too: sum of x^2 / v + ln(v / v0), where x is the residual,
+    /// v0 = noise^2 (1 + 1/n_base) the variance for today's model (one run against the baseline
+    /// mean), and v = v0 + the variance of the effects' estimated shifts (few library seeds, or
+    /// unpaired specimens, make a shift uncertain, and the fit must not chase that uncertainty).
+    /// Returns (value, number of residuals).
+    pub fn nll(
+        &self,
+        obs: &Series,
+        effects: &[(usize, f64)],
+        cycles: std::ops::RangeInclusive<usize>,
+    ) -> (f64, usize) {
+        let r = self.residuals(obs, effects, cycles.clone());
+        let mut out = 0.0;
+        let mut k = 0;
+        for (oi, o) in OBSERVABLES.iter().enumerate() {
+            let Some(ov) = obs.get(o) else { continue };
+            for c in cycles.clone() {
+                if c == 0 || c > self.last || c >= ov.len() || !ov[c].is_finite() {
+                    continue;
+                }
+                if cumulative(o)
+                    && (self.base[oi][c].is_none()
+                        || self.base[oi][c - 1].is_none()
+                        || !ov[c - 1].is_finite())
+                {
+                    continue;
+                }
+                if !cumulative(o) && self.base[oi][c].is_none() {
+                    continue;
+                }
+                let v0 = 1.0 + 1.0 / self.n_base as f64;
+                let extra: f64 = effects
+                    .iter()
+                    .map(|(i, s)| self.shift_variance(*i, *s, oi, c))
+                    .sum::<f64>()
+                    / self.noise[oi][c].powi(2);
+                let v = v0 + extra;
+                out += r[k] * r[k] / v + (v / v0).ln();
+                k += 1;
+            }
+        }
+        (out, k)
     }
 
     /// Prediction of today's model plus effects (index, strength) for observable o at cycle c.
@@ -464,9 +638,14 @@ impl Surrogate {
                 if c == 0 || c > self.last || c >= ov.len() || !ov[c].is_finite() {
                     continue;
                 }
-                let x = if oi == 0 {
-                    match (self.predict(effects, 0, c), self.predict(effects, 0, c - 1)) {
-                        (Some(p1), Some(p0)) => (ov[c] - ov[c - 1]) - (p1 - p0),
+                let x = if cumulative(o) {
+                    match (
+                        self.predict(effects, oi, c),
+                        self.predict(effects, oi, c - 1),
+                    ) {
+                        (Some(p1), Some(p0)) if ov[c - 1].is_finite() => {
+                            (ov[c] - ov[c - 1]) - (p1 - p0)
+                        }
                         _ => continue,
                     }
                 } else {
@@ -523,12 +702,12 @@ fn chi2<F: Fn(&str, usize) -> Option<f64> + ?Sized>(
             if c >= ov.len() || c == 0 || !ov[c].is_finite() {
                 continue;
             }
-            // the rut is cumulative, so successive cycles are strongly correlated: compare its
+            // a cumulative observable's successive levels are strongly correlated: compare its
             // increment per cycle (nearly independent), with the ensemble's sd of increments
-            let r = if o == "rut_mm" {
+            let r = if cumulative(o) {
                 match (pred(o, c), pred(o, c - 1)) {
-                    (Some(p1), Some(p0)) => {
-                        ((ov[c] - ov[c - 1]) - (p1 - p0)) / lib.increment_noise(c)
+                    (Some(p1), Some(p0)) if ov[c - 1].is_finite() => {
+                        ((ov[c] - ov[c - 1]) - (p1 - p0)) / lib.increment_noise_of(o, c)
                     }
                     _ => continue,
                 }
@@ -725,6 +904,8 @@ pub struct Diagnosis {
     pub noise_inflation: f64,
     /// Penalty for the first and for a second fitted strength.
     pub penalties: (f64, f64),
+    /// How they were set.
+    pub penalty_calibration: Penalties,
     pub where_parts: Vec<WherePart>,
     pub dominant_part: String,
     /// One-effect models, best first.
@@ -837,7 +1018,119 @@ pub fn noise_inflation(lib: &Library, fit_cycles: usize) -> f64 {
     crate::harness::study::mean_sd(&ratios).0.max(1.0)
 }
 
+/// Every model fitted by least -2 ln L (no penalty): today's model, each effect alone, each pair.
+pub struct Fits {
+    pub none_chi2: f64,
+    /// (effects with strengths, chi2, residuals)
+    pub singles: Vec<(Vec<(usize, f64)>, f64, usize)>,
+    pub pairs: Vec<(Vec<(usize, f64)>, f64, usize)>,
+}
+
+pub fn fit_models(sur: &Surrogate, obs: &Series, fit_cycles: usize, inflation: f64) -> Fits {
+    let fit = 0..=fit_cycles;
+    let x2 = |eff: &[(usize, f64)]| -> (f64, usize) {
+        let (v, n) = sur.nll(obs, eff, fit.clone());
+        (v / inflation, n)
+    };
+    let m = sur.effects.len();
+    let none_chi2 = x2(&[]).0;
+    let mut singles = Vec::new();
+    for i in 0..m {
+        let (lo, hi) = sur.range(i);
+        let (chi, s) = best_1d(&|s| x2(&[(i, s)]).0, lo, hi, 400);
+        singles.push((vec![(i, s)], chi, x2(&[(i, s)]).1));
+    }
+    let mut pairs = Vec::new();
+    for a in 0..m {
+        for b in a + 1..m {
+            let (la, ha) = sur.range(a);
+            let (lb, hb) = sur.range(b);
+            let g = 40usize;
+            let mut best = (f64::INFINITY, singles[a].0[0].1, singles[b].0[0].1);
+            for ka in 0..=g {
+                let sa = la + (ha - la) * ka as f64 / g as f64;
+                for kb in 0..=g {
+                    let sb = lb + (hb - lb) * kb as f64 / g as f64;
+                    let v = x2(&[(a, sa), (b, sb)]).0;
+                    if v < best.0 {
+                        best = (v, sa, sb);
+                    }
+                }
+            }
+            // refine: coordinate descent on fine 1-d grids
+            for _ in 0..3 {
+                let sb = best.2;
+                let (v, sa) = best_1d(&|s| x2(&[(a, s), (b, sb)]).0, la, ha, 400);
+                let (v2, sb2) = best_1d(&|s| x2(&[(a, sa), (b, s)]).0, lb, hb, 400);
+                best = (v.min(v2), sa, sb2);
+            }
+            let n = x2(&[(a, best.1), (b, best.2)]).1;
+            pairs.push((vec![(a, best.1), (b, best.2)], best.0, n));
+        }
+    }
+    Fits {
+        none_chi2,
+        singles,
+        pairs,
+    }
+}
+
+/// Penalties of the first and of a second fitted strength, and how they were set.
+#[derive(Clone, Debug, Serialize)]
+pub struct Penalties {
+    pub p1: f64,
+    pub p2: f64,
+    /// Bonferroni values (`penalties`).
+    pub bonferroni: (f64, f64),
+    /// Library null check: each baseline seed diagnosed against the library without that seed (its
+    /// paired effect runs drop out too): the chi2 drop of the best one-effect model, and the further
+    /// drop of the best two-effect model.
+    pub null_drops1: Vec<f64>,
+    pub null_drops2: Vec<f64>,
+}
+
+/// The penalties a diagnosis uses: the Bonferroni values, raised to the largest chance drop that
+/// today's model's own seeds show against the library without them (the noise of one run is not
+/// Gaussian and its observables are correlated, so the Bonferroni value alone lets more than
+/// FAMILY_ALPHA of today's model through). Set from the library alone.
+pub fn calibrated_penalties(lib: &Library, fit_cycles: usize) -> Penalties {
+    let (b1, b2) = penalties(lib.effects.len());
+    let (mut d1, mut d2) = (Vec::new(), Vec::new());
+    if lib.baseline.len() >= 3 {
+        for i in 0..lib.baseline.len() {
+            let mut li = lib.clone();
+            let obs = li.baseline.remove(i);
+            if li.baseline_seeds.len() == lib.baseline.len() {
+                li.baseline_seeds.remove(i);
+            }
+            let sur = Surrogate::new(&li);
+            let f = fit_models(&sur, &obs, fit_cycles, noise_inflation(&li, fit_cycles));
+            let s1 = f.singles.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
+            let s2 = f.pairs.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
+            d1.push(f.none_chi2 - s1);
+            d2.push(s1 - s2);
+        }
+    }
+    let mx = |v: &[f64]| v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    Penalties {
+        p1: b1.max(mx(&d1)),
+        p2: b2.max(mx(&d2)),
+        bonferroni: (b1, b2),
+        null_drops1: d1,
+        null_drops2: d2,
+    }
+}
+
 pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagnosis> {
+    diagnose_with(lib, obs, fit_cycles, &calibrated_penalties(lib, fit_cycles))
+}
+
+pub fn diagnose_with(
+    lib: &Library,
+    obs: &Series,
+    fit_cycles: usize,
+    pen: &Penalties,
+) -> Result<Diagnosis> {
     if lib.baseline.len() < 2 {
         bail!("the library needs at least 2 baseline seeds to estimate the seed-to-seed noise");
     }
@@ -853,17 +1146,12 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
         fit_cycles,
         last_cycle: last,
     };
-    let fit = 0..=fit_cycles;
     let held = fit_cycles + 1..=last;
     let inflation = noise_inflation(lib, fit_cycles);
     let sur = Surrogate::new(lib);
-    let x2 = |eff: &[(usize, f64)], r: std::ops::RangeInclusive<usize>| -> (f64, usize) {
-        let v = sur.residuals(obs, eff, r);
-        (v.iter().map(|x| x * x).sum::<f64>() / inflation, v.len())
-    };
-    let m = lib.effects.len();
-    let (p1, p2) = penalties(m);
-    let (none_chi2, _) = x2(&[], fit.clone());
+    let (p1, p2) = (pen.p1, pen.p2);
+    let fits = fit_models(&sur, obs, fit_cycles, inflation);
+    let none_chi2 = fits.none_chi2;
     let knob_pred = |eff: &[(usize, f64)]| {
         let eff = eff.to_vec();
         let sur = &sur;
@@ -907,43 +1195,16 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
             heldout_norm_rms: norm_rms(lib, obs, &p, held.clone()),
         }
     };
-    let mut singles = Vec::new();
-    let mut fits1 = Vec::new();
-    for i in 0..m {
-        let (lo, hi) = sur.range(i);
-        let (chi, s) = best_1d(&|s| x2(&[(i, s)], fit.clone()).0, lo, hi, 400);
-        let n = x2(&[(i, s)], fit.clone()).1;
-        fits1.push(s);
-        singles.push(make(vec![(i, s)], chi, n, p1));
-    }
-    let mut pairs = Vec::new();
-    for a in 0..m {
-        for b in a + 1..m {
-            let (la, ha) = sur.range(a);
-            let (lb, hb) = sur.range(b);
-            let g = 40usize;
-            let mut best = (f64::INFINITY, fits1[a], fits1[b]);
-            for ka in 0..=g {
-                let sa = la + (ha - la) * ka as f64 / g as f64;
-                for kb in 0..=g {
-                    let sb = lb + (hb - lb) * kb as f64 / g as f64;
-                    let v = x2(&[(a, sa), (b, sb)], fit.clone()).0;
-                    if v < best.0 {
-                        best = (v, sa, sb);
-                    }
-                }
-            }
-            // refine: coordinate descent on fine 1-d grids
-            for _ in 0..3 {
-                let (_, sb) = (best.0, best.2);
-                let (v, sa) = best_1d(&|s| x2(&[(a, s), (b, sb)], fit.clone()).0, la, ha, 400);
-                let (v2, sb2) = best_1d(&|s| x2(&[(a, sa), (b, s)], fit.clone()).0, lb, hb, 400);
-                best = (v.min(v2), sa, sb2);
-            }
-            let n = x2(&[(a, best.1), (b, best.2)], fit.clone()).1;
-            pairs.push(make(vec![(a, best.1), (b, best.2)], best.0, n, p1 + p2));
-        }
-    }
+    let mut singles: Vec<Candidate> = fits
+        .singles
+        .iter()
+        .map(|(e, chi, n)| make(e.clone(), *chi, *n, p1))
+        .collect();
+    let mut pairs: Vec<Candidate> = fits
+        .pairs
+        .iter()
+        .map(|(e, chi, n)| make(e.clone(), *chi, *n, p1 + p2))
+        .collect();
     // weights over none, singles, pairs
     let icmin = singles
         .iter()
@@ -999,6 +1260,7 @@ pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagno
         split,
         noise_inflation: inflation,
         penalties: (p1, p2),
+        penalty_calibration: pen.clone(),
         where_parts: wp,
         dominant_part,
         candidates: singles,
@@ -1041,12 +1303,24 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
     }
     s += &format!("\nDominant part: **{}**.\n\n", d.dominant_part);
     s += &format!(
-        "## Which unmodelled effect explains it\n\nEvery model's strengths are fitted on cycles 1-{} (rut increments, rebound, grid settlement, porosity; chi2 over the noise). IC = chi2 + {:.2} per first strength + {:.2} for a second: the chi2 drop a fitted strength gives by chance with a family-wise probability of {} over the {} candidates. A model must have a lower IC than today's model (IC = its chi2).\n\n| rank | model | fitted strengths (knob change) | chi2 (fit) | IC | weight | held-out rut RMS [mm] | held-out normalised RMS |\n|---|---|---|---|---|---|---|---|\n",
+        "## Which unmodelled effect explains it\n\nEvery model's strengths are fitted on cycles 1-{} (increments of the rut, grid settlement and porosity; rebound levels; chi2 = -2 ln L over the noise of one run plus the surrogate's own uncertainty). IC = chi2 + {:.2} for the first strength + {:.2} for a second: the larger of the Bonferroni chance drop (family-wise {} over the {} candidates: {:.2}, {:.2}) and the largest chance drop of today's model's own seeds against the library without them ({:.2}, {:.2}). A model must have a lower IC than today's model (IC = its chi2).\n\n| rank | model | fitted strengths (knob change) | chi2 (fit) | IC | weight | held-out rut RMS [mm] | held-out normalised RMS |\n|---|---|---|---|---|---|---|---|\n",
         d.split.fit_cycles,
         d.penalties.0,
         d.penalties.1,
         FAMILY_ALPHA,
-        lib.effects.len()
+        lib.effects.len(),
+        d.penalty_calibration.bonferroni.0,
+        d.penalty_calibration.bonferroni.1,
+        d.penalty_calibration
+            .null_drops1
+            .iter()
+            .cloned()
+            .fold(f64::NAN, f64::max),
+        d.penalty_calibration
+            .null_drops2
+            .iter()
+            .cloned()
+            .fold(f64::NAN, f64::max)
     );
     let fmt_eff = |c: &Candidate| {
         c.effects
@@ -1160,6 +1434,79 @@ mod tests {
         assert!(d.gap_reduction > 0.95);
         let d = diagnose(&lib, &ser(&base(1.0)), 4).unwrap();
         assert_eq!(d.winner, "none");
+    }
+
+    /// Tabulated chi2(1) upper quantiles: 3.841 at 5 %, 6.635 at 1 %, 10.828 at 0.1 %; the
+    /// Bonferroni penalty for 6 candidates is the 0.05/6 quantile, 6.96 (z = 2.638).
+    #[test]
+    fn chi2_quantiles_match_tables() {
+        assert!((chi2_1_quantile(0.05) - 3.841).abs() < 2e-3);
+        assert!((chi2_1_quantile(0.01) - 6.635).abs() < 2e-3);
+        assert!((chi2_1_quantile(0.001) - 10.828).abs() < 2e-3);
+        let (p1, p2) = penalties(6);
+        assert!((p1 - 6.96).abs() < 0.01, "{}", p1);
+        assert!((p2 - 6.63).abs() < 0.01, "{}", p2);
+    }
+
+    /// The paired surrogate removes the specimen offset: two baseline specimens differ by a constant
+    /// 10 mm, the effect adds +4 mm per cycle on both; an unpaired mean over the effect runs of
+    /// specimen 1 only would see +9 mm per cycle, the paired one sees +4.
+    #[test]
+    fn paired_surrogate_removes_the_specimen_offset() {
+        let lin = |a: f64, b: f64| -> Vec<f64> { (0..6).map(|c| a + b * c as f64).collect() };
+        let mut lib = Library {
+            effects: vec![Effect {
+                knob: "soft".into(),
+                meaning: "more rut".into(),
+                zero: 0.0,
+                strengths: vec![1.0],
+            }],
+            ..Default::default()
+        };
+        lib.baseline = vec![ser(&lin(0.0, 5.0)), ser(&lin(0.0, 15.0))];
+        lib.baseline_seeds = vec![1, 2];
+        lib.runs
+            .insert(("soft".into(), 0), vec![ser(&lin(0.0, 19.0))]);
+        lib.run_seeds.insert(("soft".into(), 0), vec![2]);
+        // baseline mean at cycle 5: 50; paired: 50 + (95 - 75) = 70
+        assert_eq!(lib.group_mean("soft", 0, "rut_mm", 5), Some(70.0));
+        lib.unpaired = vec!["soft".into()];
+        assert_eq!(lib.group_mean("soft", 0, "rut_mm", 5), Some(95.0));
+    }
+
+    /// Two effects acting together (one on the rut, one on the rebound): one effect alone cannot
+    /// explain both, the two-effect model is chosen, names the larger one first and fits both.
+    #[test]
+    fn two_effects_are_fitted_together() {
+        let mk = |rut: f64, reb: f64| Series {
+            rut_mm: (0..8).map(|c| c as f64 * rut).collect(),
+            porosity: None,
+            rebound_mm: Some((0..8).map(|c| if c == 0 { 0.0 } else { reb }).collect()),
+            grid_settlement_mm: None,
+        };
+        let e = |k: &str| Effect {
+            knob: k.into(),
+            meaning: k.into(),
+            zero: 0.0,
+            strengths: vec![1.0],
+        };
+        let mut lib = Library {
+            effects: vec![e("soft"), e("bouncy")],
+            ..Default::default()
+        };
+        lib.baseline = vec![mk(4.8, 0.98), mk(5.0, 1.0), mk(5.2, 1.02)];
+        lib.runs
+            .insert(("soft".into(), 0), vec![mk(9.8, 1.0), mk(10.2, 1.0)]);
+        lib.runs
+            .insert(("bouncy".into(), 0), vec![mk(5.0, 1.98), mk(5.0, 2.02)]);
+        // soft 0.8 (+4 mm per cycle, 16 mm a cycle-4 rut), bouncy 0.5 (+0.5 mm rebound)
+        let d = diagnose(&lib, &mk(9.0, 1.5), 4).unwrap();
+        assert_eq!(d.winner, "soft");
+        assert_eq!(d.model.len(), 2, "{:?}", d.model);
+        assert!((d.model[0].1 - 0.8).abs() < 0.02, "{:?}", d.model);
+        assert_eq!(d.model[1].0, "bouncy");
+        assert!((d.model[1].1 - 0.5).abs() < 0.02, "{:?}", d.model);
+        assert!(d.gap_reduction > 0.95 && d.norm_gap_reduction > 0.95);
     }
 
     #[test]

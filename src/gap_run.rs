@@ -643,10 +643,11 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
         .collect();
     names.sort();
     // 1. blind: every diagnosis is made and written before any truth file is opened
+    let pen = gap::calibrated_penalties(lib, fit_cycles);
     let mut diags = Vec::new();
     for n in &names {
         let obs = gap::read_observed(&dir.join("cases").join(n).join("observed.csv"))?;
-        let d = gap::diagnose(lib, &obs, fit_cycles)?;
+        let d = gap::diagnose_with(lib, &obs, fit_cycles, &pen)?;
         std::fs::write(
             dir.join("cases").join(n).join("diagnosis.md"),
             gap::report_markdown(n, &d, lib),
