@@ -100,6 +100,8 @@ struct Line {
     specimen: String,
     /// Where a generating run also writes its specimen ('' = nowhere).
     export: String,
+    /// Stop after generation (and the export).
+    generate_only: bool,
     effects: String,
     out: PathBuf,
 }
@@ -116,7 +118,13 @@ fn run_missing(
 ) -> Result<()> {
     let todo: Vec<&Line> = lines
         .iter()
-        .filter(|l| !l.out.join("history.csv").is_file())
+        .filter(|l| {
+            if l.generate_only {
+                !Path::new(&l.export).is_file()
+            } else {
+                !l.out.join("history.csv").is_file()
+            }
+        })
         .collect();
     if todo.is_empty() {
         return Ok(());
@@ -125,12 +133,12 @@ fn run_missing(
         std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
     writeln!(
         f,
-        "description ratio case size seed cycles specimen export effects out"
+        "description ratio case size seed cycles specimen export generate_only effects out"
     )?;
     for l in &todo {
         writeln!(
             f,
-            "{} {} '{}' '{}' {} {} '{}' '{}' '{}' '{}'",
+            "{} {} '{}' '{}' {} {} '{}' '{}' {} '{}' '{}'",
             l.description,
             sc.ratio as f64 / 10.0,
             sc.case,
@@ -139,6 +147,7 @@ fn run_missing(
             sc.cycles,
             l.specimen,
             l.export,
+            l.generate_only as u8,
             l.effects,
             l.out.display()
         )?;
@@ -229,6 +238,7 @@ pub fn make_library(
             } else {
                 base_spec(s)
             },
+            generate_only: false,
             effects: String::new(),
             out: dir.join(format!("base_s{}", s)),
         });
@@ -247,6 +257,7 @@ pub fn make_library(
                         base_spec(s)
                     },
                     export: String::new(),
+                    generate_only: false,
                     effects: knobs(&[(e.knob.clone(), *st)])?,
                     out: dir.join(format!("{}_{}_s{}", e.knob, k, s)),
                 });
@@ -417,8 +428,8 @@ pub fn detectable_ranges(lib: &Library, fit_cycles: usize, floor: f64) -> Vec<De
     out
 }
 
-/// Blind datasets made by Debian YADE on specimens of seeds the library does not use (1000+), with
-/// the truth written apart. Design (fixed from the library alone, before any dataset is made):
+/// Blind datasets made by Debian YADE on specimens of seeds the library does not use (set seed x 100
+/// + case number), with the truth written apart. Design (fixed from the library alone, before any dataset is made):
 /// * `n_null` cases (positions drawn at random) are today's model itself: the answer must be "none";
 /// * every other case has a first hidden effect drawn uniformly among the effects that can reach
 ///   the detectability floor in this scenario, at a strength drawn uniformly from the strengths
@@ -426,6 +437,10 @@ pub fn detectable_ranges(lib: &Library, fit_cycles: usize, floor: f64) -> Vec<De
 /// * with probability 0.3 a second effect, any other candidate, at 40-100 % of its library extreme
 ///   on a random side (it may be undetectable, and it may even dominate).
 ///
+/// Each case's specimen is generated first (`generate.table`: generation effects only, i.e. grading,
+/// `--generate-only --export-specimen`), then imported and loaded with the loading effects
+/// (`observed.table`), as in the library: `--damping` acts in every phase of study.py, and a
+/// generation at low damping is a different specimen population (one at 0.06 never finished).
 /// All draws come from MT19937(`seed`). `DIR/design.json` records the floor and the ranges.
 #[allow(clippy::too_many_arguments)]
 pub fn make_observed(
@@ -482,6 +497,7 @@ pub fn make_observed(
     }
     let nulls: Vec<usize> = pos[..n_null].to_vec();
     let cat = &lib.effects;
+    let mut gen_lines = Vec::new();
     let mut lines = Vec::new();
     for i in 0..n {
         let name = format!("case{:02}", i + 1);
@@ -519,7 +535,15 @@ pub fn make_observed(
                 }
             }
         }
-        let spec_seed = 1000 + i as u32;
+        // a fresh specimen per case and per set (set seed x 100 + case): no two blind sets share
+        // a specimen, and none is a library seed
+        let spec_seed = seed
+            .checked_mul(100)
+            .and_then(|x| x.checked_add(i as u32 + 1))
+            .filter(|_| n < 100)
+            .with_context(|| {
+                format!("--seed {} with --n {}: specimen seeds overflow", seed, n)
+            })?;
         std::fs::write(
             dir.join("truth").join(format!("{}.json", name)),
             serde_json::to_string_pretty(&Truth {
@@ -527,15 +551,31 @@ pub fn make_observed(
                 effects: chosen.clone(),
             })?,
         )?;
+        // as in the library: the specimen is generated with the generation effects only (grading),
+        // then loaded with the loading effects (damping, for one, acts in every phase of study.py)
+        let spec = dir.join("runs").join(&name).join("specimen.json");
+        let (gen, load): (Vec<(String, f64)>, Vec<(String, f64)>) =
+            chosen.iter().cloned().partition(|(k, _)| generates(k));
+        gen_lines.push(Line {
+            description: format!("{}_gen", name),
+            seed: spec_seed,
+            specimen: String::new(),
+            export: spec.display().to_string(),
+            generate_only: true,
+            effects: knobs(&gen)?,
+            out: dir.join("runs").join(format!("{}_gen", name)),
+        });
         lines.push(Line {
             description: name.clone(),
             seed: spec_seed,
-            specimen: String::new(),
+            specimen: spec.display().to_string(),
             export: String::new(),
-            effects: knobs(&chosen)?,
+            generate_only: false,
+            effects: knobs(&load)?,
             out: dir.join("runs").join(&name),
         });
     }
+    run_missing(root, &dir.join("generate.table"), sc, &gen_lines, jobs, true)?;
     run_missing(root, &dir.join("observed.table"), sc, &lines, jobs, true)?;
     for l in &lines {
         let h = l.out.join("history.csv");
@@ -642,6 +682,12 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
         .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().to_string()))
         .collect();
     names.sort();
+    if names.is_empty() {
+        bail!(
+            "{}/cases is empty: no blind case to validate (did --make-observed finish?)",
+            dir.display()
+        );
+    }
     // 1. blind: every diagnosis is made and written before any truth file is opened
     let pen = gap::calibrated_penalties(lib, fit_cycles);
     let mut diags = Vec::new();
