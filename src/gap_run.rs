@@ -541,9 +541,7 @@ pub fn make_observed(
             .checked_mul(100)
             .and_then(|x| x.checked_add(i as u32 + 1))
             .filter(|_| n < 100)
-            .with_context(|| {
-                format!("--seed {} with --n {}: specimen seeds overflow", seed, n)
-            })?;
+            .with_context(|| format!("--seed {} with --n {}: specimen seeds overflow", seed, n))?;
         std::fs::write(
             dir.join("truth").join(format!("{}.json", name)),
             serde_json::to_string_pretty(&Truth {
@@ -553,7 +551,10 @@ pub fn make_observed(
         )?;
         // as in the library: the specimen is generated with the generation effects only (grading),
         // then loaded with the loading effects (damping, for one, acts in every phase of study.py)
-        let spec = dir.join("runs").join(&name).join("specimen.json");
+        let spec = dir
+            .join("runs")
+            .join(format!("{}_gen", name))
+            .join("specimen.json");
         let (gen, load): (Vec<(String, f64)>, Vec<(String, f64)>) =
             chosen.iter().cloned().partition(|(k, _)| generates(k));
         gen_lines.push(Line {
@@ -575,7 +576,14 @@ pub fn make_observed(
             out: dir.join("runs").join(&name),
         });
     }
-    run_missing(root, &dir.join("generate.table"), sc, &gen_lines, jobs, true)?;
+    run_missing(
+        root,
+        &dir.join("generate.table"),
+        sc,
+        &gen_lines,
+        jobs,
+        true,
+    )?;
     run_missing(root, &dir.join("observed.table"), sc, &lines, jobs, true)?;
     for l in &lines {
         let h = l.out.join("history.csv");
