@@ -1036,12 +1036,14 @@ pub fn noise_inflation(lib: &Library, fit_cycles: usize) -> f64 {
     crate::harness::study::mean_sd(&ratios).0.max(1.0)
 }
 
+/// One fitted model: (effect index and strength for each effect, -2 ln L, number of residuals).
+pub type ModelFit = (Vec<(usize, f64)>, f64, usize);
+
 /// Every model fitted by least -2 ln L (no penalty): today's model, each effect alone, each pair.
 pub struct Fits {
     pub none_chi2: f64,
-    /// (effects with strengths, chi2, residuals)
-    pub singles: Vec<(Vec<(usize, f64)>, f64, usize)>,
-    pub pairs: Vec<(Vec<(usize, f64)>, f64, usize)>,
+    pub singles: Vec<ModelFit>,
+    pub pairs: Vec<ModelFit>,
 }
 
 pub fn fit_models(sur: &Surrogate, obs: &Series, fit_cycles: usize, inflation: f64) -> Fits {

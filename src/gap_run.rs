@@ -555,8 +555,16 @@ pub fn make_observed(
             .join("runs")
             .join(format!("{}_gen", name))
             .join("specimen.json");
-        let (gen, load): (Vec<(String, f64)>, Vec<(String, f64)>) =
-            chosen.iter().cloned().partition(|(k, _)| generates(k));
+        let gen: Vec<(String, f64)> = chosen
+            .iter()
+            .filter(|(k, _)| generates(k))
+            .cloned()
+            .collect();
+        let load: Vec<(String, f64)> = chosen
+            .iter()
+            .filter(|(k, _)| !generates(k))
+            .cloned()
+            .collect();
         gen_lines.push(Line {
             description: format!("{}_gen", name),
             seed: spec_seed,

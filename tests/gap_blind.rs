@@ -49,13 +49,16 @@ fn medium_library_design_is_fixed_from_the_library() {
     // (values printed by `compat gap --detectability`)
     let roll = &get("rolling").intervals;
     assert_eq!(roll.len(), 1);
-    assert!((roll[0].0 - 0.0725).abs() < 1e-9 && (roll[0].1 - 0.5).abs() < 1e-9);
+    assert!((roll[0].0 - 0.0875).abs() < 1e-9 && (roll[0].1 - 0.5).abs() < 1e-9);
     let sub = &get("subgrade").intervals;
-    assert!((sub[0].0 - 0.26).abs() < 1e-9 && (sub[0].1 - 1.0).abs() < 1e-9);
+    assert!((sub[0].0 - 0.25).abs() < 1e-9 && (sub[0].1 - 1.0).abs() < 1e-9);
     let damp = &get("damping").intervals;
-    assert!((damp[0].0 + 0.1222).abs() < 1e-4 && (damp[0].1 + 0.15).abs() < 1e-9);
+    assert!((damp[0].0 + 0.117).abs() < 1e-9 && (damp[0].1 + 0.15).abs() < 1e-9);
+    // the library's own seeds drop by more than Gaussian noise would (median 4.0 against 2.57 for
+    // the best of 6 chi2(1)): the first penalty is 6.96 x 1.55 = 10.78
     let pen = gap::calibrated_penalties(&lib, 4);
     assert!((pen.bonferroni.0 - 6.96).abs() < 0.01);
     assert_eq!(pen.null_drops1.len(), 12);
-    assert!(pen.p1 > pen.bonferroni.0, "{:?}", pen);
+    assert!((pen.p1 - 10.776).abs() < 0.01, "{:?}", pen);
+    assert!((pen.p2 - pen.bonferroni.1).abs() < 1e-12, "{:?}", pen);
 }
