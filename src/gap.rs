@@ -1320,7 +1320,7 @@ fn median_of(v: &[f64]) -> f64 {
 pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
     let mut s = format!("# Gap diagnosis: {}\n\n", name);
     s += &format!(
-        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the seed-to-seed sd pooled over the library's groups ({} baseline seeds), inflated by {:.2} (leave-one-out calibration on today's model). Effect shifts are paired with the baseline run of the same specimen where the library allows it.\n\n",
+        "Fit on cycles 1-{}, held out: cycles {}-{}. Noise of one realisation: the seed-to-seed sd pooled over the library's groups of independent specimens ({} baseline seeds and the unpaired effects' runs), inflated by {:.2} (leave-one-out calibration on today's model). Effect shifts are paired with the baseline run of the same specimen where the library allows it.\n\n",
         d.split.fit_cycles,
         d.split.fit_cycles + 1,
         d.split.last_cycle,
