@@ -855,25 +855,20 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
             &|c| lib.increment_noise(c),
         );
     }
-    if obs.rebound_mm.is_some() {
-        push(
-            "rebound_mm",
-            "resilient rebound within each cycle",
-            (1..=last).collect(),
-            &|s, c| s.rebound_mm.as_ref()?.get(c).copied(),
-            &|c| lib.baseline_mean("rebound_mm", c),
-            &|c| lib.noise("rebound_mm", c),
-        );
-    }
-    if obs.grid_settlement_mm.is_some() {
-        push(
-            "grid_settlement_mm",
-            "settlement of the geogrid level",
-            (1..=last).collect(),
-            &|s, c| s.grid_settlement_mm.as_ref()?.get(c).copied(),
-            &|c| lib.baseline_mean("grid_settlement_mm", c),
-            &|c| lib.noise("grid_settlement_mm", c),
-        );
+    for (o, phase) in [
+        ("rebound_mm", "resilient rebound within each cycle"),
+        ("grid_settlement_mm", "settlement of the geogrid level"),
+    ] {
+        if obs.get(o).is_some() {
+            push(
+                o,
+                phase,
+                (1..=last).collect(),
+                &|s, c| value(s, o, c),
+                &|c| lib.baseline_mean(o, c),
+                &|c| lib.noise(o, c),
+            );
+        }
     }
     if obs.porosity.is_some() {
         push(
@@ -1306,6 +1301,17 @@ pub fn diagnose_with(
         norm_gap_reduction: red(norm_before, norm_after),
     })
 }
+/// "knob strength" pairs joined by `sep`, strengths with `decimals` decimals (None: as stored).
+pub fn format_effects(e: &[(String, f64)], sep: &str, decimals: Option<usize>) -> String {
+    e.iter()
+        .map(|(k, v)| match decimals {
+            Some(d) => format!("{} {:.*}", k, d, v),
+            None => format!("{} {}", k, v),
+        })
+        .collect::<Vec<_>>()
+        .join(sep)
+}
+
 fn median_of(v: &[f64]) -> f64 {
     let mut v = v.to_vec();
     v.sort_by(|a, b| a.total_cmp(b));
@@ -1352,13 +1358,7 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         median_of(&d.penalty_calibration.null_drops1),
         median_of(&d.penalty_calibration.null_drops2)
     );
-    let fmt_eff = |c: &Candidate| {
-        c.effects
-            .iter()
-            .map(|(k, v)| format!("{} {:.4}", k, v))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let fmt_eff = |c: &Candidate| format_effects(&c.effects, ", ", Some(4));
     let mut all: Vec<&Candidate> = d.candidates.iter().chain(d.pairs.iter()).collect();
     all.sort_by(|a, b| a.ic.total_cmp(&b.ic));
     for (i, c) in all.iter().enumerate() {
@@ -1390,11 +1390,7 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
             format!(
                 "{} (model: {})",
                 d.winner,
-                d.model
-                    .iter()
-                    .map(|(k, v)| format!("{} {:.4}", k, v))
-                    .collect::<Vec<_>>()
-                    .join(" + ")
+                format_effects(&d.model, " + ", Some(4))
             )
         },
         d.confidence

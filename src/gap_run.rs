@@ -771,11 +771,7 @@ pub fn format_scores(s: &[CaseScore]) -> String {
             if c.truth.is_empty() {
                 "none (today's model)".to_string()
             } else {
-                c.truth
-                    .iter()
-                    .map(|(k, v)| format!("{} {}", k, v))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                gap::format_effects(&c.truth, ", ", None)
             },
             c.dominant_truth,
             c.detectability,
@@ -785,11 +781,7 @@ pub fn format_scores(s: &[CaseScore]) -> String {
             if c.model.is_empty() {
                 "-".to_string()
             } else {
-                c.model
-                    .iter()
-                    .map(|(k, v)| format!("{} {:.3}", k, v))
-                    .collect::<Vec<_>>()
-                    .join(" + ")
+                gap::format_effects(&c.model, " + ", Some(3))
             },
             match (c.fitted_strength, c.strength_error) {
                 (Some(f), Some(e)) => format!("{:.3} ({:.0} %)", f, 100.0 * e),
