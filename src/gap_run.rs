@@ -22,7 +22,7 @@ pub fn catalogue() -> Vec<Effect> {
         e(
             "rolling",
             "rolling resistance on sphere contacts (etaRoll; angularity proxy)",
-            &[0.05, 0.2, 0.5],
+            &[0.02, 0.05, 0.2, 0.5],
         ),
         e(
             "grading",
@@ -42,9 +42,13 @@ pub fn catalogue() -> Vec<Effect> {
         e(
             "friction",
             "interparticle friction change [deg from 30]",
-            &[-10.0, 10.0],
+            &[-10.0, -5.0, 5.0, 10.0],
         ),
-        e("damping", "local damping change (from 0.2)", &[-0.15, 0.3]),
+        e(
+            "damping",
+            "local damping change (from 0.2)",
+            &[-0.15, -0.075, 0.15, 0.3],
+        ),
     ]
 }
 
@@ -94,6 +98,10 @@ struct Line {
     description: String,
     seed: u32,
     specimen: String,
+    /// Where a generating run also writes its specimen ('' = nowhere).
+    export: String,
+    /// Stop after generation (and the export).
+    generate_only: bool,
     effects: String,
     out: PathBuf,
 }
@@ -110,7 +118,13 @@ fn run_missing(
 ) -> Result<()> {
     let todo: Vec<&Line> = lines
         .iter()
-        .filter(|l| !l.out.join("history.csv").is_file())
+        .filter(|l| {
+            if l.generate_only {
+                !Path::new(&l.export).is_file()
+            } else {
+                !l.out.join("history.csv").is_file()
+            }
+        })
         .collect();
     if todo.is_empty() {
         return Ok(());
@@ -119,12 +133,12 @@ fn run_missing(
         std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
     writeln!(
         f,
-        "description ratio case size seed cycles specimen effects out"
+        "description ratio case size seed cycles specimen export generate_only effects out"
     )?;
     for l in &todo {
         writeln!(
             f,
-            "{} {} '{}' '{}' {} {} '{}' '{}' '{}'",
+            "{} {} '{}' '{}' {} {} '{}' '{}' {} '{}' '{}'",
             l.description,
             sc.ratio as f64 / 10.0,
             sc.case,
@@ -132,6 +146,8 @@ fn run_missing(
             l.seed,
             sc.cycles,
             l.specimen,
+            l.export,
+            l.generate_only as u8,
             l.effects,
             l.out.display()
         )?;
@@ -172,9 +188,13 @@ pub struct LibraryIndex {
     pub effects: Vec<Effect>,
 }
 
-/// Build (or complete) a library: baseline seeds + each effect at its strengths for `effect_seeds`.
-/// Specimens: `golden/study/<scenario>_<case>_<size>_s<seed>/specimen.json` when committed, else
-/// generated.
+/// Build (or complete) a library: baseline seeds + each effect at its strengths for `effect_seeds`
+/// (a subset of the baseline seeds). Phase 1 runs the baseline: a committed
+/// `golden/study/<scenario>_<case>_<size>_s<seed>/specimen.json` is imported, else the run generates
+/// its specimen and exports it to `base_s<seed>/specimen.json`. Phase 2 runs every loading effect on
+/// the baseline specimen of the same seed (common random numbers: the effect's run differs from its
+/// baseline run by the effect alone, which the paired surrogate of `gap::Library` uses); an effect
+/// that changes the generation (grading) generates its own specimen.
 pub fn make_library(
     root: &Path,
     dir: &Path,
@@ -185,28 +205,46 @@ pub fn make_library(
 ) -> Result<()> {
     std::fs::create_dir_all(dir)?;
     let dir = dir.canonicalize()?;
-    let spec = |s: u32| {
+    if let Some(s) = effect_seeds.iter().find(|s| !baseline_seeds.contains(s)) {
+        bail!(
+            "effect seed {} is not a baseline seed (effect runs reuse the baseline specimens)",
+            s
+        );
+    }
+    let golden = |s: u32| {
         let p = root.join(format!(
             "golden/study/r{:02}_{}_{}_s{}/specimen.json",
             sc.ratio, sc.case, sc.size, s
         ));
-        if p.is_file() {
-            p.display().to_string()
-        } else {
-            String::new()
-        }
+        p.is_file().then(|| p.display().to_string())
     };
-    let mut lines = Vec::new();
+    let base_spec = |s: u32| {
+        golden(s).unwrap_or_else(|| {
+            dir.join(format!("base_s{}", s))
+                .join("specimen.json")
+                .display()
+                .to_string()
+        })
+    };
+    let mut base_lines = Vec::new();
     for &s in baseline_seeds {
-        lines.push(Line {
+        let g = golden(s);
+        base_lines.push(Line {
             description: format!("base_s{}", s),
             seed: s,
-            specimen: spec(s),
+            specimen: g.clone().unwrap_or_default(),
+            export: if g.is_some() {
+                String::new()
+            } else {
+                base_spec(s)
+            },
+            generate_only: false,
             effects: String::new(),
             out: dir.join(format!("base_s{}", s)),
         });
     }
     let effects = catalogue();
+    let mut lines = Vec::new();
     for e in &effects {
         for (k, st) in e.strengths.iter().enumerate() {
             for &s in effect_seeds {
@@ -216,8 +254,10 @@ pub fn make_library(
                     specimen: if generates(&e.knob) {
                         String::new()
                     } else {
-                        spec(s)
+                        base_spec(s)
                     },
+                    export: String::new(),
+                    generate_only: false,
                     effects: knobs(&[(e.knob.clone(), *st)])?,
                     out: dir.join(format!("{}_{}_s{}", e.knob, k, s)),
                 });
@@ -237,6 +277,14 @@ pub fn make_library(
         dir.join("library.json"),
         serde_json::to_string_pretty(&idx)?,
     )?;
+    run_missing(
+        root,
+        &dir.join("library_base.table"),
+        sc,
+        &base_lines,
+        jobs,
+        false,
+    )?;
     run_missing(root, &dir.join("library.table"), sc, &lines, jobs, false)
 }
 
@@ -252,29 +300,43 @@ pub fn load_library(dir: &Path) -> Result<(LibraryIndex, Library)> {
     )?;
     let mut lib = Library {
         effects: idx.effects.clone(),
+        unpaired: idx
+            .effects
+            .iter()
+            .filter(|e| generates(&e.knob))
+            .map(|e| e.knob.clone())
+            .collect(),
         ..Default::default()
     };
     for s in &idx.baseline_seeds {
         let p = dir.join(format!("base_s{}", s)).join("history.csv");
         match gap::series_of_history(&p) {
-            Ok(x) => lib.baseline.push(x),
+            Ok(x) => {
+                lib.baseline.push(x);
+                lib.baseline_seeds.push(*s);
+            }
             Err(e) => eprintln!("warning: library run missing: {:#}", e),
         }
     }
     for e in &idx.effects {
         for k in 0..e.strengths.len() {
             let mut v: Vec<Series> = Vec::new();
+            let mut seeds = Vec::new();
             for s in &idx.effect_seeds {
                 let p = dir
                     .join(format!("{}_{}_s{}", e.knob, k, s))
                     .join("history.csv");
                 match gap::series_of_history(&p) {
-                    Ok(x) => v.push(x),
+                    Ok(x) => {
+                        v.push(x);
+                        seeds.push(*s);
+                    }
                     Err(err) => eprintln!("warning: library run missing: {:#}", err),
                 }
             }
             if !v.is_empty() {
                 lib.runs.insert((e.knob.clone(), k), v);
+                lib.run_seeds.insert((e.knob.clone(), k), seeds);
             }
         }
     }
@@ -287,50 +349,199 @@ pub fn load_library(dir: &Path) -> Result<(LibraryIndex, Library)> {
 #[derive(Serialize, Deserialize, Clone)]
 pub struct Truth {
     pub seed: u32,
+    /// Hidden effects and strengths (empty: today's model itself, the answer must be "none").
     pub effects: Vec<(String, f64)>,
 }
 
-/// Blind datasets made by Debian YADE: `n` cases, each with one or two hidden effects at random
-/// strengths (MT19937 seeded), on specimens of seeds the library does not use. Writes
-/// `DIR/cases/<name>/observed.csv` and, apart, `DIR/truth/<name>.json`.
+/// Detectability floor of the blind-dataset design: the first hidden effect's noiseless signal on
+/// the fitted cycles (sqrt of the chi2 it adds, after the noise inflation) must be at least this.
+pub const DETECTABILITY_FLOOR: f64 = 5.0;
+
+/// Signal of effects (knob, strength) on cycles `cycles` for an observation with the observables of
+/// `like`, in noise units after the noise inflation of `fit_cycles`.
+pub fn signal(
+    lib: &Library,
+    effects: &[(String, f64)],
+    like: &Series,
+    cycles: std::ops::RangeInclusive<usize>,
+    fit_cycles: usize,
+) -> f64 {
+    let sur = gap::Surrogate::new(lib);
+    let eff: Vec<(usize, f64)> = effects
+        .iter()
+        .filter_map(|(k, s)| Some((lib.effects.iter().position(|e| &e.knob == k)?, *s)))
+        .collect();
+    sur.signal(&eff, like, cycles) / gap::noise_inflation(lib, fit_cycles).sqrt()
+}
+
+/// Per effect, the library-range strengths whose signal on the fitted cycles reaches the floor,
+/// scanned on 201 points per side: (knob, [(lo, hi)] intervals on each side, largest signal).
+#[derive(Serialize, Deserialize, Clone, Debug)]
+pub struct DetectableRange {
+    pub knob: String,
+    pub intervals: Vec<(f64, f64)>,
+    pub max_signal: f64,
+    pub strength_at_max: f64,
+}
+
+pub fn detectable_ranges(lib: &Library, fit_cycles: usize, floor: f64) -> Vec<DetectableRange> {
+    let like = lib.baseline[0].clone();
+    let sur = gap::Surrogate::new(lib);
+    let infl = gap::noise_inflation(lib, fit_cycles).sqrt();
+    let mut out = Vec::new();
+    for (i, e) in lib.effects.iter().enumerate() {
+        let (lo, hi) = sur.range(i);
+        let mut intervals = Vec::new();
+        let (mut best, mut at) = (0.0, 0.0);
+        for (a, b) in [(0.0, lo), (0.0, hi)] {
+            if a == b {
+                continue;
+            }
+            let mut cur: Option<(f64, f64)> = None;
+            for k in 1..=200 {
+                let s = a + (b - a) * k as f64 / 200.0;
+                let sig = sur.signal(&[(i, s)], &like, 1..=fit_cycles) / infl;
+                if sig > best {
+                    best = sig;
+                    at = s;
+                }
+                if sig >= floor {
+                    cur = Some(match cur {
+                        Some((x, _)) => (x, s),
+                        None => (s, s),
+                    });
+                } else if let Some(c) = cur.take() {
+                    intervals.push(c);
+                }
+            }
+            if let Some(c) = cur {
+                intervals.push(c);
+            }
+        }
+        out.push(DetectableRange {
+            knob: e.knob.clone(),
+            intervals,
+            max_signal: best,
+            strength_at_max: at,
+        });
+    }
+    out
+}
+
+/// Blind datasets made by Debian YADE on specimens of seeds the library does not use (set seed x 100
+/// + case number), with the truth written apart. Design (fixed from the library alone, before any dataset is made):
+/// * `n_null` cases (positions drawn at random) are today's model itself: the answer must be "none";
+/// * every other case has a first hidden effect drawn uniformly among the effects that can reach
+///   the detectability floor in this scenario, at a strength drawn uniformly from the strengths
+///   where the library predicts a signal >= the floor ("a gap diagnosis presumes there is a gap");
+/// * with probability 0.3 a second effect, any other candidate, at 40-100 % of its library extreme
+///   on a random side (it may be undetectable, and it may even dominate).
+///
+/// Each case's specimen is generated first (`generate.table`: generation effects only, i.e. grading,
+/// `--generate-only --export-specimen`), then imported and loaded with the loading effects
+/// (`observed.table`), as in the library: `--damping` acts in every phase of study.py, and a
+/// generation at low damping is a different specimen population (one at 0.06 never finished).
+/// All draws come from MT19937(`seed`). `DIR/design.json` records the floor and the ranges.
+#[allow(clippy::too_many_arguments)]
 pub fn make_observed(
     root: &Path,
     dir: &Path,
     sc: &Scenario,
     n: usize,
+    n_null: usize,
     seed: u32,
     jobs: usize,
+    lib: &Library,
+    fit_cycles: usize,
 ) -> Result<()> {
     use rand_mt::Mt19937GenRand32 as Mt;
+    if n_null > n {
+        bail!("--n-null {} is more than --n {}", n_null, n);
+    }
     std::fs::create_dir_all(dir.join("runs"))?;
     std::fs::create_dir_all(dir.join("truth"))?;
     std::fs::create_dir_all(dir.join("cases"))?;
     let dir = dir.canonicalize()?;
+    let ranges = detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR);
+    let drawable: Vec<&DetectableRange> =
+        ranges.iter().filter(|r| !r.intervals.is_empty()).collect();
+    if drawable.is_empty() {
+        bail!(
+            "no candidate effect reaches the detectability floor {} in this scenario (largest signals: {})",
+            DETECTABILITY_FLOOR,
+            ranges
+                .iter()
+                .map(|r| format!("{} {:.1}", r.knob, r.max_signal))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    std::fs::write(
+        dir.join("design.json"),
+        serde_json::to_string_pretty(&serde_json::json!({
+            "seed": seed,
+            "n": n,
+            "n_null": n_null,
+            "fit_cycles": fit_cycles,
+            "detectability_floor": DETECTABILITY_FLOOR,
+            "ranges": ranges,
+        }))?,
+    )?;
     let mut rng = Mt::new(seed);
     let mut u = move || rng.next_u32() as f64 / 4294967296.0;
-    let cat = catalogue();
+    // null positions: a partial Fisher-Yates shuffle
+    let mut pos: Vec<usize> = (0..n).collect();
+    for i in 0..n_null {
+        let j = i + ((u() * (n - i) as f64) as usize).min(n - i - 1);
+        pos.swap(i, j);
+    }
+    let nulls: Vec<usize> = pos[..n_null].to_vec();
+    let cat = &lib.effects;
+    let mut gen_lines = Vec::new();
     let mut lines = Vec::new();
     for i in 0..n {
         let name = format!("case{:02}", i + 1);
-        let n_eff = if u() < 0.7 { 1 } else { 2 };
         let mut chosen: Vec<(String, f64)> = Vec::new();
-        while chosen.len() < n_eff {
-            let e = &cat[(u() * cat.len() as f64) as usize % cat.len()];
-            if chosen.iter().any(|c| c.0 == e.knob) {
-                continue;
+        if !nulls.contains(&i) {
+            let r = drawable[((u() * drawable.len() as f64) as usize).min(drawable.len() - 1)];
+            let total: f64 = r.intervals.iter().map(|(a, b)| (b - a).abs()).sum();
+            let mut x = u() * total;
+            let mut s = r.intervals[0].0;
+            for (a, b) in &r.intervals {
+                let w = (b - a).abs();
+                if x <= w {
+                    s = a + (b - a).signum() * x;
+                    break;
+                }
+                x -= w;
             }
-            // a strength between 40 % and 100 % of the library's extreme on a random side
-            let hi = e.strengths.iter().cloned().fold(0.0, f64::max);
-            let lo = e.strengths.iter().cloned().fold(0.0, f64::min);
-            let side = if lo < 0.0 && (hi <= 0.0 || u() < 0.5) {
-                lo
-            } else {
-                hi
-            };
-            let s = side * (0.4 + 0.6 * u());
-            chosen.push((e.knob.clone(), (s * 1e4).round() / 1e4));
+            chosen.push((r.knob.clone(), (s * 1e4).round() / 1e4));
+            if u() < 0.3 {
+                loop {
+                    let e = &cat[((u() * cat.len() as f64) as usize).min(cat.len() - 1)];
+                    if e.knob == r.knob {
+                        continue;
+                    }
+                    let hi = e.strengths.iter().cloned().fold(0.0, f64::max);
+                    let lo = e.strengths.iter().cloned().fold(0.0, f64::min);
+                    let side = if lo < 0.0 && (hi <= 0.0 || u() < 0.5) {
+                        lo
+                    } else {
+                        hi
+                    };
+                    let s = side * (0.4 + 0.6 * u());
+                    chosen.push((e.knob.clone(), (s * 1e4).round() / 1e4));
+                    break;
+                }
+            }
         }
-        let spec_seed = 1000 + i as u32;
+        // a fresh specimen per case and per set (set seed x 100 + case): no two blind sets share
+        // a specimen, and none is a library seed
+        let spec_seed = seed
+            .checked_mul(100)
+            .and_then(|x| x.checked_add(i as u32 + 1))
+            .filter(|_| n < 100)
+            .with_context(|| format!("--seed {} with --n {}: specimen seeds overflow", seed, n))?;
         std::fs::write(
             dir.join("truth").join(format!("{}.json", name)),
             serde_json::to_string_pretty(&Truth {
@@ -338,14 +549,49 @@ pub fn make_observed(
                 effects: chosen.clone(),
             })?,
         )?;
+        // as in the library: the specimen is generated with the generation effects only (grading),
+        // then loaded with the loading effects (damping, for one, acts in every phase of study.py)
+        let spec = dir
+            .join("runs")
+            .join(format!("{}_gen", name))
+            .join("specimen.json");
+        let gen: Vec<(String, f64)> = chosen
+            .iter()
+            .filter(|(k, _)| generates(k))
+            .cloned()
+            .collect();
+        let load: Vec<(String, f64)> = chosen
+            .iter()
+            .filter(|(k, _)| !generates(k))
+            .cloned()
+            .collect();
+        gen_lines.push(Line {
+            description: format!("{}_gen", name),
+            seed: spec_seed,
+            specimen: String::new(),
+            export: spec.display().to_string(),
+            generate_only: true,
+            effects: knobs(&gen)?,
+            out: dir.join("runs").join(format!("{}_gen", name)),
+        });
         lines.push(Line {
             description: name.clone(),
             seed: spec_seed,
-            specimen: String::new(),
-            effects: knobs(&chosen)?,
+            specimen: spec.display().to_string(),
+            export: String::new(),
+            generate_only: false,
+            effects: knobs(&load)?,
             out: dir.join("runs").join(&name),
         });
     }
+    run_missing(
+        root,
+        &dir.join("generate.table"),
+        sc,
+        &gen_lines,
+        jobs,
+        true,
+    )?;
     run_missing(root, &dir.join("observed.table"), sc, &lines, jobs, true)?;
     for l in &lines {
         let h = l.out.join("history.csv");
@@ -359,9 +605,18 @@ pub fn make_observed(
         let cdir = dir.join("cases").join(&l.description);
         std::fs::create_dir_all(&cdir)?;
         let mut f = std::fs::File::create(cdir.join("observed.csv"))?;
-        writeln!(f, "cycle,rut_mm,porosity,rebound_mm")?;
+        let grid = s.grid_settlement_mm.clone();
+        writeln!(
+            f,
+            "cycle,rut_mm,porosity,rebound_mm{}",
+            if grid.is_some() {
+                ",grid_settlement_mm"
+            } else {
+                ""
+            }
+        )?;
         for c in 0..s.cycles() {
-            writeln!(
+            write!(
                 f,
                 "{},{:.17e},{:.17e},{:.17e}",
                 c,
@@ -369,39 +624,46 @@ pub fn make_observed(
                 s.porosity.as_ref().unwrap()[c],
                 s.rebound_mm.as_ref().unwrap()[c]
             )?;
+            if let Some(g) = &grid {
+                write!(f, ",{:.17e}", g[c])?;
+            }
+            writeln!(f)?;
         }
     }
     Ok(())
 }
 
-/// The hidden effect that moves the final rut most by itself (its surrogate prediction at the true
-/// strength against today's model), with that shift in mm; ("none", 0) without a known effect.
-fn dominant_shift(lib: &Library, t: &Truth) -> (String, f64) {
-    let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
-    let base = lib.baseline_mean("rut_mm", last).unwrap_or(0.0);
+/// The hidden effect with the largest noiseless signal by itself over every cycle (its surrogate
+/// at the true strength against today's model, for an observation with the observables of `like`),
+/// and its signal on the fitted cycles (noise units, after the inflation); ("none", 0) without one.
+fn dominant_signal(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> (String, f64) {
+    let last = lib.last_cycle().min(like.cycles().saturating_sub(1));
     t.effects
         .iter()
-        .filter_map(|(k, s)| {
-            let e = lib.effects.iter().find(|e| &e.knob == k)?;
-            Some((
+        .filter(|(k, _)| lib.effects.iter().any(|e| &e.knob == k))
+        .map(|(k, s)| {
+            let one = [(k.clone(), *s)];
+            (
                 k.clone(),
-                (lib.predict(e, *s, "rut_mm", last)? - base).abs(),
-            ))
+                signal(lib, &one, like, 1..=last, fit_cycles),
+                signal(lib, &one, like, 1..=fit_cycles, fit_cycles),
+            )
         })
         .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(k, _, f)| (k, f))
         .unwrap_or_else(|| ("none".into(), 0.0))
 }
 
-/// Dominant hidden effect: the one whose surrogate prediction alone moves the final rut most.
-pub fn dominant_truth(lib: &Library, t: &Truth) -> String {
-    dominant_shift(lib, t).0
+/// Dominant hidden effect: the one whose surrogate alone gives the largest signal ("none" for a
+/// case of today's model).
+pub fn dominant_truth(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> String {
+    dominant_signal(lib, t, like, fit_cycles).0
 }
 
-/// Signal-to-noise of the dominant hidden effect: its surrogate shift of the final rut over the noise
-/// of one realisation there. Below 2 the effect is not detectable from one run, whatever the method.
-pub fn detectability(lib: &Library, t: &Truth) -> f64 {
-    let last = lib.baseline.iter().map(|s| s.cycles()).min().unwrap_or(1) - 1;
-    dominant_shift(lib, t).1 / lib.noise("rut_mm", last)
+/// Signal-to-noise of the dominant hidden effect on the fitted cycles (sqrt of the chi2 its
+/// surrogate adds, after the noise inflation).
+pub fn detectability(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> f64 {
+    dominant_signal(lib, t, like, fit_cycles).1
 }
 
 #[derive(Serialize)]
@@ -409,14 +671,19 @@ pub struct CaseScore {
     pub case: String,
     pub truth: Vec<(String, f64)>,
     pub dominant_truth: String,
-    /// Surrogate shift of the final rut by the dominant effect / noise of one run.
+    /// Signal of the dominant effect on the fitted cycles (noise units).
     pub detectability: f64,
     pub named: String,
+    /// The chosen model's effects and strengths.
+    pub model: Vec<(String, f64)>,
     pub confidence: f64,
     pub correct: bool,
     pub fitted_strength: Option<f64>,
     pub strength_error: Option<f64>,
+    /// Held-out rut RMS reduction.
     pub gap_reduction: f64,
+    /// Held-out normalised RMS reduction over every observed observable.
+    pub norm_gap_reduction: f64,
 }
 
 /// Diagnose every case blind, then score against the truth files.
@@ -431,11 +698,18 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
         .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().to_string()))
         .collect();
     names.sort();
+    if names.is_empty() {
+        bail!(
+            "{}/cases is empty: no blind case to validate (did --make-observed finish?)",
+            dir.display()
+        );
+    }
     // 1. blind: every diagnosis is made and written before any truth file is opened
+    let pen = gap::calibrated_penalties(lib, fit_cycles);
     let mut diags = Vec::new();
     for n in &names {
         let obs = gap::read_observed(&dir.join("cases").join(n).join("observed.csv"))?;
-        let d = gap::diagnose(lib, &obs, fit_cycles)?;
+        let d = gap::diagnose_with(lib, &obs, fit_cycles, &pen)?;
         std::fs::write(
             dir.join("cases").join(n).join("diagnosis.md"),
             gap::report_markdown(n, &d, lib),
@@ -444,92 +718,113 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             dir.join("cases").join(n).join("diagnosis.json"),
             serde_json::to_string_pretty(&d)?,
         )?;
-        diags.push(d);
+        diags.push((obs, d));
     }
     // 2. scoring
     let mut out = Vec::new();
-    for (n, d) in names.iter().zip(diags) {
+    for (n, (obs, d)) in names.iter().zip(diags) {
         let t: Truth = serde_json::from_str(&std::fs::read_to_string(
             dir.join("truth").join(format!("{}.json", n)),
         )?)?;
-        let dom = dominant_truth(lib, &t);
-        let fitted = d
-            .candidates
-            .iter()
-            .find(|c| c.knob == dom)
-            .map(|c| c.strength);
+        let dom = dominant_truth(lib, &t, &obs, fit_cycles);
+        let correct = d.winner == dom;
+        let fitted = d.model.iter().find(|c| c.0 == dom).map(|c| c.1);
         let true_s = t.effects.iter().find(|e| e.0 == dom).map(|e| e.1);
         out.push(CaseScore {
             case: n.clone(),
             truth: t.effects.clone(),
             dominant_truth: dom.clone(),
-            detectability: detectability(lib, &t),
+            detectability: detectability(lib, &t, &obs, fit_cycles),
             named: d.winner.clone(),
+            model: d.model.clone(),
             confidence: d.confidence,
-            correct: d.winner == dom,
-            fitted_strength: if d.winner == dom { fitted } else { None },
+            correct,
+            fitted_strength: if correct { fitted } else { None },
             strength_error: match (fitted, true_s) {
-                (Some(f), Some(t)) if d.winner == dom && t != 0.0 => Some((f - t).abs() / t.abs()),
+                (Some(f), Some(t)) if correct && t != 0.0 => Some((f - t).abs() / t.abs()),
                 _ => None,
             },
             gap_reduction: d.gap_reduction,
+            norm_gap_reduction: d.norm_gap_reduction,
         });
     }
     Ok(out)
 }
 
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    v.sort_by(|a, b| a.total_cmp(b));
+    if v.is_empty() {
+        None
+    } else if v.len() % 2 == 1 {
+        Some(v[v.len() / 2])
+    } else {
+        Some(0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2]))
+    }
+}
+
 pub fn format_scores(s: &[CaseScore]) -> String {
-    let mut t = String::from("| case | hidden effects (strength) | dominant | detectability (shift / noise) | named (confidence) | fitted strength (rel. error) | held-out gap reduction |\n|---|---|---|---|---|---|---|\n");
+    let mut t = String::from("| case | hidden effects (strength) | dominant | detectability (signal / noise, fitted cycles) | named (confidence) | model | fitted strength (rel. error) | held-out rut gap reduction | held-out normalised gap reduction |\n|---|---|---|---|---|---|---|---|---|\n");
     for c in s {
         t += &format!(
-            "| {} | {} | {} | {:.1} | {} {} ({:.2}) | {} | {:.0} % |\n",
+            "| {} | {} | {} | {:.1} | {} {} ({:.2}) | {} | {} | {:.0} % | {:.0} % |\n",
             c.case,
-            c.truth
-                .iter()
-                .map(|(k, v)| format!("{} {}", k, v))
-                .collect::<Vec<_>>()
-                .join(", "),
+            if c.truth.is_empty() {
+                "none (today's model)".to_string()
+            } else {
+                gap::format_effects(&c.truth, ", ", None)
+            },
             c.dominant_truth,
             c.detectability,
             if c.correct { "yes:" } else { "NO:" },
             c.named,
             c.confidence,
+            if c.model.is_empty() {
+                "-".to_string()
+            } else {
+                gap::format_effects(&c.model, " + ", Some(3))
+            },
             match (c.fitted_strength, c.strength_error) {
                 (Some(f), Some(e)) => format!("{:.3} ({:.0} %)", f, 100.0 * e),
                 _ => "-".into(),
             },
-            100.0 * c.gap_reduction
+            100.0 * c.gap_reduction,
+            100.0 * c.norm_gap_reduction
         );
     }
-    let n = s.len().max(1) as f64;
-    let correct = s.iter().filter(|c| c.correct).count() as f64;
-    let mut red: Vec<f64> = s.iter().map(|c| c.gap_reduction).collect();
-    red.sort_by(|a, b| a.total_cmp(b));
-    let med = if red.is_empty() {
-        f64::NAN
-    } else if red.len() % 2 == 1 {
-        red[red.len() / 2]
-    } else {
-        0.5 * (red[red.len() / 2 - 1] + red[red.len() / 2])
-    };
-    let mut errs: Vec<f64> = s.iter().filter_map(|c| c.strength_error).collect();
-    errs.sort_by(|a, b| a.total_cmp(b));
-    let det: Vec<&CaseScore> = s.iter().filter(|c| c.detectability >= 2.0).collect();
-    let mut det_red: Vec<f64> = det.iter().map(|c| c.gap_reduction).collect();
-    det_red.sort_by(|a, b| a.total_cmp(b));
+    let pct = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{:.0} %", 100.0 * v));
+    let correct = s.iter().filter(|c| c.correct).count();
+    let eff: Vec<&CaseScore> = s.iter().filter(|c| !c.truth.is_empty()).collect();
+    let nulls: Vec<&CaseScore> = s.iter().filter(|c| c.truth.is_empty()).collect();
+    let none_answers = s.iter().filter(|c| c.named == "none").count();
+    let false_pos = nulls.iter().filter(|c| c.named != "none").count();
+    let missed = eff.iter().filter(|c| c.named == "none").count();
+    let wrong = eff
+        .iter()
+        .filter(|c| c.named != "none" && !c.correct)
+        .count();
     t += &format!(
-        "\nDetectable cases (dominant effect shifts the final rut by >= 2 noise sd): {}; named correctly: {}; median held-out gap reduction: {}\n",
-        det.len(),
-        det.iter().filter(|c| c.correct).count(),
-        if det_red.is_empty() { "-".to_string() } else { format!("{:.0} %", 100.0 * det_red[det_red.len() / 2]) }
-    );
-    t += &format!(
-        "\nDominant effect named correctly: {}/{} ({:.0} %); median held-out gap reduction: {:.0} %; median relative strength error (correct cases): {}\n",
-        correct as usize,
+        "\nDominant effect named correctly (\"none\" for today's model): {}/{} ({:.0} %)\n\
+         Cases with hidden effects: {}; named correctly: {}; answered none: {}; named a wrong effect: {}\n\
+         Cases of today's model: {}; false positives (an effect named): {}\n\
+         \"none\" answers in all: {}\n\
+         Median relative strength error (correct cases): {}\n\
+         Median held-out gap reduction, cases with hidden effects: rut RMS {}, normalised over every observable {}\n\
+         (all cases: rut {}, normalised {})\n",
+        correct,
         s.len(),
-        100.0 * correct / n,
-        100.0 * med,
-        if errs.is_empty() { "-".into() } else { format!("{:.0} %", 100.0 * errs[errs.len() / 2]) }
+        100.0 * correct as f64 / s.len().max(1) as f64,
+        eff.len(),
+        eff.iter().filter(|c| c.correct).count(),
+        missed,
+        wrong,
+        nulls.len(),
+        false_pos,
+        none_answers,
+        pct(median(s.iter().filter_map(|c| c.strength_error).collect())),
+        pct(median(eff.iter().map(|c| c.gap_reduction).collect())),
+        pct(median(eff.iter().map(|c| c.norm_gap_reduction).collect())),
+        pct(median(s.iter().map(|c| c.gap_reduction).collect())),
+        pct(median(s.iter().map(|c| c.norm_gap_reduction).collect())),
     );
     t
 }
@@ -541,19 +836,20 @@ pub fn write_plot_data(out: &Path, lib: &Library, obs: &Series, d: &gap::Diagnos
         f,
         "observable,cycle,observed,model_mean,model_sd,winner,fit_cycles"
     )?;
-    let win = lib.effects.iter().find(|e| e.knob == d.winner);
-    let s = d
-        .candidates
+    let sur = gap::Surrogate::new(lib);
+    let model: Vec<(usize, f64)> = d
+        .model
         .iter()
-        .find(|c| c.knob == d.winner)
-        .map(|c| c.strength);
-    for o in gap::OBSERVABLES {
+        .filter_map(|(k, s)| Some((lib.effects.iter().position(|e| &e.knob == k)?, *s)))
+        .collect();
+    for (oi, o) in gap::OBSERVABLES.iter().enumerate() {
         let Some(ov) = obs.get(o) else { continue };
         for (c, v) in ov.iter().enumerate().take(d.split.last_cycle + 1) {
             let m = lib.baseline_mean(o, c).unwrap_or(f64::NAN);
-            let w = match (win, s) {
-                (Some(e), Some(s)) => lib.predict(e, s, o, c).unwrap_or(f64::NAN),
-                _ => f64::NAN,
+            let w = if model.is_empty() {
+                f64::NAN
+            } else {
+                sur.predict(&model, oi, c).unwrap_or(f64::NAN)
             };
             writeln!(
                 f,

@@ -1,8 +1,10 @@
-//! The gap diagnosis on a blind case made by Debian YADE (results/gap/blind_r07_G_tiny_c6/case04: one
-//! hidden effect, rolling resistance etaRoll = 0.435, truth stored apart) against the committed ryade
-//! library (results/gap/library_r07_G_tiny_c6): the effect must be named, its strength land inside the
-//! library range near the truth, and the held-out rut gap must shrink by more than half.
-//! The full validation score (12 cases) is in results/gap/blind_r07_G_tiny_c6/validation.md.
+//! The gap diagnosis against blind cases made by Debian YADE (truth stored apart):
+//! * the first tiny set (results/gap/blind_r07_G_tiny_c6/case04: rolling resistance etaRoll = 0.435)
+//!   against the tiny library: the effect is named, its strength lands near the truth, and the
+//!   held-out rut gap shrinks by more than half (that set's score: its validation.md);
+//! * the medium library's validation design, fixed from the library alone;
+//! * three cases of the final blind set results/gap/blind2028_r07_G_medium_c6 (13/14 named; its
+//!   validation.md) against the medium library.
 
 use ryade::{gap, gap_run};
 use std::path::PathBuf;
@@ -27,4 +29,83 @@ fn blind_case04_rolling_resistance_is_named() {
         s
     );
     assert!(d.gap_reduction > 0.5, "gap reduction {}", d.gap_reduction);
+}
+
+/// The validation design of the committed medium library (r07 G medium, 6 cycles, made by ryade;
+/// YADE and ryade give byte-identical study histories for these knobs): fixed from the library alone,
+/// the detectability floor admits rolling resistance, a compliant subgrade and lower damping at the
+/// strengths below, and no strength of grading, geogrid softness or friction change in the library's
+/// plausible range; the chance drops of today's model's own seeds raise the penalty above Bonferroni.
+#[test]
+fn medium_library_design_is_fixed_from_the_library() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/gap");
+    let (idx, lib) = gap_run::load_library(&root.join("library_r07_G_medium_c6")).unwrap();
+    assert_eq!(idx.baseline_seeds.len(), 12);
+    assert_eq!(lib.baseline.len(), 12);
+    let r = gap_run::detectable_ranges(&lib, 4, gap_run::DETECTABILITY_FLOOR);
+    let get = |k: &str| r.iter().find(|x| x.knob == k).unwrap();
+    for k in ["grading", "grid_soft", "friction"] {
+        assert!(get(k).intervals.is_empty(), "{} {:?}", k, get(k));
+        assert!(get(k).max_signal < gap_run::DETECTABILITY_FLOOR);
+    }
+    // (values printed by `compat gap --detectability`)
+    let roll = &get("rolling").intervals;
+    assert_eq!(roll.len(), 1);
+    assert!((roll[0].0 - 0.0875).abs() < 1e-9 && (roll[0].1 - 0.5).abs() < 1e-9);
+    let sub = &get("subgrade").intervals;
+    assert!((sub[0].0 - 0.25).abs() < 1e-9 && (sub[0].1 - 1.0).abs() < 1e-9);
+    let damp = &get("damping").intervals;
+    assert!((damp[0].0 + 0.117).abs() < 1e-9 && (damp[0].1 + 0.15).abs() < 1e-9);
+    // the library's own seeds drop by more than Gaussian noise would (median 4.0 against 2.57 for
+    // the best of 6 chi2(1)): the first penalty is 6.96 x 1.55 = 10.78
+    let pen = gap::calibrated_penalties(&lib, 4);
+    assert!((pen.bonferroni.0 - 6.96).abs() < 0.01);
+    assert_eq!(pen.null_drops1.len(), 12);
+    assert!((pen.p1 - 10.776).abs() < 0.01, "{:?}", pen);
+    assert!((pen.p2 - pen.bonferroni.1).abs() < 1e-12, "{:?}", pen);
+}
+
+/// The final blind set (results/gap/blind2028_r07_G_medium_c6: Debian YADE, seed 2028, made after the
+/// method was frozen, validated once: 13/14 named). Three of its cases against the committed medium
+/// library: rolling resistance etaRoll = 0.3744 (fitted 0.370), a compliant subgrade of compliance
+/// 0.4105 (K = 2.4e7 N/m^3; seen in the grid settlement, fitted 0.565), and a case of today's model
+/// whose answer must be "none".
+#[test]
+fn final_blind_set_cases_are_diagnosed() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/gap");
+    let (_, lib) = gap_run::load_library(&root.join("library_r07_G_medium_c6")).unwrap();
+    let set = root.join("blind2028_r07_G_medium_c6");
+    let pen = gap::calibrated_penalties(&lib, 4);
+    let diag = |c: &str| {
+        let obs = gap::read_observed(&set.join("cases").join(c).join("observed.csv")).unwrap();
+        let t: gap_run::Truth = serde_json::from_str(
+            &std::fs::read_to_string(set.join("truth").join(format!("{}.json", c))).unwrap(),
+        )
+        .unwrap();
+        (gap::diagnose_with(&lib, &obs, 4, &pen).unwrap(), t)
+    };
+    let (d, t) = diag("case01");
+    assert_eq!(t.effects, vec![("rolling".to_string(), 0.3744)]);
+    assert_eq!(d.winner, "rolling");
+    assert_eq!(d.model.len(), 1);
+    assert!(
+        (d.model[0].1 - 0.3744).abs() / 0.3744 < 0.05,
+        "{:?}",
+        d.model
+    );
+    assert!(
+        d.gap_reduction > 0.9 && d.norm_gap_reduction > 0.8,
+        "{:?}",
+        d
+    );
+    let (d, t) = diag("case04");
+    assert_eq!(t.effects, vec![("subgrade".to_string(), 0.4105)]);
+    assert_eq!(d.winner, "subgrade");
+    assert!((d.model[0].1 - 0.565).abs() < 0.01, "{:?}", d.model);
+    assert!(d.dominant_part.starts_with("grid_settlement_mm"));
+    assert!(d.norm_gap_reduction > 0.7, "{}", d.norm_gap_reduction);
+    let (d, t) = diag("case02");
+    assert!(t.effects.is_empty());
+    assert_eq!(d.winner, "none");
+    assert!(d.confidence > 0.9, "{}", d.confidence);
 }

@@ -169,7 +169,8 @@ enum Cmd {
     /// Sim-to-real gap diagnosis: where a model departs from an observed history, which unmodelled
     /// effect explains it, how far adding it closes the gap on held-out cycles (yade_ref/gap/README.md).
     Gap {
-        /// Observed history CSV (cycle, rut_mm|rut_m [, porosity, rebound_mm|rebound_m])
+        /// Observed history CSV (cycle, rut_mm|rut_m [, porosity, rebound_mm|rebound_m,
+        /// grid_settlement_mm|grid_settlement_m])
         #[arg(long)]
         observed: Option<PathBuf>,
         /// Diagnose every case of a blind dataset DIR (cases/ and, read only after diagnosing, truth/)
@@ -181,11 +182,15 @@ enum Cmd {
         /// Make blind datasets with Debian YADE in DIR (hidden effects, truth stored apart)
         #[arg(long)]
         make_observed: Option<PathBuf>,
+        /// Print, from the library alone, each effect's signal and the strengths that reach the
+        /// detectability floor of the blind-dataset design
+        #[arg(long)]
+        detectability: bool,
         #[arg(long, default_value = "r07")]
         scenario: String,
         #[arg(long, default_value = "G")]
         case: String,
-        #[arg(long, default_value = "tiny")]
+        #[arg(long, default_value = "medium")]
         size: String,
         /// Load cycles of every library / dataset run
         #[arg(long, default_value_t = 6)]
@@ -196,13 +201,16 @@ enum Cmd {
         /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>)
         #[arg(long)]
         library: Option<PathBuf>,
-        #[arg(long, default_value_t = 6)]
+        #[arg(long, default_value_t = 12)]
         baseline_seeds: u32,
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 4)]
         effect_seeds: u32,
         /// Blind datasets to make
-        #[arg(long, default_value_t = 12)]
+        #[arg(long, default_value_t = 14)]
         n: usize,
+        /// Of which cases of today's model (no hidden effect)
+        #[arg(long, default_value_t = 2)]
+        n_null: usize,
         /// Seed of the hidden-effect draw
         #[arg(long, default_value_t = 2026)]
         seed: u32,
@@ -532,6 +540,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             validate,
             make_library,
             make_observed,
+            detectability,
             scenario,
             case,
             size,
@@ -541,6 +550,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             baseline_seeds,
             effect_seeds,
             n,
+            n_null,
             seed,
             out,
             jobs,
@@ -565,8 +575,42 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 PathBuf::from("gap_lib")
                     .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
             });
+            if make_library || !lib_dir.join("library.json").is_file() {
+                let b: Vec<u32> = (1..=baseline_seeds).collect();
+                let e: Vec<u32> = (1..=effect_seeds).collect();
+                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
+            }
+            let (_, lib) = gap_run::load_library(&lib_dir)?;
+            if detectability {
+                println!(
+                    "noise inflation {:.2}; detectability floor {} (signal on cycles 1-{})",
+                    gap::noise_inflation(&lib, fit_cycles),
+                    gap_run::DETECTABILITY_FLOOR,
+                    fit_cycles
+                );
+                println!("| effect | largest signal (at strength) | strengths reaching the floor |\n|---|---|---|");
+                for r in gap_run::detectable_ranges(&lib, fit_cycles, gap_run::DETECTABILITY_FLOOR)
+                {
+                    println!(
+                        "| {} | {:.1} ({}) | {} |",
+                        r.knob,
+                        r.max_signal,
+                        r.strength_at_max,
+                        if r.intervals.is_empty() {
+                            "none: not drawn".to_string()
+                        } else {
+                            r.intervals
+                                .iter()
+                                .map(|(a, b)| format!("{:.4} .. {:.4}", a, b))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        }
+                    );
+                }
+                return Ok(ExitCode::SUCCESS);
+            }
             if let Some(d) = make_observed {
-                gap_run::make_observed(&root, &d, &sc, n, seed, jobs)?;
+                gap_run::make_observed(&root, &d, &sc, n, n_null, seed, jobs, &lib, fit_cycles)?;
                 println!(
                     "blind datasets in {}/cases (truth apart in {}/truth)",
                     d.display(),
@@ -574,12 +618,6 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 );
                 return Ok(ExitCode::SUCCESS);
             }
-            if make_library || !lib_dir.join("library.json").is_file() {
-                let b: Vec<u32> = (1..=baseline_seeds).collect();
-                let e: Vec<u32> = (1..=effect_seeds).collect();
-                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
-            }
-            let (_, lib) = gap_run::load_library(&lib_dir)?;
             if let Some(d) = validate {
                 let scores = gap_run::validate(&d, &lib, fit_cycles)?;
                 let table = gap_run::format_scores(&scores);
@@ -600,11 +638,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 std::fs::write(out.join("report.md"), &md)?;
                 std::fs::write(out.join("report.json"), serde_json::to_string_pretty(&d)?)?;
                 gap_run::write_plot_data(&out, &lib, &obs, &d)?;
-                study_run::figures(&[
-                    "gap",
-                    &out.join("plot.csv").display().to_string(),
-                    &out.join("report.png").display().to_string(),
-                ]);
+                let st = std::process::Command::new(ryade::harness::env::python())
+                    .arg(root.join("yade_ref/gap/report_figure.py"))
+                    .arg(out.join("plot.csv"))
+                    .arg(out.join("report.png"))
+                    .status();
+                if !matches!(st, Ok(s) if s.success()) {
+                    eprintln!("warning: report.png not drawn (yade_ref/gap/report_figure.py)");
+                }
                 print!("{}", md);
                 println!("report: {}/report.{{md,json,png}}", out.display());
                 return Ok(ExitCode::SUCCESS);

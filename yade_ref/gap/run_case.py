@@ -6,6 +6,8 @@
 # Columns (all optional except out):
 #   ratio case size seed cycles : the study case (see yade_ref/study/README.md)
 #   specimen                    : load this specimen instead of generating ('' = generate)
+#   export                      : when generating, also write the specimen there (--export-specimen)
+#   generate_only               : 1 = stop after generation (and the export), no loading
 #   effects                     : comma-separated knob=value pairs, e.g. 'eta_roll=0.3,subgrade_k=2e7'
 #                                 (knob names = study.py options with '-' written '_', without '--')
 #   out                         : output directory
@@ -13,7 +15,7 @@ import os, sys
 
 from yade import utils
 
-utils.readParamsFromTable(ratio=0.7, case='G', size='tiny', seed=1, cycles=5, specimen='', effects='', out='gap_out/run',
+utils.readParamsFromTable(ratio=0.7, case='G', size='tiny', seed=1, cycles=5, specimen='', export='', generate_only=0, effects='', out='gap_out/run',
                           noTableOk=True)
 from yade.params import table as T
 
@@ -22,6 +24,10 @@ if T.specimen:
     argv += ['--import-specimen', T.specimen]
 else:
     argv += ['--ratio', str(T.ratio), '--case', T.case, '--size', T.size, '--seed', str(int(T.seed))]
+    if T.export:
+        argv += ['--export-specimen', T.export]
+    if int(T.generate_only):
+        argv += ['--generate-only']
 for pair in [p for p in T.effects.split(',') if p]:
     k, v = pair.split('=', 1)
     argv += ['--' + k.strip().replace('_', '-'), v.strip()]
