@@ -638,14 +638,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 std::fs::write(out.join("report.md"), &md)?;
                 std::fs::write(out.join("report.json"), serde_json::to_string_pretty(&d)?)?;
                 gap_run::write_plot_data(&out, &lib, &obs, &d)?;
-                let st = std::process::Command::new(ryade::harness::env::python())
-                    .arg(root.join("yade_ref/gap/report_figure.py"))
-                    .arg(out.join("plot.csv"))
-                    .arg(out.join("report.png"))
-                    .status();
-                if !matches!(st, Ok(s) if s.success()) {
-                    eprintln!("warning: report.png not drawn (yade_ref/gap/report_figure.py)");
-                }
+                let (plot, png) = (out.join("plot.csv"), out.join("report.png"));
+                ryade::harness::study_run::figures(&[
+                    "gap",
+                    &plot.to_string_lossy(),
+                    &png.to_string_lossy(),
+                ]);
                 print!("{}", md);
                 println!("report: {}/report.{{md,json,png}}", out.display());
                 return Ok(ExitCode::SUCCESS);

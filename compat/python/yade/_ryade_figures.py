@@ -3,6 +3,7 @@
     python3 -m yade._ryade_figures diff DIFF.csv OUT.png          # compat diff rXX: YADE band vs ryade
     python3 -m yade._ryade_figures profile PROFILE.csv OUT.png TITLE   # paper Fig 7 for one run
     python3 -m yade._ryade_figures study HISTORIES.csv SDR.csv OUTDIR  # paper Figs 3-6
+    python3 -m yade._ryade_figures gap PLOT.csv OUT.png              # compat gap: one diagnosis
 """
 import csv
 import math
@@ -139,12 +140,20 @@ def study(hist_csv, sdr_csv, outdir):
     fig.savefig(os.path.join(outdir, 'fig_sdr.png'), dpi=110)
 
 
+GAP_NAMES = {'rut_mm': 'rut [mm]', 'porosity': 'porosity under the piston', 'rebound_mm': 'resilient rebound [mm]',
+             'grid_settlement_mm': 'grid settlement [mm]'}
+
+
 def gap(plot_csv, png):
+    """One gap diagnosis (`compat gap --observed ... --out DIR`: DIR/plot.csv): per observable, today's
+    model (library baseline mean +- the noise of one run), the observation and the chosen model at its
+    fitted strengths, with the fit | held-out split."""
     plt = _plt()
     rows = _rows(plot_csv)
-    obs = [o for o in ('rut_mm', 'porosity', 'rebound_mm') if any(r['observable'] == o for r in rows)]
-    names = {'rut_mm': 'rut [mm]', 'porosity': 'porosity under the piston', 'rebound_mm': 'resilient rebound [mm]'}
-    fig, axes = plt.subplots(1, len(obs), figsize=(4.5 * len(obs), 4), squeeze=False)
+    obs = [o for o in GAP_NAMES if any(r['observable'] == o for r in rows)]
+    if not obs:
+        sys.exit('%s: no known observable' % plot_csv)
+    fig, axes = plt.subplots(1, len(obs), figsize=(4.2 * len(obs), 3.8), squeeze=False)
     for j, o in enumerate(obs):
         ax = axes[0][j]
         rr = [r for r in rows if r['observable'] == o]
@@ -152,15 +161,15 @@ def gap(plot_csv, png):
         m = [_f(r['model_mean']) for r in rr]
         sd = [_f(r['model_sd']) for r in rr]
         ax.fill_between(c, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)], color='0.85',
-                        label="today's model (mean +- seed sd)")
+                        label="today's model (mean +- noise of one run)")
         ax.plot(c, m, '-', color='0.4')
         ax.plot(c, [_f(r['observed']) for r in rr], 'ko', label='observed')
         w = [_f(r['winner']) for r in rr]
         if any(x == x for x in w):
-            ax.plot(c, w, 'r--', label='with the winning effect (fitted)')
+            ax.plot(c, w, 'r--', label='with the chosen effect(s), fitted')
         ax.axvline(float(rr[0]['fit_cycles']) + 0.5, color='tab:blue', ls=':', label='fit | held out')
         ax.set_xlabel('cycle')
-        ax.set_ylabel(names[o])
+        ax.set_ylabel(GAP_NAMES[o])
         ax.grid(alpha=0.3)
         if j == 0:
             ax.legend(fontsize=7)
