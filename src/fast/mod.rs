@@ -9,10 +9,11 @@
 //!   than skin/2) instead of YADE's insertion-sort collider; bodies renumbered in cell order;
 //! * `contact`: pair list and contact state in flat arrays, one fused kernel per pair;
 //! * `newton`: the integrator with reciprocal masses;
-//! * threads (rayon): the pair list is cut into one fixed chunk per thread, each chunk sums its
-//!   forces into its own buffer, and each body adds the chunk buffers in chunk order. The result
-//!   depends on the thread count only through those chunk boundaries: the same thread count gives
-//!   the same bits on every run.
+//! * threads (rayon): the pair list is cut at body boundaries into one chunk per thread; a chunk
+//!   owns the bodies whose pairs it holds and sums their forces in place, and queues the forces on
+//!   other chunks' bodies, which are added after the parallel phase in chunk order. The result
+//!   depends on the thread count only through the chunk boundaries: the same thread count gives
+//!   the same bits on every run (one thread: no queue, the serial sums).
 //!
 //! Results agree with YADE (and the YADE-order path) to round-off at first, statistically after
 //! the chaotic growth of differences in a dense packing. `write_back` returns the state to the
@@ -51,13 +52,22 @@ impl Default for FastOptions {
     }
 }
 
-/// One thread's share of the pair list and the bodies its pairs touch.
+/// One thread's share: a run of the pair list and the bodies it owns (every body i of its pairs;
+/// the owned ranges partition the bodies). It writes forces of owned bodies in place and queues
+/// those of other chunks' bodies (`ghosts`), added after the parallel phase in chunk order.
 struct Chunk {
     pairs: std::ops::Range<usize>,
     lo: usize,
     hi: usize,
-    f: Vec<V3>,
-    t: Vec<V3>,
+    ghosts: Vec<Ghost>,
+}
+
+/// A force and torque for a body owned by another chunk.
+#[derive(Clone, Copy)]
+struct Ghost {
+    j: u32,
+    f: V3,
+    t: V3,
 }
 
 /// Memory held by the fast path, in bytes.
@@ -132,13 +142,14 @@ fn chunk_forces(
     f: &mut [V3],
     t: &mut [V3],
     lo: usize,
+    ghosts: &mut Vec<Ghost>,
 ) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { chunk_forces_avx2(v, pairs, cs, f, t, lo) };
+        return unsafe { chunk_forces_avx2(v, pairs, cs, f, t, lo, ghosts) };
     }
-    chunk_forces_impl(v, pairs, cs, f, t, lo)
+    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -150,8 +161,9 @@ unsafe fn chunk_forces_avx2(
     f: &mut [V3],
     t: &mut [V3],
     lo: usize,
+    ghosts: &mut Vec<Ghost>,
 ) {
-    chunk_forces_impl(v, pairs, cs, f, t, lo)
+    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
 }
 
 /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
@@ -234,7 +246,10 @@ fn chunk_forces_impl(
     f: &mut [V3],
     t: &mut [V3],
     lo: usize,
+    ghosts: &mut Vec<Ghost>,
 ) {
+    ghosts.clear();
+    let hi = lo + f.len();
     for x in f.iter_mut() {
         *x = [0.0; 3];
     }
@@ -272,9 +287,17 @@ fn chunk_forces_impl(
             if let Some(l) = contact::pair(&mut cs[p], &two, v.dt, created) {
                 fi = contact::add(fi, l.f);
                 ti = contact::add(ti, l.ti);
-                let jj = j - lo;
-                f[jj] = contact::sub(f[jj], l.f);
-                t[jj] = contact::add(t[jj], l.tj);
+                if j < hi {
+                    let jj = j - lo;
+                    f[jj] = contact::sub(f[jj], l.f);
+                    t[jj] = contact::add(t[jj], l.tj);
+                } else {
+                    ghosts.push(Ghost {
+                        j: j as u32,
+                        f: [-l.f[0], -l.f[1], -l.f[2]],
+                        t: l.tj,
+                    });
+                }
             }
             p += 1;
         }
@@ -508,7 +531,7 @@ impl FastSim {
         let buffers: usize = self
             .chunks
             .iter()
-            .map(|c| (c.f.capacity() + c.t.capacity()) * size_of::<V3>())
+            .map(|c| c.ghosts.capacity() * size_of::<Ghost>())
             .sum();
         let n = self.len().max(1) as f64;
         let pair_bytes = (self.pairs.capacity() * size_of::<Pair>()
@@ -599,29 +622,37 @@ impl FastSim {
                 k += 1;
             }
         }
-        self.chunks = (0..t)
+        // move every cut to a body boundary: all pairs of a body i stay in one chunk
+        for k in 1..t {
+            let mut c = cuts[k].max(cuts[k - 1]);
+            while c > 0 && c < np && self.pairs[c].i == self.pairs[c - 1].i {
+                c += 1;
+            }
+            cuts[k] = c;
+        }
+        // owned bodies: from the chunk's first body i to the next chunk's (the ranges partition 0..n)
+        let n = self.pos.len();
+        let first = |c: usize| if c < np { self.pairs[c].i as usize } else { n };
+        let mut starts: Vec<usize> = (0..=t)
             .map(|k| {
-                let r = cuts[k]..cuts[k + 1];
-                let (lo, hi) = if r.is_empty() {
-                    (0, 0)
+                if k == 0 {
+                    0
+                } else if k == t {
+                    n
                 } else {
-                    let lo = self.pairs[r.start].i as usize;
-                    let hi = self.pairs[r.clone()]
-                        .iter()
-                        .map(|p| p.j as usize)
-                        .max()
-                        .unwrap()
-                        + 1;
-                    (lo, hi)
-                };
-                let len = if t > 1 { hi - lo } else { 0 };
-                Chunk {
-                    pairs: r,
-                    lo,
-                    hi,
-                    f: vec![[0.0; 3]; len],
-                    t: vec![[0.0; 3]; len],
+                    first(cuts[k])
                 }
+            })
+            .collect();
+        for k in 1..=t {
+            starts[k] = starts[k].max(starts[k - 1]);
+        }
+        self.chunks = (0..t)
+            .map(|k| Chunk {
+                pairs: cuts[k]..cuts[k + 1],
+                lo: starts[k],
+                hi: starts[k + 1],
+                ghosts: Vec::new(),
             })
             .collect();
     }
@@ -668,6 +699,7 @@ impl FastSim {
             shifts: &self.shifts,
             dt: self.cfg.dt,
         };
+        let ghosts = &mut self.chunks[0].ghosts;
         chunk_forces(
             &view,
             &self.pairs,
@@ -675,7 +707,9 @@ impl FastSim {
             &mut self.force,
             &mut self.torque,
             0,
+            ghosts,
         );
+        debug_assert!(ghosts.is_empty());
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         let cfg = self.cfg;
@@ -703,14 +737,21 @@ impl FastSim {
     fn step_parallel_phases(&mut self) {
         let t0 = std::time::Instant::now();
         let dt = self.cfg.dt;
-        // contact phase: each chunk into its own buffers
+        // contact phase: each chunk sums its owned bodies' forces in place and queues the others
         {
-            let mut slices: Vec<&mut [Contact]> = Vec::with_capacity(self.chunks.len());
-            let mut rest: &mut [Contact] = &mut self.contacts;
+            let mut parts: Vec<(&mut [Contact], &mut [V3], &mut [V3])> =
+                Vec::with_capacity(self.chunks.len());
+            let mut rest_c: &mut [Contact] = &mut self.contacts;
+            let mut rest_f: &mut [V3] = &mut self.force;
+            let mut rest_t: &mut [V3] = &mut self.torque;
             for ch in &self.chunks {
-                let (a, b) = rest.split_at_mut(ch.pairs.len());
-                slices.push(a);
-                rest = b;
+                let (c, rc) = rest_c.split_at_mut(ch.pairs.len());
+                let (f, rf) = rest_f.split_at_mut(ch.hi - ch.lo);
+                let (t, rt) = rest_t.split_at_mut(ch.hi - ch.lo);
+                parts.push((c, f, t));
+                rest_c = rc;
+                rest_f = rf;
+                rest_t = rt;
             }
             let view = View {
                 pos: &self.pos,
@@ -723,58 +764,51 @@ impl FastSim {
                 dt,
             };
             let pairs = &self.pairs;
-            {
-                self.chunks
-                    .par_iter_mut()
-                    .zip(slices.into_par_iter())
-                    .for_each(|(ch, cs)| {
-                        chunk_forces(
-                            &view,
-                            &pairs[ch.pairs.clone()],
-                            cs,
-                            &mut ch.f,
-                            &mut ch.t,
-                            ch.lo,
-                        );
-                    });
+            self.chunks
+                .par_iter_mut()
+                .zip(parts.into_par_iter())
+                .for_each(|(ch, (cs, f, t))| {
+                    chunk_forces(
+                        &view,
+                        &pairs[ch.pairs.clone()],
+                        cs,
+                        f,
+                        t,
+                        ch.lo,
+                        &mut ch.ghosts,
+                    );
+                });
+        }
+        // the queued forces, in chunk order (a few hundred: the chunk borders and periodic wraps)
+        for ch in &self.chunks {
+            for g in &ch.ghosts {
+                let j = g.j as usize;
+                self.force[j] = contact::add(self.force[j], g.f);
+                self.torque[j] = contact::add(self.torque[j], g.t);
             }
         }
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
-        // integration: bodies cut in equal blocks; each body sums the chunk buffers in chunk order
+        // integration: bodies cut in equal blocks
         let n = self.pos.len();
         let block = n.div_ceil(self.threads).max(1);
         let cfg = self.cfg;
-        let chunks = &self.chunks;
         let (inert, x_ref) = (&self.inert, &self.x_ref);
-        let md = {
-            self.pos
-                .par_chunks_mut(block)
-                .zip(self.vel.par_chunks_mut(block))
-                .zip(self.ang_vel.par_chunks_mut(block))
-                .zip(self.ori.par_chunks_mut(block))
-                .zip(self.force.par_chunks_mut(block))
-                .zip(self.torque.par_chunks_mut(block))
-                .enumerate()
-                .map(|(bi, (((((x, v), w), q), f), t))| {
-                    let k0 = bi * block;
-                    for m in 0..x.len() {
-                        let k = k0 + m;
-                        let (mut fk, mut tk) = ([0.0; 3], [0.0; 3]);
-                        for ch in chunks {
-                            if k >= ch.lo && k < ch.hi {
-                                fk = contact::add(fk, ch.f[k - ch.lo]);
-                                tk = contact::add(tk, ch.t[k - ch.lo]);
-                            }
-                        }
-                        f[m] = fk;
-                        t[m] = tk;
-                    }
-                    let e = k0 + x.len();
-                    integrate(&cfg, &inert[k0..e], f, t, x, v, w, q, &x_ref[k0..e])
-                })
-                .reduce(|| 0.0, f64::max)
-        };
+        let md = self
+            .pos
+            .par_chunks_mut(block)
+            .zip(self.vel.par_chunks_mut(block))
+            .zip(self.ang_vel.par_chunks_mut(block))
+            .zip(self.ori.par_chunks_mut(block))
+            .zip(self.force.par_chunks(block))
+            .zip(self.torque.par_chunks(block))
+            .enumerate()
+            .map(|(bi, (((((x, v), w), q), f), t))| {
+                let k0 = bi * block;
+                let e = k0 + x.len();
+                integrate(&cfg, &inert[k0..e], f, t, x, v, w, q, &x_ref[k0..e])
+            })
+            .reduce(|| 0.0, f64::max);
         self.max_disp2 = md;
         self.timing.newton += t1.elapsed().as_secs_f64();
     }
