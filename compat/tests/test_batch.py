@@ -23,26 +23,38 @@ PYDIR = HERE.parent / 'python'
 EXPECT = HERE / 'data' / 'batch' / 'yade_expect.json'
 REFDIR = ROOT / 'yade_ref' / 'compat' / 'batch'
 
+# The installed package when it holds this tree's sources (editable, or installed from this tree as
+# test.sh does); otherwise this tree's modules alone in a stand-in package. The installed one is
+# preferred so that the later test modules, which need the compiled extension, import the real package.
 _IMPORT_PRELUDE = '''
 import sys, types
-sys.path.insert(0, %r)
+def _same_source(mod, path):
+    try:
+        return open(mod.__file__, 'rb').read() == open(path, 'rb').read()
+    except Exception:
+        return False
 try:
     import yade._table
-except Exception:  # the package itself cannot be imported here: load our modules alone
+    _ok = _same_source(yade._table, %r)
+except Exception:
+    _ok = False
+if not _ok:  # load our modules alone
     for k in [k for k in sys.modules if k == 'yade' or k.startswith('yade.')]:
         del sys.modules[k]
+    sys.path.insert(0, %r)
     pkg = types.ModuleType('yade')
     pkg.__path__ = [%r]
     sys.modules['yade'] = pkg
     import yade._table
-''' % (str(PYDIR), str(PYDIR / 'yade'))
+''' % (str(PYDIR / 'yade' / '_table.py'), str(PYDIR), str(PYDIR / 'yade'))
 
 exec(_IMPORT_PRELUDE)
 import yade._table as T  # noqa: E402
 import yade.params as P  # noqa: E402
 import yade.batch as B  # noqa: E402
 
-assert Path(T.__file__).resolve() == (PYDIR / 'yade' / '_table.py').resolve()
+for _m, _name in ((T, '_table.py'), (P, 'params.py'), (B, 'batch.py')):
+    assert Path(_m.__file__).read_bytes() == (PYDIR / 'yade' / _name).read_bytes(), _m.__file__
 
 SHIM = _IMPORT_PRELUDE + '''
 import os
