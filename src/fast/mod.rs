@@ -131,78 +131,59 @@ struct View<'a> {
     dt: f64,
 }
 
-/// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
-/// the bodies from `lo`. Body i's sums stay in registers while its pairs last. Compiled twice: for
-/// the baseline target and with AVX2 (chosen at run time). Neither lets the compiler contract or
-/// reorder floating-point operations, so both give the same bits.
-fn chunk_forces(
-    v: &View,
-    pairs: &[Pair],
-    cs: &mut [Contact],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { chunk_forces_avx2(v, pairs, cs, f, t, lo, ghosts) };
-    }
-    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
+/// `fn NAME / NAME_AVX2 => IMPL(args) -> R`: NAME calls IMPL compiled with AVX2 when the CPU has it
+/// (chosen at run time), else IMPL for the baseline target. Neither build lets the compiler contract
+/// or reorder floating-point operations, so both give the same bits.
+macro_rules! avx2_dispatch {
+    ($(#[$m:meta])* fn $name:ident / $avx:ident => $imp:ident ($($a:ident: $t:ty),* $(,)?) $(-> $r:ty)?) => {
+        $(#[$m])*
+        #[allow(clippy::too_many_arguments)]
+        fn $name($($a: $t),*) $(-> $r)? {
+            #[cfg(target_arch = "x86_64")]
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above)
+                return unsafe { $avx($($a),*) };
+            }
+            $imp($($a),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $avx($($a: $t),*) $(-> $r)? {
+            $imp($($a),*)
+        }
+    };
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn chunk_forces_avx2(
-    v: &View,
-    pairs: &[Pair],
-    cs: &mut [Contact],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
-    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
+avx2_dispatch! {
+    /// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
+    /// the bodies from `lo`; forces on bodies past them go to `ghosts`. Body i's sums stay in
+    /// registers while its pairs last.
+    fn chunk_forces / chunk_forces_avx2 => chunk_forces_impl(
+        v: &View,
+        pairs: &[Pair],
+        cs: &mut [Contact],
+        f: &mut [V3],
+        t: &mut [V3],
+        lo: usize,
+        ghosts: &mut Vec<Ghost>,
+    )
 }
 
-/// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
-/// Dispatched like `chunk_forces`.
-#[allow(clippy::too_many_arguments)]
-fn integrate(
-    cfg: &newton::Cfg,
-    inert: &[newton::Inert],
-    f: &[V3],
-    t: &[V3],
-    x: &mut [V3],
-    v: &mut [V3],
-    w: &mut [V3],
-    q: &mut [Quat],
-    x_ref: &[V3],
-) -> f64 {
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { integrate_avx2(cfg, inert, f, t, x, v, w, q, x_ref) };
-    }
-    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn integrate_avx2(
-    cfg: &newton::Cfg,
-    inert: &[newton::Inert],
-    f: &[V3],
-    t: &[V3],
-    x: &mut [V3],
-    v: &mut [V3],
-    w: &mut [V3],
-    q: &mut [Quat],
-    x_ref: &[V3],
-) -> f64 {
-    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
+avx2_dispatch! {
+    /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
+    fn integrate / integrate_avx2 => integrate_impl(
+        cfg: &newton::Cfg,
+        inert: &[newton::Inert],
+        f: &[V3],
+        t: &[V3],
+        x: &mut [V3],
+        v: &mut [V3],
+        w: &mut [V3],
+        q: &mut [Quat],
+        x_ref: &[V3],
+    ) -> f64
 }
 
 #[inline(always)]
@@ -633,7 +614,8 @@ impl FastSim {
         // owned bodies: from the chunk's first body i to the next chunk's (the ranges partition 0..n)
         let n = self.pos.len();
         let first = |c: usize| if c < np { self.pairs[c].i as usize } else { n };
-        let mut starts: Vec<usize> = (0..=t)
+        // (non-decreasing: the cuts are, and the pairs are sorted by i)
+        let starts: Vec<usize> = (0..=t)
             .map(|k| {
                 if k == 0 {
                     0
@@ -644,9 +626,6 @@ impl FastSim {
                 }
             })
             .collect();
-        for k in 1..=t {
-            starts[k] = starts[k].max(starts[k - 1]);
-        }
         self.chunks = (0..t)
             .map(|k| Chunk {
                 pairs: cuts[k]..cuts[k + 1],
