@@ -173,7 +173,7 @@ class State(Serializable):
 
     def __setattr__(self, k, v):
         # hot path (controllers set velocities every step): a Vector3 into pos/vel/angVel/inertia,
-        # the same effect as the generic _convert + _changed below
+        # the same effect as Serializable._assign (convert, then _changed)
         if type(v) is Vector3 and k in _STATE_VEC:
             a = v._v if v._g is None else v._r()
             t = (a[0], a[1], a[2])
@@ -183,10 +183,6 @@ class State(Serializable):
                 o[0]._sim.set_vec3(o[1], k, t)
             return
         Serializable.__setattr__(self, k, v)
-
-    def _set_generic(self, k, v):
-        self._values[k] = self._convert(k, v)
-        self._changed(k)
 
     def _convert(self, k, v):
         if k in _STATE_VEC or k in ('refPos', 'angMom'):
@@ -280,7 +276,7 @@ def _state_vec_property(k):
         return Vector3._view(lambda: sim.get_vec3(bid, k), lambda t: sim.set_vec3(bid, k, tuple(t)))
 
     def set(self, v):
-        self._set_generic(k, v)
+        self._assign(k, v)
     return property(get, set)
 
 
@@ -354,8 +350,7 @@ class Body(Serializable):
 
     @state.setter
     def state(self, v):
-        self._values['state'] = self._convert('state', v)
-        self._changed('state')
+        self._assign('state', v)
 
     def _changed(self, k):
         if self._owner is None:

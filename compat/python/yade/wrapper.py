@@ -61,10 +61,14 @@ class Serializable(object):
             prop.__set__(self, v)
             return
         if k in self._all_attrs():
-            self._values[k] = self._convert(k, v)
-            self._changed(k)
+            self._assign(k, v)
             return
         self._missing(k)
+
+    def _assign(self, k, v):
+        """Store a known attribute (converted) and tell the hook; properties' setters use it too."""
+        self._values[k] = self._convert(k, v)
+        self._changed(k)
 
     def __getattr__(self, k):
         if k.startswith('_'):
