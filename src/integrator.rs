@@ -29,6 +29,16 @@ pub struct Newton {
     pub max_velocity_sq: f64,
     pub prev_vel_grad: Mat3,
     pub prev_cell_size: Option<Vec3>,
+    /// Per-step work lists, kept to avoid an allocation per step (no state).
+    pub scratch: Scratch,
+}
+
+/// The bodies whose orientation `leapfrogSphericalRotate` updates and the clumps whose members are
+/// moved, in id order, filled by each `Newton::step`.
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    spherical: Vec<u32>,
+    clumps: Vec<u32>,
 }
 
 impl Default for Newton {
@@ -42,6 +52,7 @@ impl Default for Newton {
             max_velocity_sq: 0.0,
             prev_vel_grad: Mat3::zeros(),
             prev_cell_size: None,
+            scratch: Scratch::default(),
         }
     }
 }
@@ -119,16 +130,23 @@ impl Newton {
             }
         }
         let g = self.gravity;
+        let Scratch {
+            mut spherical,
+            mut clumps,
+        } = std::mem::take(&mut self.scratch);
+        spherical.clear();
+        clumps.clear();
+        let mut failed = None;
         for id in 0..bodies.len() {
-            // clump members are moved by their clump
-            if bodies.is_clump_member(id) {
-                continue;
-            }
+            // clump members are moved by their clump; `clumpId` equal to the own id marks a clump
+            let is_clump = match bodies.clump_id[id] {
+                Some(c) if c as usize != id => continue,
+                c => c.is_some(),
+            };
             if self.mask > 0 && (bodies.mask[id] & self.mask) == 0 {
                 continue;
             }
-            let is_clump = matches!(bodies.shape[id], Shape::Clump(_));
-            if let Shape::Clump(c) = &bodies.shape[id] {
+            if let (true, Shape::Clump(c)) = (is_clump, &bodies.shape[id]) {
                 let (cf, ct) = crate::clump::force_torque_from_members(
                     c,
                     bodies,
@@ -232,28 +250,20 @@ impl Newton {
             if use_aspherical {
                 leapfrog_aspherical_rotate(bodies, id, dt, &m);
             } else {
-                // leapfrogSphericalRotate
+                // leapfrogSphericalRotate (the orientation update follows in `rotate_spherical`)
                 if periodic && homo_deform != 0 {
                     bodies.ang_vel[id] += dspin;
                 }
-                let w = bodies.ang_vel[id];
-                let w2 = norm2(&w);
-                if w2 != 0.0 {
-                    let wn = w2.sqrt();
-                    let axis = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
-                    let q = Quat::from_angle_axis(wn * dt, &axis);
-                    bodies.ori[id] = q.mul(&bodies.ori[id]);
-                }
-                bodies.ori[id].normalize();
+                spherical.push(id as u32);
             }
             self.save_maxima_displacement(bodies, id);
             if is_clump {
-                self.move_members(bodies, id);
+                clumps.push(id as u32);
             }
             if !(bodies.pos[id].iter().all(|x| x.is_finite())
                 && bodies.vel[id].iter().all(|x| x.is_finite()))
             {
-                return Err(NewtonError::NonFinite {
+                failed = Some(NewtonError::NonFinite {
                     id,
                     what: if f.iter().all(|x| x.is_finite()) {
                         "position/velocity"
@@ -261,7 +271,20 @@ impl Newton {
                         "force"
                     },
                 });
+                break;
             }
+        }
+        // Orientations, then the clump members (they take their clump's new orientation). Each
+        // body's arithmetic is that of YADE's single loop; only the order between bodies differs,
+        // and no body reads another's orientation. On a failure the bodies up to the failing one
+        // are complete and the later ones untouched, as in YADE's loop.
+        rotate_spherical(bodies, &spherical, dt);
+        for &id in &clumps {
+            self.move_members(bodies, id as usize);
+        }
+        self.scratch = Scratch { spherical, clumps };
+        if let Some(e) = failed {
+            return Err(e);
         }
         if let Some(c) = cell {
             self.prev_cell_size = Some(c.size());
@@ -295,6 +318,51 @@ impl Newton {
             bodies.vel[id] = cv + cross(&cw, &(p - cp));
             bodies.ang_vel[id] = cw;
             self.save_maxima_displacement(bodies, id);
+        }
+    }
+}
+
+/// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
+/// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`. Done in
+/// three passes over blocks of bodies (square root and divisions; sin/cos; product and
+/// normalisation) so the long, independent latency chains of neighbouring bodies overlap; every
+/// body sees exactly the operations of the one-pass form, so the bits are the same.
+fn rotate_spherical(bodies: &mut Bodies, ids: &[u32], dt: f64) {
+    const BLOCK: usize = 64;
+    for block in ids.chunks(BLOCK) {
+        let mut turn = [false; BLOCK];
+        let mut axis = [Vec3::zeros(); BLOCK];
+        let mut half = [0.0f64; BLOCK];
+        for (j, &id) in block.iter().enumerate() {
+            let w = bodies.ang_vel[id as usize];
+            let w2 = norm2(&w);
+            if w2 != 0.0 {
+                let wn = w2.sqrt();
+                axis[j] = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
+                // Quat::from_angle_axis(wn * dt, axis) halves the angle first
+                half[j] = 0.5 * (wn * dt);
+                turn[j] = true;
+            }
+        }
+        let mut sin_cos = [(0.0f64, 0.0f64); BLOCK];
+        for j in 0..block.len() {
+            if turn[j] {
+                sin_cos[j] = (half[j].sin(), half[j].cos());
+            }
+        }
+        for (j, &id) in block.iter().enumerate() {
+            let ori = &mut bodies.ori[id as usize];
+            if turn[j] {
+                let (s, c) = sin_cos[j];
+                let q = Quat {
+                    w: c,
+                    x: s * axis[j][0],
+                    y: s * axis[j][1],
+                    z: s * axis[j][2],
+                };
+                *ori = q.mul(ori);
+            }
+            ori.normalize();
         }
     }
 }
@@ -349,4 +417,68 @@ fn leapfrog_aspherical_rotate(bodies: &mut Bodies, id: usize, dt: f64, m: &Vec3)
     bodies.ang_vel[id] = q.rotate(&w_b_half);
     q.normalize();
     bodies.ori[id] = q;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::BodySpec;
+
+    fn ball(x: f64, w: f64) -> BodySpec {
+        BodySpec {
+            shape: Shape::Sphere { radius: 0.1 },
+            material: 0,
+            mask: 1,
+            bounded: false,
+            pos: Vec3::new(x, 0.0, 0.0),
+            vel: Vec3::new(1.0, 0.0, 0.0),
+            ang_vel: Vec3::new(0.0, 0.0, w),
+            ori: Quat::IDENTITY,
+            mass: 1.0,
+            inertia: Vec3::repeat(0.004),
+            blocked: 0,
+            is_damped: true,
+        }
+    }
+
+    /// The orientation pass runs after the translation pass; a body's new orientation must still be
+    /// YADE's `AngleAxis(|w| dt, w/|w|) * ori` (a spin about z by 2 rad/s for 0.1 s turns it by
+    /// 0.2 rad), and a failing body must leave the bodies before it complete and those after it
+    /// untouched, as YADE's single loop does.
+    #[test]
+    fn orientation_pass_and_failure_keep_the_single_loop_semantics() {
+        let mut bodies = Bodies::default();
+        for (x, w) in [(0.0, 2.0), (1.0, 2.0), (2.0, 2.0)] {
+            bodies.push(ball(x, w));
+        }
+        let mut forces = Forces::default();
+        forces.reset(3, 0);
+        forces.sync();
+        let mut n = Newton {
+            damping: 0.0,
+            ..Default::default()
+        };
+        n.step(&mut bodies, &mut forces, None, 0.1).unwrap();
+        let half = 0.5 * (2.0f64 * 0.1);
+        for id in 0..3 {
+            let q = bodies.ori[id];
+            assert!((q.w - half.cos()).abs() < 1e-15 && (q.z - half.sin()).abs() < 1e-15);
+            assert_eq!((q.x, q.y), (0.0, 0.0));
+            assert!((bodies.pos[id][0] - (id as f64 + 0.1)).abs() < 1e-15);
+        }
+        let before: Vec<(Vec3, Quat)> = (0..3).map(|i| (bodies.pos[i], bodies.ori[i])).collect();
+        bodies.vel[1][1] = f64::NAN;
+        let e = n.step(&mut bodies, &mut forces, None, 0.1).unwrap_err();
+        assert_eq!(
+            e,
+            NewtonError::NonFinite {
+                id: 1,
+                what: "position/velocity"
+            }
+        );
+        // body 0 complete (moved and turned again), body 2 untouched
+        assert!((bodies.pos[0][0] - 0.2).abs() < 1e-15);
+        assert!((bodies.ori[0].z - (2.0 * half).sin()).abs() < 1e-15);
+        assert_eq!((bodies.pos[2], bodies.ori[2]), before[2]);
+    }
 }
