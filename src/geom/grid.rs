@@ -7,7 +7,7 @@ use super::{sphere_sphere, GeomCtx, GeomExt, GridCoGridCo, Kin, Pair, Rot6D, ScG
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::interaction::{Interactions, IntrExt};
-use crate::math::{cross, dot, mat_vec_i, norm, Vec3};
+use crate::math::{cross, dot, mat_vec_i, norm, norm2, Vec3};
 use crate::shape::{GridConnection, Shape};
 
 /// Parameters of `Ig2_Sphere_Sphere_ScGeom6D` and `Ig2_GridNode_GridNode_GridNodeGeom6D` (the latter
@@ -179,18 +179,26 @@ pub fn sphere_gridco(
     x.is_duplicate = 0;
     x.true_int = -1;
 
-    // relative position of the sphere along the neighbour `nb` of this connection at `node`
-    let nb_rel_pos = |nb: u32, node_pos: &Vec3, br: &Vec3| -> Result<f64, String> {
+    // Whether the sphere lies at or behind `node` along the neighbour `nb` of this connection:
+    // YADE's `relPos = (br·s)/(|s|·|s|) <= 0`, s the neighbour's segment from `node`. Only the
+    // sign is used, and it is the sign of br·s: after zero_tiny every non-zero component is at
+    // least 1e-14, so |s|² >= 1e-28 never rounds to zero and br·s, when not zero, is far above
+    // the underflow of the quotient; s = 0 gives 0/0 = NaN, which is not <= 0. The longer
+    // candidate is chosen on |c|² unless both are non-zero (then on |c| as YADE, since two
+    // squared norms can differ where their square roots round to the same value).
+    let nb_behind = |nb: u32, node_pos: &Vec3, br: &Vec3| -> Result<bool, String> {
         let c = conn(bodies, nb)?;
         let cand1 = bodies.pos[c.node1 as usize] - node_pos;
         let cand2 = bodies.pos[c.node2 as usize] - node_pos;
-        let mut s = if norm(&cand1) > norm(&cand2) {
-            cand1
+        let (a2, b2) = (norm2(&cand1), norm2(&cand2));
+        let first = if a2 == 0.0 || b2 == 0.0 {
+            a2 > b2
         } else {
-            cand2
+            a2.sqrt() > b2.sqrt()
         };
+        let mut s = if first { cand1 } else { cand2 };
         zero_tiny(&mut s);
-        Ok(dot(br, &s) / (norm(&s) * norm(&s)))
+        Ok(norm2(&s) != 0.0 && dot(br, &s) <= 0.0)
     };
     let neighbour_is_duplicate = |intrs: &Interactions, j: usize| -> i32 {
         match intrs.list[j].geom_ext() {
@@ -212,8 +220,7 @@ pub fn sphere_gridco(
                 if nb == id2 {
                     continue;
                 }
-                let rp = nb_rel_pos(nb, &node_pos, &br)?;
-                if rp <= 0.0 {
+                if nb_behind(nb, &node_pos, &br)? {
                     // outside this neighbour too: the first real interaction (not a duplicate)
                     // keeps the contact
                     if let Some(j) = intrs.find(id1, nb) {
@@ -248,8 +255,7 @@ pub fn sphere_gridco(
                 if nb == id2 {
                     continue;
                 }
-                let rp = nb_rel_pos(nb, &node_pos, &br)?;
-                if rp <= 0.0 {
+                if nb_behind(nb, &node_pos, &br)? {
                     let Some(j) = intrs.find(id1, nb) else {
                         continue;
                     };
