@@ -106,6 +106,7 @@ impl Newton {
         forces: &mut Forces,
         cell: Option<&mut Cell>,
         dt: f64,
+        pool: Option<&rayon::ThreadPool>,
     ) -> Result<(), NewtonError> {
         let periodic = cell.is_some();
         let (homo_deform, dvel_grad, dspin) = if let Some(c) = cell.as_deref() {
@@ -278,7 +279,12 @@ impl Newton {
         // body's arithmetic is that of YADE's single loop; only the order between bodies differs,
         // and no body reads another's orientation. On a failure the bodies up to the failing one
         // are complete and the later ones untouched, as in YADE's loop.
-        rotate_spherical(bodies, &spherical, dt);
+        match pool {
+            Some(pool) if spherical.len() >= 2 * ROTATE_CHUNK => {
+                rotate_spherical_par(pool, bodies, &spherical, dt)
+            }
+            _ => rotate_spherical(&mut bodies.ori, &bodies.ang_vel, 0, &spherical, dt),
+        }
         for &id in &clumps {
             self.move_members(bodies, id as usize);
         }
@@ -322,19 +328,45 @@ impl Newton {
     }
 }
 
+/// Bodies per task of the parallel orientation pass.
+const ROTATE_CHUNK: usize = 1024;
+
+/// `rotate_spherical` on the thread pool: the id list (ascending) is cut into runs and each run
+/// gets the disjoint slice of orientations its ids fall in; per body the same arithmetic, so the
+/// bits do not depend on the thread count.
+fn rotate_spherical_par(pool: &rayon::ThreadPool, bodies: &mut Bodies, ids: &[u32], dt: f64) {
+    let mut jobs = Vec::with_capacity(ids.len() / ROTATE_CHUNK + 1);
+    let mut rest: &mut [Quat] = &mut bodies.ori;
+    let mut base = 0usize;
+    for run in ids.chunks(ROTATE_CHUNK) {
+        let end = run[run.len() - 1] as usize + 1;
+        let (mine, tail) = std::mem::take(&mut rest).split_at_mut(end - base);
+        jobs.push((mine, base, run));
+        rest = tail;
+        base = end;
+    }
+    let ang_vel = &bodies.ang_vel;
+    pool.install(|| {
+        use rayon::prelude::*;
+        jobs.into_par_iter()
+            .for_each(|(ori, base, run)| rotate_spherical(ori, ang_vel, base, run, dt));
+    });
+}
+
 /// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
 /// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`. Done in
 /// three passes over blocks of bodies (square root and divisions; sin/cos; product and
 /// normalisation) so the long, independent latency chains of neighbouring bodies overlap; every
-/// body sees exactly the operations of the one-pass form, so the bits are the same.
-fn rotate_spherical(bodies: &mut Bodies, ids: &[u32], dt: f64) {
+/// body sees exactly the operations of the one-pass form, so the bits are the same. `ori` holds
+/// the orientations of the bodies from id `base` on.
+fn rotate_spherical(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
     const BLOCK: usize = 64;
     for block in ids.chunks(BLOCK) {
         let mut turn = [false; BLOCK];
         let mut axis = [Vec3::zeros(); BLOCK];
         let mut half = [0.0f64; BLOCK];
         for (j, &id) in block.iter().enumerate() {
-            let w = bodies.ang_vel[id as usize];
+            let w = ang_vel[id as usize];
             let w2 = norm2(&w);
             if w2 != 0.0 {
                 let wn = w2.sqrt();
@@ -351,7 +383,7 @@ fn rotate_spherical(bodies: &mut Bodies, ids: &[u32], dt: f64) {
             }
         }
         for (j, &id) in block.iter().enumerate() {
-            let ori = &mut bodies.ori[id as usize];
+            let q0 = &mut ori[id as usize - base];
             if turn[j] {
                 let (s, c) = sin_cos[j];
                 let q = Quat {
@@ -360,9 +392,9 @@ fn rotate_spherical(bodies: &mut Bodies, ids: &[u32], dt: f64) {
                     y: s * axis[j][1],
                     z: s * axis[j][2],
                 };
-                *ori = q.mul(ori);
+                *q0 = q.mul(q0);
             }
-            ori.normalize();
+            q0.normalize();
         }
     }
 }
@@ -458,7 +490,7 @@ mod tests {
             damping: 0.0,
             ..Default::default()
         };
-        n.step(&mut bodies, &mut forces, None, 0.1).unwrap();
+        n.step(&mut bodies, &mut forces, None, 0.1, None).unwrap();
         let half = 0.5 * (2.0f64 * 0.1);
         for id in 0..3 {
             let q = bodies.ori[id];
@@ -468,7 +500,9 @@ mod tests {
         }
         let before: Vec<(Vec3, Quat)> = (0..3).map(|i| (bodies.pos[i], bodies.ori[i])).collect();
         bodies.vel[1][1] = f64::NAN;
-        let e = n.step(&mut bodies, &mut forces, None, 0.1).unwrap_err();
+        let e = n
+            .step(&mut bodies, &mut forces, None, 0.1, None)
+            .unwrap_err();
         assert_eq!(
             e,
             NewtonError::NonFinite {

@@ -114,6 +114,26 @@ impl Interaction {
     }
 }
 
+/// Ask the CPU to bring an interaction into cache (a hint only: no effect on results).
+#[inline(always)]
+pub fn prefetch(it: &Interaction) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let p = it as *const Interaction as *const i8;
+        let size = std::mem::size_of::<Interaction>();
+        let mut off = 0;
+        while off < size {
+            // SAFETY: prefetch never faults; the address lies inside `it`
+            unsafe { std::arch::x86_64::_mm_prefetch(p.add(off), std::arch::x86_64::_MM_HINT_T0) };
+            off += 64;
+        }
+        // SAFETY: as above
+        unsafe { std::arch::x86_64::_mm_prefetch(p.add(size - 1), std::arch::x86_64::_MM_HINT_T0) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = it;
+}
+
 #[inline(always)]
 fn key(a: u32, b: u32) -> u64 {
     let (lo, hi) = if a < b { (a, b) } else { (b, a) };
@@ -268,24 +288,9 @@ impl Interactions {
     /// hardware prefetcher.
     #[inline(always)]
     pub fn prefetch(&self, k: usize) {
-        #[cfg(target_arch = "x86_64")]
         if let Some(it) = self.list.get(k) {
-            let p = it as *const Interaction as *const i8;
-            let size = std::mem::size_of::<Interaction>();
-            let mut off = 0;
-            while off < size {
-                // SAFETY: prefetch never faults; the address lies inside `list`
-                unsafe {
-                    std::arch::x86_64::_mm_prefetch(p.add(off), std::arch::x86_64::_MM_HINT_T0)
-                };
-                off += 64;
-            }
-            unsafe {
-                std::arch::x86_64::_mm_prefetch(p.add(size - 1), std::arch::x86_64::_MM_HINT_T0)
-            };
+            prefetch(it);
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = k;
     }
 
     pub fn count_real(&self) -> usize {

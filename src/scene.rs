@@ -290,7 +290,16 @@ pub struct Scene {
     pub time: f64,
     pub track_energy: bool,
     pub energy: Energy,
+    /// Threads of the YADE-order path (1: none). The steady sphere-sphere contacts are evaluated in
+    /// parallel and their forces added in container order afterwards, so every thread count gives
+    /// YADE's single-thread bits.
+    pub threads: usize,
+    pub pool: Pool,
 }
+
+/// The thread pool of the YADE-order path, built on first use for `Scene::threads`.
+#[derive(Clone, Debug, Default)]
+pub struct Pool(Option<std::sync::Arc<rayon::ThreadPool>>);
 
 impl Default for Scene {
     fn default() -> Self {
@@ -307,6 +316,8 @@ impl Default for Scene {
             time: 0.0,
             track_energy: false,
             energy: Energy::default(),
+            threads: 1,
+            pool: Pool::default(),
         }
     }
 }
@@ -410,11 +421,13 @@ impl Scene {
             Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
             Engine::Newton(n) => {
                 self.forces.sync();
+                let pool = self.pool_for_threads();
                 n.step(
                     &mut self.bodies,
                     &mut self.forces,
                     self.cell.as_mut(),
                     self.dt,
+                    pool.as_deref(),
                 )
                 .map_err(|e| self.newton_error(e))
             }
@@ -566,211 +579,26 @@ impl Scene {
         };
         let mut energy = LawEnergy::default();
         let mut geom_entries = None;
-        let n = self.interactions.list.len();
-        for k in 0..n {
-            // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
-            // summary alone (same operands, so the same decision), without touching the interaction
-            const AHEAD: usize = 24;
-            if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
-                self.interactions.prefetch(k + AHEAD);
-            }
-            let sc = self.interactions.scan[k];
-            if sc.idle {
-                if let (Some(p), Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) = (
-                    &il.sphere_sphere,
-                    &self.bodies.shape[sc.id1 as usize],
-                    &self.bodies.shape[sc.id2 as usize],
-                ) {
-                    debug_assert!({
-                        let it = &self.interactions.list[k];
-                        !it.is_real()
-                            && it.functor == GeomFunctor::SphereSphere
-                            && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
-                    });
-                    // a zero period gives a zero shift (its sign cannot change the squared distance)
-                    let shift2 = match &self.cell {
-                        Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
-                        _ => Vec3::zeros(),
-                    };
-                    if !geom::sphere_sphere::within_reach(
-                        p,
-                        *r1,
-                        *r2,
-                        &self.bodies.pos[sc.id1 as usize],
-                        &self.bodies.pos[sc.id2 as usize],
-                        &shift2,
-                    ) {
-                        continue;
+        if let Some(runs) = self.pre_pass(il) {
+            for ev in runs.iter().flatten() {
+                match *ev {
+                    Event::Visit(k) => {
+                        self.visit(il, k as usize, &ctx0, &mut energy, &mut geom_entries)?
                     }
-                }
-                self.interactions.scan[k].idle = false;
-            }
-            let (id1_raw, id2_raw) = {
-                let it = &self.interactions.list[k];
-                (it.id1 as usize, it.id2 as usize)
-            };
-            if self.interactions.list[k].functor == GeomFunctor::Missing {
-                continue;
-            }
-            if self.interactions.list[k].functor == GeomFunctor::Unresolved {
-                let entries = geom_entries.get_or_insert_with(|| il.geom_entries());
-                let found = dispatch::resolve(
-                    entries,
-                    true,
-                    self.bodies.shape[id1_raw].class(),
-                    self.bodies.shape[id2_raw].class(),
-                    Some,
-                    Some,
-                )
-                .map_err(|e| {
-                    format!(
-                        "{} for {}+{} (#{}+#{})",
-                        e,
-                        self.bodies.shape[id1_raw].class_name(),
-                        self.bodies.shape[id2_raw].class_name(),
-                        id1_raw,
-                        id2_raw
-                    )
-                })?;
-                let it = &mut self.interactions.list[k];
-                match found {
-                    None => {
-                        it.functor = GeomFunctor::Missing;
-                        continue;
+                    Event::Load(id1, id2, l) => {
+                        law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
                     }
-                    Some((f, swap)) => {
-                        it.functor = f;
-                        if swap {
-                            it.swap_order();
-                        }
-                    }
+                    Event::Erase(k) => self.interactions.list[k as usize].reset(),
                 }
             }
-            let (id1, id2, was_real, functor, cell_dist) = {
-                let it = &self.interactions.list[k];
-                (
-                    it.id1 as usize,
-                    it.id2 as usize,
-                    it.is_real(),
-                    it.functor,
-                    it.cell_dist,
-                )
-            };
-            let shift2 = match &self.cell {
-                Some(c) => c.shift_pos(&cell_dist),
-                None => Vec3::zeros(),
-            };
-            let ctx = match &self.cell {
-                Some(c) => GeomCtx {
-                    shift_vel: c.shift_vel(&cell_dist),
-                    ..ctx0
-                },
-                None => ctx0,
-            };
-            // fast path for the common sphere-sphere contact; every other functor goes through
-            // `geometry`
-            let created = match (functor, &self.bodies.shape[id1], &self.bodies.shape[id2]) {
-                (
-                    GeomFunctor::SphereSphere,
-                    Shape::Sphere { radius: r1 },
-                    Shape::Sphere { radius: r2 },
-                ) if !was_real
-                    && !geom::sphere_sphere::within_reach(
-                        il.sphere_sphere.as_ref().unwrap(),
-                        *r1,
-                        *r2,
-                        &self.bodies.pos[id1],
-                        &self.bodies.pos[id2],
-                        &shift2,
-                    ) =>
-                {
-                    false
+        } else {
+            let n = self.interactions.list.len();
+            for k in 0..n {
+                const AHEAD: usize = 24;
+                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
+                    self.interactions.prefetch(k + AHEAD);
                 }
-                (
-                    GeomFunctor::SphereSphere,
-                    Shape::Sphere { radius: r1 },
-                    Shape::Sphere { radius: r2 },
-                ) => {
-                    let b = &self.bodies;
-                    let kin = |id: usize| Kin {
-                        pos: b.pos[id],
-                        vel: b.vel[id],
-                        ang_vel: b.ang_vel[id],
-                        ori: b.ori[id],
-                    };
-                    let pr = Pair {
-                        s1: kin(id1),
-                        s2: kin(id2),
-                        shift2,
-                        is_real: was_real,
-                        ctx,
-                    };
-                    geom::sphere_sphere::go(
-                        il.sphere_sphere.as_ref().unwrap(),
-                        *r1,
-                        *r2,
-                        &pr,
-                        &mut self.interactions.list[k].geom,
-                    )
-                }
-                _ => self.geometry(il, k, functor, id1, id2, was_real, &shift2, &ctx)?,
-            };
-            if !created {
-                if was_real {
-                    self.interactions.list[k].reset();
-                } else if functor == GeomFunctor::SphereSphere {
-                    self.interactions.scan[k] = crate::interaction::ScanEntry {
-                        id1: id1 as u32,
-                        id2: id2 as u32,
-                        cell_dist,
-                        idle: true,
-                    };
-                }
-                continue;
-            }
-            // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
-            // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
-            let plain = {
-                let it = &self.interactions.list[k];
-                it.ext.is_none() && it.phys.is_some() && il.cundall_strack.is_some()
-            };
-            if !plain {
-                self.physics(il, k, id1, id2)?;
-            }
-            let it = &mut self.interactions.list[k];
-            if !was_real {
-                it.iter_made_real = self.iter;
-            }
-            let energy_arg = if self.track_energy {
-                Some(&mut energy)
-            } else {
-                None
-            };
-            let keep = if plain {
-                let b = &self.bodies;
-                let lb = LawBodies {
-                    pos1: &b.pos[id1],
-                    pos2_shifted: b.pos[id2] + shift2,
-                };
-                law::go(
-                    il.cundall_strack.as_ref().unwrap(),
-                    it.geom.as_ref().unwrap(),
-                    it.phys.as_mut().unwrap(),
-                    id1,
-                    id2,
-                    &lb,
-                    &mut self.forces,
-                    energy_arg,
-                )
-            } else {
-                let keep = self.law(il, k, id1, id2, &shift2, energy_arg)?;
-                if self.interactions.share_of(k) != 0 {
-                    self.interactions.sync_shared(k);
-                }
-                keep
-            };
-            if !keep {
-                self.interactions.list[k].reset();
+                self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?;
             }
         }
         if self.track_energy {
@@ -781,6 +609,286 @@ impl Scene {
             self.energy.twist_dissip += energy.twist_dissip;
         }
         Ok(())
+    }
+
+    /// One slot of `InteractionLoop::action`: geometry, physics, law.
+    #[inline(always)]
+    fn visit(
+        &mut self,
+        il: &mut InteractionLoop,
+        k: usize,
+        ctx0: &GeomCtx,
+        energy: &mut LawEnergy,
+        geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
+    ) -> Result<(), String> {
+        // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
+        // summary alone (same operands, so the same decision), without touching the interaction
+        let sc = self.interactions.scan[k];
+        if sc.idle {
+            if let (Some(p), Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) = (
+                &il.sphere_sphere,
+                &self.bodies.shape[sc.id1 as usize],
+                &self.bodies.shape[sc.id2 as usize],
+            ) {
+                debug_assert!({
+                    let it = &self.interactions.list[k];
+                    !it.is_real()
+                        && it.functor == GeomFunctor::SphereSphere
+                        && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
+                });
+                // a zero period gives a zero shift (its sign cannot change the squared distance)
+                let shift2 = match &self.cell {
+                    Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
+                    _ => Vec3::zeros(),
+                };
+                if !geom::sphere_sphere::within_reach(
+                    p,
+                    *r1,
+                    *r2,
+                    &self.bodies.pos[sc.id1 as usize],
+                    &self.bodies.pos[sc.id2 as usize],
+                    &shift2,
+                ) {
+                    return Ok(());
+                }
+            }
+            self.interactions.scan[k].idle = false;
+        }
+        let (id1_raw, id2_raw) = {
+            let it = &self.interactions.list[k];
+            (it.id1 as usize, it.id2 as usize)
+        };
+        if self.interactions.list[k].functor == GeomFunctor::Missing {
+            return Ok(());
+        }
+        if self.interactions.list[k].functor == GeomFunctor::Unresolved {
+            let entries = geom_entries.get_or_insert_with(|| il.geom_entries());
+            let found = dispatch::resolve(
+                entries,
+                true,
+                self.bodies.shape[id1_raw].class(),
+                self.bodies.shape[id2_raw].class(),
+                Some,
+                Some,
+            )
+            .map_err(|e| {
+                format!(
+                    "{} for {}+{} (#{}+#{})",
+                    e,
+                    self.bodies.shape[id1_raw].class_name(),
+                    self.bodies.shape[id2_raw].class_name(),
+                    id1_raw,
+                    id2_raw
+                )
+            })?;
+            let it = &mut self.interactions.list[k];
+            match found {
+                None => {
+                    it.functor = GeomFunctor::Missing;
+                    return Ok(());
+                }
+                Some((f, swap)) => {
+                    it.functor = f;
+                    if swap {
+                        it.swap_order();
+                    }
+                }
+            }
+        }
+        let (id1, id2, was_real, functor, cell_dist) = {
+            let it = &self.interactions.list[k];
+            (
+                it.id1 as usize,
+                it.id2 as usize,
+                it.is_real(),
+                it.functor,
+                it.cell_dist,
+            )
+        };
+        let shift2 = match &self.cell {
+            Some(c) => c.shift_pos(&cell_dist),
+            None => Vec3::zeros(),
+        };
+        let ctx = match &self.cell {
+            Some(c) => GeomCtx {
+                shift_vel: c.shift_vel(&cell_dist),
+                ..*ctx0
+            },
+            None => *ctx0,
+        };
+        // fast path for the common sphere-sphere contact; every other functor goes through
+        // `geometry`
+        let created = match (functor, &self.bodies.shape[id1], &self.bodies.shape[id2]) {
+            (
+                GeomFunctor::SphereSphere,
+                Shape::Sphere { radius: r1 },
+                Shape::Sphere { radius: r2 },
+            ) if !was_real
+                && !geom::sphere_sphere::within_reach(
+                    il.sphere_sphere.as_ref().unwrap(),
+                    *r1,
+                    *r2,
+                    &self.bodies.pos[id1],
+                    &self.bodies.pos[id2],
+                    &shift2,
+                ) =>
+            {
+                false
+            }
+            (
+                GeomFunctor::SphereSphere,
+                Shape::Sphere { radius: r1 },
+                Shape::Sphere { radius: r2 },
+            ) => {
+                let b = &self.bodies;
+                let kin = |id: usize| Kin {
+                    pos: b.pos[id],
+                    vel: b.vel[id],
+                    ang_vel: b.ang_vel[id],
+                    ori: b.ori[id],
+                };
+                let pr = Pair {
+                    s1: kin(id1),
+                    s2: kin(id2),
+                    shift2,
+                    is_real: was_real,
+                    ctx,
+                };
+                geom::sphere_sphere::go(
+                    il.sphere_sphere.as_ref().unwrap(),
+                    *r1,
+                    *r2,
+                    &pr,
+                    &mut self.interactions.list[k].geom,
+                )
+            }
+            _ => self.geometry(il, k, functor, id1, id2, was_real, &shift2, &ctx)?,
+        };
+        if !created {
+            if was_real {
+                self.interactions.list[k].reset();
+            } else if functor == GeomFunctor::SphereSphere {
+                self.interactions.scan[k] = crate::interaction::ScanEntry {
+                    id1: id1 as u32,
+                    id2: id2 as u32,
+                    cell_dist,
+                    idle: true,
+                };
+            }
+            return Ok(());
+        }
+        // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
+        // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
+        let plain = {
+            let it = &self.interactions.list[k];
+            it.ext.is_none() && it.phys.is_some() && il.cundall_strack.is_some()
+        };
+        if !plain {
+            self.physics(il, k, id1, id2)?;
+        }
+        let it = &mut self.interactions.list[k];
+        if !was_real {
+            it.iter_made_real = self.iter;
+        }
+        let energy_arg = if self.track_energy {
+            Some(&mut *energy)
+        } else {
+            None
+        };
+        let keep = if plain {
+            let b = &self.bodies;
+            let lb = LawBodies {
+                pos1: &b.pos[id1],
+                pos2_shifted: b.pos[id2] + shift2,
+            };
+            law::go(
+                il.cundall_strack.as_ref().unwrap(),
+                it.geom.as_ref().unwrap(),
+                it.phys.as_mut().unwrap(),
+                id1,
+                id2,
+                &lb,
+                &mut self.forces,
+                energy_arg,
+            )
+        } else {
+            let keep = self.law(il, k, id1, id2, &shift2, energy_arg)?;
+            if self.interactions.share_of(k) != 0 {
+                self.interactions.sync_shared(k);
+            }
+            keep
+        };
+        if !keep {
+            self.interactions.list[k].reset();
+        }
+        Ok(())
+    }
+
+    /// The thread pool for `threads` (built on first use, rebuilt when `threads` changes); None for
+    /// one thread.
+    fn pool_for_threads(&mut self) -> Option<std::sync::Arc<rayon::ThreadPool>> {
+        if self.threads <= 1 {
+            return None;
+        }
+        if self.pool.0.as_ref().map(|p| p.current_num_threads()) != Some(self.threads) {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(self.threads)
+                .build()
+                .ok()?;
+            self.pool = Pool(Some(std::sync::Arc::new(pool)));
+        }
+        self.pool.0.clone()
+    }
+
+    /// With `threads > 1`, the part of every slot's work that depends only on positions,
+    /// velocities and the slot's own state, in parallel runs of slots: idle sphere-sphere pairs
+    /// still apart are dropped, and the steady contacts (real, sphere-sphere, FrictPhys,
+    /// Cundall-Strack) get their geometry (`Ig2_Sphere_Sphere_ScGeom::go`, always true on a real
+    /// interaction) and law arithmetic (`law::load`). The caller then walks the events in container
+    /// order: loads added, erasures done, other slots visited as in the serial loop, so every
+    /// body's sums are YADE's. Safe because nothing the serial visits do changes what these read:
+    /// they write forces, their own interaction, sphere-connection interactions (the grid
+    /// hand-over) and connection positions (`GridNodeGeom6D`), never a sphere's kinematics or a
+    /// sphere-sphere contact. None: serial loop (one thread, energy tracking, or no sphere-sphere
+    /// Cundall-Strack functors).
+    fn pre_pass(&mut self, il: &InteractionLoop) -> Option<Vec<Vec<Event>>> {
+        let (Some(ss), Some(cs)) = (il.sphere_sphere.as_ref(), il.cundall_strack.as_ref()) else {
+            return None;
+        };
+        if self.track_energy {
+            return None;
+        }
+        let pool = self.pool_for_threads()?;
+        let b = &self.bodies;
+        let cell = self.cell.as_ref();
+        let dt = self.dt;
+        let scan = &self.interactions.scan;
+        let list = &mut self.interactions.list;
+        const RUN: usize = 2048;
+        let runs = pool.install(|| {
+            use rayon::prelude::*;
+            list.par_chunks_mut(RUN)
+                .enumerate()
+                .map(|(c, its)| {
+                    let k0 = c * RUN;
+                    let sc_run = &scan[k0..k0 + its.len()];
+                    let mut events = Vec::with_capacity(its.len());
+                    for j in 0..its.len() {
+                        const AHEAD: usize = 24;
+                        if j + AHEAD < its.len() && !sc_run[j + AHEAD].idle {
+                            crate::interaction::prefetch(&its[j + AHEAD]);
+                        }
+                        let k = (k0 + j) as u32;
+                        if let Some(ev) = pre_slot(ss, cs, b, cell, dt, k, &sc_run[j], &mut its[j])
+                        {
+                            events.push(ev);
+                        }
+                    }
+                    events
+                })
+                .collect::<Vec<_>>()
+        });
+        Some(runs)
     }
 
     /// The geometry functor of interaction `k` (`IGeomFunctor::go`); true when a geometry exists now.
@@ -1097,6 +1205,89 @@ impl Scene {
             }
         })
     }
+}
+
+/// What the serial part of the threaded loop does with a slot, in container order
+/// (`Scene::pre_pass`); idle pairs still apart leave no event.
+#[derive(Clone, Copy, Debug)]
+enum Event {
+    /// Left to the serial loop (`Scene::visit`).
+    Visit(u32),
+    /// A steady contact evaluated: add this load to bodies `id1`, `id2`.
+    Load(u32, u32, law::Load),
+    /// Slot `k`: a steady contact the law erases.
+    Erase(u32),
+}
+
+/// The part of slot `k`'s work that depends only on positions, velocities and its own state (see
+/// `Scene::pre_pass`): None for an idle sphere-sphere pair still apart (YADE's distance pre-check,
+/// same operands), the load (or erasure) of a steady contact, otherwise `Event::Visit(k)`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn pre_slot(
+    ss: &geom::sphere_sphere::Params,
+    cs: &law::Params,
+    b: &Bodies,
+    cell: Option<&Cell>,
+    dt: f64,
+    k: u32,
+    sc: &crate::interaction::ScanEntry,
+    it: &mut crate::interaction::Interaction,
+) -> Option<Event> {
+    let spheres = |a: u32, c: u32| match (&b.shape[a as usize], &b.shape[c as usize]) {
+        (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => Some((*r1, *r2)),
+        _ => None,
+    };
+    if sc.idle {
+        if let Some((r1, r2)) = spheres(sc.id1, sc.id2) {
+            // a zero period gives a zero shift (its sign cannot change the squared distance)
+            let shift2 = match cell {
+                Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
+                _ => Vec3::zeros(),
+            };
+            let (p1, p2) = (&b.pos[sc.id1 as usize], &b.pos[sc.id2 as usize]);
+            if !geom::sphere_sphere::within_reach(ss, r1, r2, p1, p2, &shift2) {
+                return None;
+            }
+        }
+        return Some(Event::Visit(k));
+    }
+    if !(it.functor == GeomFunctor::SphereSphere && it.is_real() && it.ext.is_none()) {
+        return Some(Event::Visit(k));
+    }
+    let Some((r1, r2)) = spheres(it.id1, it.id2) else {
+        return Some(Event::Visit(k));
+    };
+    let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+    let (shift2, shift_vel) = match cell {
+        Some(c) => (c.shift_pos(&it.cell_dist), c.shift_vel(&it.cell_dist)),
+        None => (Vec3::zeros(), Vec3::zeros()),
+    };
+    let kin = |id: usize| Kin {
+        pos: b.pos[id],
+        vel: b.vel[id],
+        ang_vel: b.ang_vel[id],
+        ori: b.ori[id],
+    };
+    let pr = Pair {
+        s1: kin(id1),
+        s2: kin(id2),
+        shift2,
+        is_real: true,
+        ctx: GeomCtx { dt, shift_vel },
+    };
+    geom::sphere_sphere::go(ss, r1, r2, &pr, &mut it.geom);
+    let lb = LawBodies {
+        pos1: &b.pos[id1],
+        pos2_shifted: b.pos[id2] + shift2,
+    };
+    let g = it.geom.as_ref().unwrap();
+    Some(
+        match law::load(cs, g, it.phys.as_mut().unwrap(), &lb, None) {
+            Some(l) => Event::Load(id1 as u32, id2 as u32, l),
+            None => Event::Erase(k),
+        },
+    )
 }
 
 fn cell_dist_of(intrs: &Interactions, k: usize) -> [i32; 3] {

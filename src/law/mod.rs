@@ -79,6 +79,14 @@ pub struct LawBodies<'a> {
     pub pos2_shifted: Vec3,
 }
 
+/// What one contact puts on its bodies: `force` on body 1 (body 2 gets `-force`) and the torques.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Load {
+    pub force: Vec3,
+    pub torque1: Vec3,
+    pub torque2: Vec3,
+}
+
 /// Returns false when the contact must be erased (separated and `never_erase` off).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -92,35 +100,62 @@ pub fn go(
     forces: &mut Forces,
     energy: Option<&mut LawEnergy>,
 ) -> bool {
+    match load(p, g, ph, bodies, energy) {
+        Some(l) => {
+            apply(forces, id1, id2, &l);
+            true
+        }
+        None => false,
+    }
+}
+
+/// The arithmetic of `Law2_ScGeom_FrictPhys_CundallStrack::go` up to the forces it adds (None: the
+/// contact must be erased). Touches only the contact's own physics, so contacts can be evaluated
+/// in any order (or in parallel) as long as `apply` runs in container order.
+#[inline(always)]
+pub fn load(
+    p: &Params,
+    g: &ScGeom,
+    ph: &mut FrictPhys,
+    bodies: &LawBodies,
+    energy: Option<&mut LawEnergy>,
+) -> Option<Load> {
     if g.pen < 0.0 {
         if p.never_erase {
             ph.shear_force = Vec3::zeros();
             ph.normal_force = Vec3::zeros();
         } else {
-            return false;
+            return None;
         }
     }
     ph.normal_force = g.normal * (ph.kn * g.pen.max(0.0));
     cundall_shear(g, ph, energy);
     let fs = ph.shear_force;
     let force = -ph.normal_force - fs;
-    if p.spherical_bodies {
-        forces.add_force(id1, &force);
-        forces.add_force(id2, &(-force));
+    Some(if p.spherical_bodies {
         let nf = cross(&g.normal, &force);
-        forces.add_torque(id1, &(nf * (g.radius1 - 0.5 * g.pen)));
-        forces.add_torque(id2, &(nf * (g.radius2 - 0.5 * g.pen)));
+        Load {
+            force,
+            torque1: nf * (g.radius1 - 0.5 * g.pen),
+            torque2: nf * (g.radius2 - 0.5 * g.pen),
+        }
     } else {
         // Law2::applyForceAtContactPoint (pkg/common/Dispatching.cpp): real lever arms
-        forces.add_force(id1, &force);
-        forces.add_force(id2, &(-force));
-        forces.add_torque(id1, &cross(&(g.contact_point - bodies.pos1), &force));
-        forces.add_torque(
-            id2,
-            &(-cross(&(g.contact_point - bodies.pos2_shifted), &force)),
-        );
-    }
-    true
+        Load {
+            force,
+            torque1: cross(&(g.contact_point - bodies.pos1), &force),
+            torque2: -cross(&(g.contact_point - bodies.pos2_shifted), &force),
+        }
+    })
+}
+
+/// Add a contact's load to its bodies in YADE's order: force 1, force 2, torque 1, torque 2.
+#[inline(always)]
+pub fn apply(forces: &mut Forces, id1: usize, id2: usize, l: &Load) {
+    forces.add_force(id1, &l.force);
+    forces.add_force(id2, &(-l.force));
+    forces.add_torque(id1, &l.torque1);
+    forces.add_torque(id2, &l.torque2);
 }
 
 /// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
