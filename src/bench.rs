@@ -19,8 +19,8 @@ use std::time::Instant;
 pub enum Variant {
     /// Debian YADE, one thread.
     Yade,
-    /// ryade's YADE-order (bit-exact) path.
-    YadeOrder,
+    /// ryade's YADE-order (bit-exact) path with this many threads (same bits for any count).
+    YadeOrder(usize),
     /// ryade's fast path with this many threads.
     Fast(usize),
 }
@@ -29,7 +29,8 @@ impl Variant {
     pub fn name(&self) -> String {
         match self {
             Variant::Yade => "YADE".into(),
-            Variant::YadeOrder => "ryade yade-order".into(),
+            Variant::YadeOrder(1) => "ryade yade-order".into(),
+            Variant::YadeOrder(t) => format!("ryade yade-order {}t", t),
             Variant::Fast(t) => format!("ryade fast {}t", t),
         }
     }
@@ -110,8 +111,9 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
     let mut phases = None;
     let (dt, nc, mem) = match v {
         Variant::Yade => bail!("run_ryade cannot run YADE"),
-        Variant::YadeOrder => {
+        Variant::YadeOrder(threads) => {
             let mut s = s;
+            s.threads = threads;
             for _ in 0..warmup {
                 s.step().map_err(|e| anyhow!("{}", e))?;
             }
@@ -280,11 +282,12 @@ fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Resul
             c.env("OMP_NUM_THREADS", "1").args(["-n", "-x"]);
             c
         }
-        Variant::YadeOrder => {
+        Variant::YadeOrder(1) => {
             let mut c = Command::new(crate::harness::env::compat_exe()?);
             c.arg("run");
             c
         }
+        Variant::YadeOrder(_) => bail!("script scenes run the YADE-order path on one thread"),
         Variant::Fast(_) => bail!("the fast path cannot run script scenes"),
     };
     let out = cmd
@@ -393,11 +396,12 @@ pub fn bench(
     } else {
         None
     };
-    // script scenes: YADE and the YADE-order path only (the fast path models spheres only)
+    // script scenes: YADE and the one-thread YADE-order path only (the fast path models spheres
+    // only; `compat run` steps on one thread)
     let variants: Vec<Variant> = variants
         .iter()
         .copied()
-        .filter(|v| script.is_none() || !matches!(v, Variant::Fast(_)))
+        .filter(|v| script.is_none() || matches!(v, Variant::Yade | Variant::YadeOrder(1)))
         .collect();
     let variants = &variants[..];
     if variants.is_empty() {
@@ -464,8 +468,11 @@ pub fn bench(
     if let (Some(a), Some(b)) = (find(Variant::Fast(2)), find(Variant::Fast(1))) {
         ratios.push(("fast 2t / fast 1t".to_string(), ratio_of(a, b)));
     }
-    if let (Some(a), Some(b)) = (find(Variant::Fast(1)), find(Variant::YadeOrder)) {
+    if let (Some(a), Some(b)) = (find(Variant::Fast(1)), find(Variant::YadeOrder(1))) {
         ratios.push(("fast 1t / yade-order".to_string(), ratio_of(a, b)));
+    }
+    if let (Some(a), Some(b)) = (find(Variant::YadeOrder(2)), find(Variant::YadeOrder(1))) {
+        ratios.push(("yade-order 2t / 1t".to_string(), ratio_of(a, b)));
     }
     Ok(BenchReport {
         scene: scene.display().to_string(),

@@ -126,7 +126,8 @@ enum Cmd {
         /// ryade paths to time: yade (the YADE-order path), fast, or all
         #[arg(long, default_value = "all")]
         path: String,
-        /// Thread counts for the fast path, comma-separated (e.g. 1,2)
+        /// Thread counts for both ryade paths, comma-separated (e.g. 1,2; the YADE-order path has
+        /// the same bits at any count)
         #[arg(long, default_value = "1,2")]
         threads: String,
         /// Time ryade only
@@ -444,20 +445,22 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if !no_yade {
                 variants.push(Variant::Yade);
             }
+            let mut counts = Vec::new();
+            for t in threads.split(',') {
+                let t: usize = t
+                    .trim()
+                    .parse()
+                    .map_err(|_| anyhow::anyhow!("--threads: '{}' is not a count", t))?;
+                if t == 0 {
+                    bail!("--threads: counts start at 1");
+                }
+                counts.push(t);
+            }
             if path == "yade" || path == "all" {
-                variants.push(Variant::YadeOrder);
+                variants.extend(counts.iter().map(|&t| Variant::YadeOrder(t)));
             }
             if path == "fast" || path == "all" {
-                for t in threads.split(',') {
-                    let t: usize = t
-                        .trim()
-                        .parse()
-                        .map_err(|_| anyhow::anyhow!("--threads: '{}' is not a count", t))?;
-                    if t == 0 {
-                        bail!("--threads: counts start at 1");
-                    }
-                    variants.push(Variant::Fast(t));
-                }
+                variants.extend(counts.iter().map(|&t| Variant::Fast(t)));
             }
             if !matches!(path.as_str(), "yade" | "fast" | "all") {
                 bail!("--path: yade, fast or all, not '{}'", path);
