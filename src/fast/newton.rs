@@ -58,10 +58,11 @@ fn rotation(w: &V3, w2: f64, dt: f64) -> Quat {
     Quat::new(c, s_over_w * w[0], s_over_w * w[1], s_over_w * w[2])
 }
 
-/// One body: v_{n+1/2}, x_{n+1}, ω and orientation. Returns the squared displacement since `x_ref`.
+/// One body's motion: v_{n+1/2}, x_{n+1} and ω (the orientation follows in `turn`). Returns the
+/// squared displacement since `x_ref`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn body(
+pub fn motion(
     c: &Cfg,
     b: &Inert,
     f: V3,
@@ -69,7 +70,6 @@ pub fn body(
     x: &mut V3,
     v: &mut V3,
     w: &mut V3,
-    q: &mut Quat,
     x_ref: &V3,
 ) -> f64 {
     if b.blocked != DOF_ALL {
@@ -123,9 +123,16 @@ pub fn body(
     for k in 0..3 {
         x[k] += v[k] * c.dt;
     }
+    let d = [x[0] - x_ref[0], x[1] - x_ref[1], x[2] - x_ref[2]];
+    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+}
+
+/// The orientation update of one body: rotation by ω dt, then renormalisation.
+#[inline(always)]
+pub fn turn(dt: f64, w: &V3, q: &mut Quat) {
     let w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
     if w2 != 0.0 {
-        *q = rotation(w, w2, c.dt).mul(q);
+        *q = rotation(w, w2, dt).mul(q);
     }
     // renormalise: one Newton step for 1/sqrt(n2) near 1 (error (n2-1)^2), else the full formula
     let n2 = q.norm2();
@@ -138,8 +145,6 @@ pub fn body(
         1.0
     };
     *q = Quat::new(q.w * inv, q.x * inv, q.y * inv, q.z * inv);
-    let d = [x[0] - x_ref[0], x[1] - x_ref[1], x[2] - x_ref[2]];
-    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
 }
 
 #[cfg(test)]
@@ -184,9 +189,9 @@ mod tests {
             blocked: 0,
             damped: true,
         };
-        let (mut x, mut v, mut w, mut q) = ([0.0; 3], [0.0; 3], [0.0; 3], Quat::IDENTITY);
-        body(
-            &c, &b, [0.0; 3], [0.0; 3], &mut x, &mut v, &mut w, &mut q, &[0.0; 3],
+        let (mut x, mut v, mut w) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+        motion(
+            &c, &b, [0.0; 3], [0.0; 3], &mut x, &mut v, &mut w, &[0.0; 3],
         );
         assert!((v[2] - -7.848e-5).abs() < 1e-18);
         assert_eq!(x[2], v[2] * 1e-5);
