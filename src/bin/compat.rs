@@ -101,6 +101,10 @@ enum Cmd {
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
     #[command(trailing_var_arg = true)]
     Run {
+        /// Threads of the YADE-order path (like `yade -jN`; the results have the same bits for any
+        /// count)
+        #[arg(short = 'j', long = "threads", default_value_t = 1)]
+        threads: usize,
         script: PathBuf,
         /// Arguments passed to the script in sys.argv
         #[arg(allow_hyphen_values = true)]
@@ -245,9 +249,11 @@ fn main() -> ExitCode {
 }
 
 /// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
-fn python(module: &str, args: &[std::ffi::OsString]) -> Result<ExitCode> {
+fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<ExitCode> {
     let py = ryade::harness::env::python();
     let mut cmd = std::process::Command::new(&py);
+    // read by the yade package when it makes the scene (O.numThreads)
+    cmd.env("RYADE_THREADS", threads.to_string());
     // numpy (in YADE's script namespace) would start OpenBLAS threads that spin after any numpy
     // call and burn the other cores; the simulation itself runs on one
     if std::env::var_os("OPENBLAS_NUM_THREADS").is_none() {
@@ -279,10 +285,17 @@ fn cores() -> usize {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
-        Cmd::Run { script, args } => {
+        Cmd::Run {
+            threads,
+            script,
+            args,
+        } => {
+            if threads == 0 {
+                bail!("-j/--threads: counts start at 1");
+            }
             let mut a: Vec<std::ffi::OsString> = vec![script.into_os_string()];
             a.extend(args.into_iter().map(Into::into));
-            python("yade.runner", &a)
+            python("yade.runner", &a, threads)
         }
         Cmd::Calibrate {
             targets,
@@ -321,7 +334,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         }
         Cmd::Batch { args } => {
             let a: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
-            python("yade.batch", &a)
+            python("yade.batch", &a, 1)
         }
         Cmd::Diff {
             target,
