@@ -282,12 +282,11 @@ fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Resul
             c.env("OMP_NUM_THREADS", "1").args(["-n", "-x"]);
             c
         }
-        Variant::YadeOrder(1) => {
+        Variant::YadeOrder(t) => {
             let mut c = Command::new(crate::harness::env::compat_exe()?);
-            c.arg("run");
+            c.args(["run", "-j", &t.to_string()]);
             c
         }
-        Variant::YadeOrder(_) => bail!("script scenes run the YADE-order path on one thread"),
         Variant::Fast(_) => bail!("the fast path cannot run script scenes"),
     };
     let out = cmd
@@ -396,12 +395,11 @@ pub fn bench(
     } else {
         None
     };
-    // script scenes: YADE and the one-thread YADE-order path only (the fast path models spheres
-    // only; `compat run` steps on one thread)
+    // script scenes: YADE and the YADE-order path only (the fast path models spheres only)
     let variants: Vec<Variant> = variants
         .iter()
         .copied()
-        .filter(|v| script.is_none() || matches!(v, Variant::Yade | Variant::YadeOrder(1)))
+        .filter(|v| script.is_none() || !matches!(v, Variant::Fast(_)))
         .collect();
     let variants = &variants[..];
     if variants.is_empty() {
