@@ -5,8 +5,10 @@
 //! (`b.state.vel[2] = 0.1`) on top. A step is driven in segments (`advance`) so that Python engines
 //! (PyRunner) run between built-in engines without holding a borrow of the scene.
 
-use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyFloat, PyList, PyString, PyTuple, PyType};
+use pyo3::{ffi, intern};
 use ryade::io::scene_json;
 use ryade::math::{Quat, Vec3};
 use ryade::scene::{Engine, Scene};
@@ -28,12 +30,327 @@ fn err<E: std::fmt::Display>(e: E) -> PyErr {
     PyRuntimeError::new_err(format!("{:#}", e))
 }
 
-#[pyclass(unsendable)]
+#[pyclass]
 struct Sim {
     scene: Scene,
     saved: HashMap<String, Scene>,
     /// Next engine to run in the step in progress (None: between steps).
     cursor: Option<usize>,
+    /// `yade.minieigen.Vector3`, for the values built here (`_set_vector3`).
+    vector3: Option<Vec3Type>,
+}
+
+/// The per-body vector fields of `State` addressed by the fast paths.
+#[derive(Clone, Copy)]
+enum VecField {
+    Pos,
+    Vel,
+    AngVel,
+    Inertia,
+    AngMom,
+}
+
+impl VecField {
+    fn parse(name: &str) -> Option<VecField> {
+        Some(match name {
+            "pos" => VecField::Pos,
+            "vel" => VecField::Vel,
+            "angVel" => VecField::AngVel,
+            "inertia" => VecField::Inertia,
+            "angMom" => VecField::AngMom,
+            _ => return None,
+        })
+    }
+    fn no_such(name: &str) -> PyErr {
+        PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", name))
+    }
+}
+
+/// `yade.minieigen.Vector3`, the pure-Python class of the values the fast paths make and read, with
+/// where its three slots (`_v` the coefficient list or None for a view, `_g`/`_s` a view's getter and
+/// setter or None) lie in an instance. The offsets are found at run time (`Vec3Type::new`) by
+/// storing marker objects through the slots' own descriptors and looking for them; a layout that
+/// does not match (a `__dict__`, a slot missing or found twice) leaves them unset and every access
+/// then goes through getattr/setattr.
+struct Vec3Type {
+    tp: Py<PyType>,
+    slots: Option<[isize; 3]>,
+}
+
+const V: usize = 0;
+const G: usize = 1;
+const SLOT_NAMES: [&str; 3] = ["_v", "_g", "_s"];
+
+/// A new, zero-filled, unset instance of the Python class `tp` (what `object.__new__(tp)` makes).
+fn alloc_instance<'py>(tp: &Bound<'py, PyType>) -> PyResult<Bound<'py, PyAny>> {
+    // SAFETY: PyType_GenericAlloc is the tp_alloc of a Python class; it returns a new reference
+    // (NULL with an exception set on failure), which from_owned_ptr_or_err takes over.
+    unsafe { Bound::from_owned_ptr_or_err(tp.py(), ffi::PyType_GenericAlloc(tp.as_type_ptr(), 0)) }
+}
+
+impl Vec3Type {
+    fn new(tp: &Bound<'_, PyType>) -> PyResult<Vec3Type> {
+        let py = tp.py();
+        let basic: isize = tp.getattr("__basicsize__")?.extract()?;
+        let dict: isize = tp.getattr("__dictoffset__")?.extract()?;
+        let mut slots = None;
+        if dict == 0 {
+            let obj = alloc_instance(tp)?;
+            let marks = [PyList::empty(py), PyList::empty(py), PyList::empty(py)];
+            for (name, m) in SLOT_NAMES.iter().zip(&marks) {
+                obj.setattr(*name, m)?;
+            }
+            let word = std::mem::size_of::<*mut ffi::PyObject>() as isize;
+            let head = std::mem::size_of::<ffi::PyObject>() as isize;
+            let mut found = [None; 3];
+            let mut ok = true;
+            let mut off = head;
+            while off + word <= basic {
+                // SAFETY: off + word <= tp_basicsize: a word of the instance's memory
+                let p = unsafe {
+                    *(obj.as_ptr() as *const u8)
+                        .offset(off)
+                        .cast::<*mut ffi::PyObject>()
+                };
+                for (k, m) in marks.iter().enumerate() {
+                    if p == m.as_ptr() {
+                        ok &= found[k].replace(off).is_none();
+                    }
+                }
+                off += word;
+            }
+            if let (true, [Some(v), Some(g), Some(s)]) = (ok, found) {
+                slots = Some([v, g, s]);
+            }
+        }
+        Ok(Vec3Type {
+            tp: tp.clone().unbind(),
+            slots,
+        })
+    }
+
+    /// A new instance with its slots `_v`, `_g`, `_s` set to `vals` (consumed).
+    fn make<'py>(
+        &self,
+        py: Python<'py>,
+        vals: [Bound<'py, PyAny>; 3],
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let obj = alloc_instance(self.tp.bind(py))?;
+        match self.slots {
+            Some(offs) => {
+                for (off, v) in offs.iter().zip(vals) {
+                    // SAFETY: a slot of a fresh instance (NULL, nothing to release), found by Vec3Type::new;
+                    // the slot takes over the reference
+                    unsafe {
+                        *(obj.as_ptr() as *mut u8)
+                            .offset(*off)
+                            .cast::<*mut ffi::PyObject>() = v.into_ptr()
+                    };
+                }
+            }
+            None => {
+                for (name, v) in SLOT_NAMES.iter().zip(vals) {
+                    obj.setattr(*name, v)?;
+                }
+            }
+        }
+        Ok(obj)
+    }
+
+    /// Slot `k` of `obj`, an instance of exactly this class.
+    fn slot<'py>(&self, obj: &Bound<'py, PyAny>, k: usize) -> PyResult<Bound<'py, PyAny>> {
+        match self.slots {
+            // SAFETY: obj is an instance of tp (checked by the caller), whose slot k lies at offs[k];
+            // an unset slot is NULL, which from_borrowed_ptr_or_err turns into an error
+            Some(offs) => unsafe {
+                let p = *(obj.as_ptr() as *const u8)
+                    .offset(offs[k])
+                    .cast::<*mut ffi::PyObject>();
+                Bound::from_borrowed_ptr_or_err(obj.py(), p)
+            },
+            None => obj.getattr(SLOT_NAMES[k]),
+        }
+    }
+
+    /// A new Vector3 holding `v`: what `Vector3._new([x, y, z])` makes, without running Python code.
+    fn plain<'py>(&self, py: Python<'py>, v: V3) -> PyResult<Bound<'py, PyAny>> {
+        self.make(
+            py,
+            [
+                PyList::new(py, [v.0, v.1, v.2])?.into_any(),
+                py.None().into_bound(py),
+                py.None().into_bound(py),
+            ],
+        )
+    }
+
+    /// A live Vector3 view of a body's vector field (what `Vector3._view(get, set)` makes): its `_g`
+    /// and `_s` are one `FieldAccess`.
+    fn view<'py>(&self, py: Python<'py>, acc: FieldAccess) -> PyResult<Bound<'py, PyAny>> {
+        let acc = Bound::new(py, acc)?.into_any();
+        self.make(py, [py.None().into_bound(py), acc.clone(), acc])
+    }
+
+    /// The coefficients of `value` if it is a plain (not a view) Vector3 of 3 floats.
+    fn floats_of(&self, value: &Bound<'_, PyAny>) -> PyResult<Option<V3>> {
+        let py = value.py();
+        if !value.get_type().is(self.tp.bind(py)) || !self.slot(value, G)?.is_none() {
+            return Ok(None);
+        }
+        let v = self.slot(value, V)?;
+        let Ok(l) = v.downcast::<PyList>() else {
+            return Ok(None);
+        };
+        if l.len() != 3 {
+            return Ok(None);
+        }
+        let mut out = [0.0; 3];
+        for (k, o) in out.iter_mut().enumerate() {
+            // Vector3 keeps floats (its constructors convert); anything else takes the generic path
+            let Ok(x) = l.get_item(k)?.downcast_into::<PyFloat>() else {
+                return Ok(None);
+            };
+            *o = x.value();
+        }
+        Ok(Some((out[0], out[1], out[2])))
+    }
+}
+
+/// `get()` / `set(tuple)` of a live vector view onto a body's field in the scene.
+#[pyclass(module = "yade._ryade")]
+struct FieldAccess {
+    sim: Py<Sim>,
+    bid: usize,
+    field: VecField,
+}
+
+#[pymethods]
+impl FieldAccess {
+    /// `acc()` returns the field as a 3-tuple; `acc(t)` stores the 3-tuple `t`.
+    #[pyo3(signature = (*args))]
+    fn __call__(&self, py: Python<'_>, args: &Bound<'_, PyTuple>) -> PyResult<Option<V3>> {
+        match args.len() {
+            0 => Ok(Some(
+                self.sim.bind(py).borrow().vec3_of(self.bid, self.field)?,
+            )),
+            1 => {
+                let t: V3 = args.get_item(0)?.extract()?;
+                self.sim
+                    .bind(py)
+                    .borrow_mut()
+                    .set_vec3_of(self.bid, self.field, t)?;
+                Ok(None)
+            }
+            n => Err(PyTypeError::new_err(format!(
+                "a vector view takes 0 (get) or 1 (set) arguments, got {}",
+                n
+            ))),
+        }
+    }
+}
+
+/// Base class of `yade._core.State` holding what its hot paths need without Python code: the scene
+/// (`Sim`) and the body id once the body is in `O.bodies`. `State.__setattr__` is `_rs_setattr`
+/// (a Vector3 stored into pos/vel/angVel/inertia of a bound state goes straight to the scene; every
+/// other assignment is `State._slow_setattr`, the generic path); `pos`, `vel`, `angVel` are read here.
+#[pyclass(subclass, module = "yade._ryade")]
+struct StateBase {
+    sim: Option<Py<Sim>>,
+    bid: usize,
+}
+
+impl StateBase {
+    fn read(slf: &Bound<'_, Self>, field: VecField, name: &str) -> PyResult<PyObject> {
+        let py = slf.py();
+        let (sim, bid) = {
+            let b = slf.borrow();
+            match &b.sim {
+                Some(s) => (s.clone_ref(py), b.bid),
+                None => return Ok(slf.call_method1(intern!(py, "_read"), (name,))?.unbind()),
+            }
+        };
+        let s = sim.bind(py).borrow();
+        let tp = s.vector3_type()?;
+        if let VecField::Pos = field {
+            // YADE quirk kept on purpose: pos and ori are computed properties (se3), so
+            // `b.state.pos[1] = 3` changes a temporary copy and leaves the body where it was
+            return Ok(tp.plain(py, s.vec3_of(bid, field)?)?.unbind());
+        }
+        s.check_id(bid)?;
+        let sim2 = sim.clone_ref(py);
+        Ok(tp
+            .view(
+                py,
+                FieldAccess {
+                    sim: sim2,
+                    bid,
+                    field,
+                },
+            )?
+            .unbind())
+    }
+}
+
+#[pymethods]
+impl StateBase {
+    #[new]
+    #[pyo3(signature = (*_args, **_kw))]
+    fn new(_args: &Bound<'_, PyTuple>, _kw: Option<&Bound<'_, PyDict>>) -> Self {
+        StateBase { sim: None, bid: 0 }
+    }
+    /// The state now belongs to body `bid` of `sim`.
+    fn _rs_bind(&mut self, sim: Py<Sim>, bid: usize) {
+        self.sim = Some(sim);
+        self.bid = bid;
+    }
+    /// `State.__setattr__`: the effect of `Serializable._assign` (convert, store, `_changed`) for a
+    /// plain Vector3 into pos/vel/angVel/inertia of a bound state (the bound state reads these from
+    /// the scene, so the stored copy is not kept); `State._slow_setattr` for everything else.
+    fn _rs_setattr(
+        slf: &Bound<'_, Self>,
+        name: &Bound<'_, PyString>,
+        value: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let py = slf.py();
+        {
+            let b = slf.borrow();
+            if let Some(sim) = &b.sim {
+                let field = match name.to_str()? {
+                    "pos" => Some(VecField::Pos),
+                    "vel" => Some(VecField::Vel),
+                    "angVel" => Some(VecField::AngVel),
+                    "inertia" => Some(VecField::Inertia),
+                    _ => None,
+                };
+                if let Some(field) = field {
+                    let sim = sim.bind(py);
+                    let v = sim.borrow().vector3_type()?.floats_of(value)?;
+                    if let Some(v) = v {
+                        return sim.borrow_mut().set_vec3_of(b.bid, field, v);
+                    }
+                }
+            }
+        }
+        slf.get_type()
+            .getattr(intern!(py, "_slow_setattr"))?
+            .call1((slf, name, value))?;
+        Ok(())
+    }
+    /// `State.pos`: a copy (YADE computes it from se3).
+    #[getter]
+    fn pos(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::Pos, "pos")
+    }
+    /// `State.vel`: a live view (`b.state.vel[2] = 0.1` moves the body).
+    #[getter]
+    fn vel(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::Vel, "vel")
+    }
+    /// `State.angVel`: a live view.
+    #[getter(angVel)]
+    fn ang_vel(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::AngVel, "angVel")
+    }
 }
 
 impl Sim {
@@ -46,6 +363,37 @@ impl Sim {
             )));
         }
         Ok(())
+    }
+
+    fn vec3_of(&self, id: usize, f: VecField) -> PyResult<V3> {
+        self.check_id(id)?;
+        let b = &self.scene.bodies;
+        Ok(v3(match f {
+            VecField::Pos => &b.pos[id],
+            VecField::Vel => &b.vel[id],
+            VecField::AngVel => &b.ang_vel[id],
+            VecField::Inertia => &b.inertia[id],
+            VecField::AngMom => &b.ang_mom[id],
+        }))
+    }
+
+    fn set_vec3_of(&mut self, id: usize, f: VecField, v: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        let b = &mut self.scene.bodies;
+        *(match f {
+            VecField::Pos => &mut b.pos[id],
+            VecField::Vel => &mut b.vel[id],
+            VecField::AngVel => &mut b.ang_vel[id],
+            VecField::Inertia => &mut b.inertia[id],
+            VecField::AngMom => &mut b.ang_mom[id],
+        }) = vec(v);
+        Ok(())
+    }
+
+    fn vector3_type(&self) -> PyResult<&Vec3Type> {
+        self.vector3
+            .as_ref()
+            .ok_or_else(|| PyRuntimeError::new_err("internal: Sim._set_vector3 was not called"))
     }
 
     fn intr_index(&self, a: u32, b: u32) -> PyResult<usize> {
@@ -64,7 +412,17 @@ impl Sim {
             scene: Scene::default(),
             saved: HashMap::new(),
             cursor: None,
+            vector3: None,
         }
+    }
+    /// The `Vector3` class the fast paths (`force_vec`, `StateBase`) build their values of.
+    fn _set_vector3(&mut self, tp: &Bound<'_, PyType>) -> PyResult<()> {
+        self.vector3 = Some(Vec3Type::new(tp)?);
+        Ok(())
+    }
+    /// Whether the slots of the Vector3 class were found (the fast paths then skip getattr/setattr).
+    fn _vector3_slots_found(&self) -> bool {
+        self.vector3.as_ref().is_some_and(|t| t.slots.is_some())
     }
 
     /// `O.reset()`: empty scene, no engines, dt = 1e-8.
@@ -181,38 +539,18 @@ impl Sim {
     }
     fn get_vec3(&self, id: usize, field: &str) -> PyResult<V3> {
         self.check_id(id)?;
-        let b = &self.scene.bodies;
-        Ok(match field {
-            "pos" => v3(&b.pos[id]),
-            "vel" => v3(&b.vel[id]),
-            "angVel" => v3(&b.ang_vel[id]),
-            "inertia" => v3(&b.inertia[id]),
-            "angMom" => v3(&b.ang_mom[id]),
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "State has no vector attribute '{}' in ryade",
-                    field
-                )))
-            }
-        })
+        self.vec3_of(
+            id,
+            VecField::parse(field).ok_or_else(|| VecField::no_such(field))?,
+        )
     }
     fn set_vec3(&mut self, id: usize, field: &str, v: V3) -> PyResult<()> {
         self.check_id(id)?;
-        let b = &mut self.scene.bodies;
-        match field {
-            "pos" => b.pos[id] = vec(v),
-            "vel" => b.vel[id] = vec(v),
-            "angVel" => b.ang_vel[id] = vec(v),
-            "inertia" => b.inertia[id] = vec(v),
-            "angMom" => b.ang_mom[id] = vec(v),
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "State has no vector attribute '{}' in ryade",
-                    field
-                )))
-            }
-        }
-        Ok(())
+        self.set_vec3_of(
+            id,
+            VecField::parse(field).ok_or_else(|| VecField::no_such(field))?,
+            v,
+        )
     }
     /// Orientation as (w, x, y, z).
     fn get_ori(&self, id: usize) -> PyResult<(f64, f64, f64, f64)> {
@@ -594,6 +932,28 @@ impl Sim {
     }
 
     // ---- forces ----
+    /// `O.forces.f(id)`: the force as a new Vector3.
+    #[pyo3(signature = (id, sync=false))]
+    fn force_vec<'py>(
+        &self,
+        py: Python<'py>,
+        id: usize,
+        sync: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let _ = sync;
+        self.vector3_type()?.plain(py, self.force(id)?)
+    }
+    /// `O.forces.t(id)`: the torque as a new Vector3.
+    #[pyo3(signature = (id, sync=false))]
+    fn torque_vec<'py>(
+        &self,
+        py: Python<'py>,
+        id: usize,
+        sync: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let _ = sync;
+        self.vector3_type()?.plain(py, self.torque(id)?)
+    }
     fn force(&self, id: usize) -> PyResult<V3> {
         self.check_id(id)?;
         Ok(self
@@ -1034,6 +1394,8 @@ fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
 #[pymodule]
 fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Sim>()?;
+    m.add_class::<StateBase>()?;
+    m.add_class::<FieldAccess>()?;
     m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(make_cloud, m)?)?;
