@@ -216,6 +216,147 @@ impl Vec3Type {
     }
 }
 
+// ---- Vector3.__getitem__ in C
+
+/// The classes whose `__getitem__` is `vector_getitem` (a class object, kept alive so that its
+/// address is never reused, with its slot offsets and length). Appended to by
+/// `_install_vector_getitem` (a new list replaces the old one, which is leaked: a few per process);
+/// read by `vector_getitem` with the GIL held.
+type GetitemClasses = Vec<(Py<PyType>, [isize; 3], isize)>;
+static GETITEM_CLASSES: std::sync::atomic::AtomicPtr<GetitemClasses> =
+    std::sync::atomic::AtomicPtr::new(std::ptr::null_mut());
+
+/// Slot `off` of `obj` (borrowed; NULL when unset).
+///
+/// # Safety
+/// `obj` is an instance of a class whose slots lie at `off` (`Vec3Type::new`).
+unsafe fn slot_ptr(obj: *mut ffi::PyObject, off: isize) -> *mut ffi::PyObject {
+    *(obj as *const u8).offset(off).cast::<*mut ffi::PyObject>()
+}
+
+/// `__getitem__` of the registered vector classes, with their Python definition's effect: for an
+/// exact int `i` in `0..N`, `self._v[i]` (a plain value) or `self._g()[i]` (a view); anything else
+/// (negative or out-of-range indices, slices, subclass instances) calls the Python definition,
+/// `type(self)._py_getitem(self, i)`, which raises minieigen's errors.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL method (`slf`, `nargs` arguments at `args`), GIL held.
+unsafe extern "C" fn vector_getitem(
+    slf: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+) -> *mut ffi::PyObject {
+    let classes = GETITEM_CLASSES.load(std::sync::atomic::Ordering::Acquire);
+    if nargs == 1 && !classes.is_null() {
+        let i = *args;
+        let tp = ffi::Py_TYPE(slf);
+        if let Some((_, offs, n)) = (*classes)
+            .iter()
+            .find(|c| c.0.as_ptr() as *mut ffi::PyTypeObject == tp)
+        {
+            if ffi::PyLong_CheckExact(i) != 0 {
+                let mut overflow = 0;
+                let k = ffi::PyLong_AsLongAndOverflow(i, &mut overflow) as isize;
+                if overflow == 0 && (0..*n).contains(&k) {
+                    let g = slot_ptr(slf, offs[G]);
+                    let v = slot_ptr(slf, offs[V]);
+                    if g == ffi::Py_None()
+                        && !v.is_null()
+                        && ffi::PyList_CheckExact(v) != 0
+                        && ffi::PyList_Size(v) == *n
+                    {
+                        let item = ffi::PyList_GetItem(v, k);
+                        ffi::Py_INCREF(item);
+                        return item;
+                    }
+                    if !g.is_null() && g != ffi::Py_None() {
+                        let t = ffi::PyObject_CallNoArgs(g);
+                        if t.is_null() {
+                            return t;
+                        }
+                        let r = ffi::PyObject_GetItem(t, i);
+                        ffi::Py_DECREF(t);
+                        return r;
+                    }
+                }
+            }
+        }
+    }
+    // the Python definition: type(slf)._py_getitem(slf, *args)
+    let f = ffi::PyObject_GetAttrString(
+        ffi::Py_TYPE(slf) as *mut ffi::PyObject,
+        c"_py_getitem".as_ptr(),
+    );
+    if f.is_null() {
+        return f;
+    }
+    let t = ffi::PyTuple_New(nargs + 1);
+    if t.is_null() {
+        ffi::Py_DECREF(f);
+        return t;
+    }
+    ffi::Py_INCREF(slf);
+    ffi::PyTuple_SetItem(t, 0, slf);
+    for k in 0..nargs {
+        let a = *args.offset(k);
+        ffi::Py_INCREF(a);
+        ffi::PyTuple_SetItem(t, k + 1, a);
+    }
+    let r = ffi::PyObject_Call(f, t, std::ptr::null_mut());
+    ffi::Py_DECREF(t);
+    ffi::Py_DECREF(f);
+    r
+}
+
+/// `_install_vector_getitem(cls, n)`: a method descriptor calling `vector_getitem`, for
+/// `cls.__getitem__` (the Python definition must be kept as `cls._py_getitem`); `cls` is a
+/// minieigen vector class of length `n` with the slots `_v`, `_g`, `_s`. Returns None (and
+/// registers nothing) when those slots cannot be located.
+#[pyfunction]
+fn _install_vector_getitem(
+    py: Python<'_>,
+    cls: &Bound<'_, PyType>,
+    n: isize,
+) -> PyResult<PyObject> {
+    let Some(offs) = Vec3Type::new(cls)?.slots else {
+        return Ok(py.None());
+    };
+    // SAFETY: the list is only replaced (never freed) and read with the GIL held, which this holds
+    let old = GETITEM_CLASSES.load(std::sync::atomic::Ordering::Acquire);
+    let mut list: GetitemClasses = if old.is_null() {
+        Vec::new()
+    } else {
+        unsafe {
+            (*old)
+                .iter()
+                .map(|(t, o, n)| (t.clone_ref(py), *o, *n))
+                .collect()
+        }
+    };
+    list.push((cls.clone().unbind(), offs, n));
+    GETITEM_CLASSES.store(
+        Box::into_raw(Box::new(list)),
+        std::sync::atomic::Ordering::Release,
+    );
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: c"__getitem__".as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFast: vector_getitem,
+        },
+        ml_flags: ffi::METH_FASTCALL,
+        ml_doc: c"v[i] (yade._ryade.vector_getitem; the Python definition is _py_getitem)".as_ptr(),
+    }));
+    // SAFETY: a method descriptor of `object` (so that it applies to every instance; the function
+    // checks the class itself) over a PyMethodDef that lives forever
+    unsafe {
+        Ok(Bound::from_owned_ptr_or_err(
+            py,
+            ffi::PyDescr_NewMethod(std::ptr::addr_of_mut!(ffi::PyBaseObject_Type), def),
+        )?
+        .unbind())
+    }
+}
+
 /// `get()` / `set(tuple)` of a live vector view onto a body's field in the scene.
 #[pyclass(module = "yade._ryade")]
 struct FieldAccess {
@@ -246,6 +387,46 @@ impl FieldAccess {
                 n
             ))),
         }
+    }
+}
+
+/// Base class of `yade._core.Omega` (`O`): `O.iter` and `O.time`, read every step by controllers, are
+/// read here from the scene without a Python frame.
+#[pyclass(subclass, module = "yade._ryade")]
+struct OmegaBase {
+    sim: Option<Py<Sim>>,
+}
+
+impl OmegaBase {
+    fn sim<'py>(&self, py: Python<'py>) -> PyResult<PyRef<'py, Sim>> {
+        match &self.sim {
+            Some(s) => Ok(s.bind(py).borrow()),
+            None => Err(PyRuntimeError::new_err(
+                "internal: Omega._rs_set_sim was not called",
+            )),
+        }
+    }
+}
+
+#[pymethods]
+impl OmegaBase {
+    #[new]
+    #[pyo3(signature = (*_args, **_kw))]
+    fn new(_args: &Bound<'_, PyTuple>, _kw: Option<&Bound<'_, PyDict>>) -> Self {
+        OmegaBase { sim: None }
+    }
+    fn _rs_set_sim(&mut self, sim: Py<Sim>) {
+        self.sim = Some(sim);
+    }
+    /// `O.iter`: the number of steps done.
+    #[getter]
+    fn iter(&self, py: Python<'_>) -> PyResult<i64> {
+        Ok(self.sim(py)?.scene.iter)
+    }
+    /// `O.time`: the simulated time.
+    #[getter]
+    fn time(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.sim(py)?.scene.time)
     }
 }
 
@@ -1395,7 +1576,9 @@ fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
 fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Sim>()?;
     m.add_class::<StateBase>()?;
+    m.add_class::<OmegaBase>()?;
     m.add_class::<FieldAccess>()?;
+    m.add_function(wrap_pyfunction!(_install_vector_getitem, m)?)?;
     m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(make_cloud, m)?)?;

@@ -120,3 +120,38 @@ def test_unbound_state_and_body_state_attribute():
     with pytest.raises(UnsupportedError, match=r'Body\.state of a body already in O\.bodies'):
         O.bodies[bid].state = State()
     assert Body().state is not None and type(Body().state) is State
+
+
+def test_vector3_getitem_in_c_keeps_minieigen_semantics():
+    from yade.minieigen import ArgumentError
+    assert type(Vector3.__dict__['__getitem__']).__name__ == 'method_descriptor' and callable(Vector3._py_getitem)
+    v = Vector3(1, 2, 3.5)
+    assert (v[0], v[1], v[2]) == (1.0, 2.0, 3.5) and type(v[0]) is float
+    assert v[True] == 2.0 and v.__getitem__(2) == 3.5          # bool index: the Python definition
+    # minieigen: negative indices raise IndexError, as do indices past the end; other types ArgumentError
+    for bad in (-1, 3, 10**30):
+        with pytest.raises(IndexError):
+            v[bad]
+    for bad in (1.0, 'a', slice(0, 2), None):
+        with pytest.raises(ArgumentError):
+            v[bad]
+    with pytest.raises(TypeError):
+        v.__getitem__()
+    # a view reads the scene every time
+    f, s = _scene()
+    sv = O.bodies[s].state.vel
+    assert sv[2] == 0.0
+    O.bodies[s].state.vel = Vector3(0, 0, 0.75)
+    assert sv[2] == 0.75 and O.bodies[s].state.vel[2] == 0.75
+    # a subclass goes through the Python definition
+    class W(Vector3):
+        pass
+    w = W(4, 5, 6)
+    assert w[1] == 5.0 and list(w) == [4.0, 5.0, 6.0]
+    with pytest.raises(IndexError):
+        w[3]
+    # in-place modification is seen
+    v[1] = 7
+    assert v[1] == 7.0
+    v += Vector3(1, 1, 1)
+    assert (v[0], v[1], v[2]) == (2.0, 8.0, 4.5)

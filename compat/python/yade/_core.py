@@ -813,13 +813,14 @@ class EnergyTracker(object):
 
 # ---------------------------------------------------------------- Omega
 
-class Omega(object):
-    """`O`: the simulation. `Omega()` returns the same object, as in YADE."""
+class Omega(_ryade.OmegaBase):
+    """`O`: the simulation. `Omega()` returns the same object, as in YADE. `O.iter` and `O.time` are
+    read by the Rust base class (`_ryade.OmegaBase`, controllers read them every step)."""
     _instance = None
 
     def __new__(cls, *a, **kw):
         if Omega._instance is None:
-            inst = object.__new__(cls)
+            inst = _ryade.OmegaBase.__new__(cls)
             inst._init()
             Omega._instance = inst
         return Omega._instance
@@ -827,6 +828,7 @@ class Omega(object):
     def _init(self):
         self._sim = _ryade.Sim()
         self._sim._set_vector3(Vector3)
+        self._rs_set_sim(self._sim)
         self.bodies = BodyContainer(self)
         self.materials = MaterialContainer(self)
         self.interactions = InteractionContainer(self)
@@ -858,10 +860,8 @@ class Omega(object):
                         NewtonIntegrator(damping=0.2)]
 
     # ---- time ----
-    # getters without a Python frame (O.iter, O.time are read every step by controllers)
+    # O.iter and O.time: OmegaBase
     dt = property(operator.attrgetter('_sim.dt'), lambda self, v: setattr(self._sim, 'dt', float(v)))
-    iter = property(operator.attrgetter('_sim.iter'))
-    time = property(operator.attrgetter('_sim.time'))
 
     @property
     def realtime(self):
