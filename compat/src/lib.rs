@@ -7,7 +7,7 @@
 
 use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyFloat, PyList, PyString, PyTuple, PyType};
+use pyo3::types::{PyDict, PyList, PyString, PyTuple, PyType};
 use pyo3::{ffi, intern};
 use ryade::io::scene_json;
 use ryade::math::{Quat, Vec3};
@@ -157,21 +157,6 @@ impl Vec3Type {
         Ok(obj)
     }
 
-    /// Slot `k` of `obj`, an instance of exactly this class.
-    fn slot<'py>(&self, obj: &Bound<'py, PyAny>, k: usize) -> PyResult<Bound<'py, PyAny>> {
-        match self.slots {
-            // SAFETY: obj is an instance of tp (checked by the caller), whose slot k lies at offs[k];
-            // an unset slot is NULL, which from_borrowed_ptr_or_err turns into an error
-            Some(offs) => unsafe {
-                let p = *(obj.as_ptr() as *const u8)
-                    .offset(offs[k])
-                    .cast::<*mut ffi::PyObject>();
-                Bound::from_borrowed_ptr_or_err(obj.py(), p)
-            },
-            None => obj.getattr(SLOT_NAMES[k]),
-        }
-    }
-
     /// A new Vector3 holding `v`: what `Vector3._new([x, y, z])` makes, without running Python code.
     fn plain<'py>(&self, py: Python<'py>, v: V3) -> PyResult<Bound<'py, PyAny>> {
         self.make(
@@ -189,30 +174,6 @@ impl Vec3Type {
     fn view<'py>(&self, py: Python<'py>, acc: FieldAccess) -> PyResult<Bound<'py, PyAny>> {
         let acc = Bound::new(py, acc)?.into_any();
         self.make(py, [py.None().into_bound(py), acc.clone(), acc])
-    }
-
-    /// The coefficients of `value` if it is a plain (not a view) Vector3 of 3 floats.
-    fn floats_of(&self, value: &Bound<'_, PyAny>) -> PyResult<Option<V3>> {
-        let py = value.py();
-        if !value.get_type().is(self.tp.bind(py)) || !self.slot(value, G)?.is_none() {
-            return Ok(None);
-        }
-        let v = self.slot(value, V)?;
-        let Ok(l) = v.downcast::<PyList>() else {
-            return Ok(None);
-        };
-        if l.len() != 3 {
-            return Ok(None);
-        }
-        let mut out = [0.0; 3];
-        for (k, o) in out.iter_mut().enumerate() {
-            // Vector3 keeps floats (its constructors convert); anything else takes the generic path
-            let Ok(x) = l.get_item(k)?.downcast_into::<PyFloat>() else {
-                return Ok(None);
-            };
-            *o = x.value();
-        }
-        Ok(Some((out[0], out[1], out[2])))
     }
 }
 
@@ -390,6 +351,167 @@ impl FieldAccess {
     }
 }
 
+// ---- State.__setattr__ in C
+
+/// What `state_setattr` compares with: the interned names of the vector fields it stores directly (in
+/// `FAST_FIELDS` order) and the Vector3 class with its slot offsets (None: never direct).
+struct StateSetattr {
+    names: [Py<PyString>; 4],
+    vector3: Option<(Py<PyType>, [isize; 3])>,
+}
+
+const FAST_FIELDS: [(&str, VecField); 4] = [
+    ("pos", VecField::Pos),
+    ("vel", VecField::Vel),
+    ("angVel", VecField::AngVel),
+    ("inertia", VecField::Inertia),
+];
+
+/// Set once by `_state_setattr` (a second call replaces it; the old one is leaked), read with the GIL.
+static STATE_SETATTR: std::sync::atomic::AtomicPtr<StateSetattr> =
+    std::sync::atomic::AtomicPtr::new(std::ptr::null_mut());
+
+/// The 3 coefficients of `value` if it is a plain (`_g is None`) Vector3 holding a list of 3 floats.
+///
+/// # Safety
+/// `value` is an instance of the Vector3 class whose slots lie at `offs`; GIL held.
+unsafe fn plain_vector3_floats(value: *mut ffi::PyObject, offs: &[isize; 3]) -> Option<V3> {
+    if slot_ptr(value, offs[G]) != ffi::Py_None() {
+        return None;
+    }
+    let v = slot_ptr(value, offs[V]);
+    if v.is_null() || ffi::PyList_CheckExact(v) == 0 || ffi::PyList_Size(v) != 3 {
+        return None;
+    }
+    let mut out = [0.0; 3];
+    for (k, o) in out.iter_mut().enumerate() {
+        let x = ffi::PyList_GetItem(v, k as ffi::Py_ssize_t);
+        // Vector3 keeps floats (its constructors convert); anything else takes the generic path
+        if ffi::PyFloat_CheckExact(x) == 0 {
+            return None;
+        }
+        *o = ffi::PyFloat_AsDouble(x);
+    }
+    Some((out[0], out[1], out[2]))
+}
+
+/// Store `v` into field `f` of the body a bound state belongs to; false for an unbound state.
+fn state_store(st: &Bound<'_, StateBase>, f: VecField, v: V3) -> PyResult<bool> {
+    let b = st.try_borrow()?;
+    match &b.sim {
+        Some(sim) => {
+            sim.bind(st.py())
+                .try_borrow_mut()?
+                .set_vec3_of(b.bid, f, v)?;
+            Ok(true)
+        }
+        None => Ok(false),
+    }
+}
+
+/// `State.__setattr__(self, name, value)`: a plain Vector3 (of floats) into pos/vel/angVel/inertia of a
+/// bound state goes straight into the scene, the effect of `Serializable._assign` (convert, store,
+/// `_changed`; the bound state reads these from the scene, so no copy is stored); everything else is
+/// `type(self)._slow_setattr(self, name, value)`, the generic path.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL method of `StateBase` (`slf` is a StateBase instance, checked
+/// by the method descriptor), GIL held.
+unsafe extern "C" fn state_setattr(
+    slf: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+) -> *mut ffi::PyObject {
+    let py = Python::assume_gil_acquired();
+    let fast = STATE_SETATTR.load(std::sync::atomic::Ordering::Acquire);
+    if nargs == 2 && !fast.is_null() {
+        if let Some((tp, offs)) = &(*fast).vector3 {
+            let (name, value) = (*args, *args.offset(1));
+            // attribute names reach tp_setattro interned (PyObject_SetAttr interns them)
+            if ffi::Py_TYPE(value) == tp.as_ptr() as *mut ffi::PyTypeObject {
+                if let Some(k) = (*fast).names.iter().position(|n| n.as_ptr() == name) {
+                    if let Some(v) = plain_vector3_floats(value, offs) {
+                        let st = Bound::from_borrowed_ptr(py, slf)
+                            .downcast_into_unchecked::<StateBase>();
+                        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                            state_store(&st, FAST_FIELDS[k].1, v)
+                        }));
+                        match r {
+                            Ok(Ok(true)) => return py.None().into_ptr(),
+                            Ok(Ok(false)) => {}
+                            Ok(Err(e)) => {
+                                e.restore(py);
+                                return std::ptr::null_mut();
+                            }
+                            Err(_) => {
+                                PyRuntimeError::new_err("internal: panic in State.__setattr__")
+                                    .restore(py);
+                                return std::ptr::null_mut();
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // the generic path: type(slf)._slow_setattr(slf, *args)
+    let f = ffi::PyObject_GetAttrString(
+        ffi::Py_TYPE(slf) as *mut ffi::PyObject,
+        c"_slow_setattr".as_ptr(),
+    );
+    if f.is_null() {
+        return f;
+    }
+    let t = ffi::PyTuple_New(nargs + 1);
+    if t.is_null() {
+        ffi::Py_DECREF(f);
+        return t;
+    }
+    ffi::Py_INCREF(slf);
+    ffi::PyTuple_SetItem(t, 0, slf);
+    for k in 0..nargs {
+        let a = *args.offset(k);
+        ffi::Py_INCREF(a);
+        ffi::PyTuple_SetItem(t, k + 1, a);
+    }
+    let r = ffi::PyObject_Call(f, t, std::ptr::null_mut());
+    ffi::Py_DECREF(t);
+    ffi::Py_DECREF(f);
+    r
+}
+
+/// `_state_setattr(Vector3)`: the method descriptor of `StateBase` calling `state_setattr`, for
+/// `State.__setattr__` (`State._slow_setattr` must be the generic one); plain values of `Vector3`
+/// are stored directly when its slots can be located.
+#[pyfunction]
+fn _state_setattr(py: Python<'_>, vector3: &Bound<'_, PyType>) -> PyResult<PyObject> {
+    let names = FAST_FIELDS.map(|(n, _)| PyString::intern(py, n).unbind());
+    let vector3 = Vec3Type::new(vector3)?
+        .slots
+        .map(|o| (vector3.clone().unbind(), o));
+    STATE_SETATTR.store(
+        Box::into_raw(Box::new(StateSetattr { names, vector3 })),
+        std::sync::atomic::Ordering::Release,
+    );
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: c"__setattr__".as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFast: state_setattr,
+        },
+        ml_flags: ffi::METH_FASTCALL,
+        ml_doc: c"State.__setattr__ (yade._ryade.state_setattr; the generic path is _slow_setattr)"
+            .as_ptr(),
+    }));
+    let tp = py.get_type::<StateBase>();
+    // SAFETY: a method descriptor of StateBase over a PyMethodDef that lives forever
+    unsafe {
+        Ok(
+            Bound::from_owned_ptr_or_err(py, ffi::PyDescr_NewMethod(tp.as_type_ptr(), def))?
+                .unbind(),
+        )
+    }
+}
+
 /// Base class of `yade._core.Omega` (`O`): `O.iter` and `O.time`, read every step by controllers, are
 /// read here from the scene without a Python frame.
 #[pyclass(subclass, module = "yade._ryade")]
@@ -431,7 +553,7 @@ impl OmegaBase {
 }
 
 /// Base class of `yade._core.State` holding what its hot paths need without Python code: the scene
-/// (`Sim`) and the body id once the body is in `O.bodies`. `State.__setattr__` is `_rs_setattr`
+/// (`Sim`) and the body id once the body is in `O.bodies`. `State.__setattr__` is `state_setattr`
 /// (a Vector3 stored into pos/vel/angVel/inertia of a bound state goes straight to the scene; every
 /// other assignment is `State._slow_setattr`, the generic path); `pos`, `vel`, `angVel` are read here.
 #[pyclass(subclass, module = "yade._ryade")]
@@ -483,39 +605,6 @@ impl StateBase {
     fn _rs_bind(&mut self, sim: Py<Sim>, bid: usize) {
         self.sim = Some(sim);
         self.bid = bid;
-    }
-    /// `State.__setattr__`: the effect of `Serializable._assign` (convert, store, `_changed`) for a
-    /// plain Vector3 into pos/vel/angVel/inertia of a bound state (the bound state reads these from
-    /// the scene, so the stored copy is not kept); `State._slow_setattr` for everything else.
-    fn _rs_setattr(
-        slf: &Bound<'_, Self>,
-        name: &Bound<'_, PyString>,
-        value: &Bound<'_, PyAny>,
-    ) -> PyResult<()> {
-        let py = slf.py();
-        {
-            let b = slf.borrow();
-            if let Some(sim) = &b.sim {
-                let field = match name.to_str()? {
-                    "pos" => Some(VecField::Pos),
-                    "vel" => Some(VecField::Vel),
-                    "angVel" => Some(VecField::AngVel),
-                    "inertia" => Some(VecField::Inertia),
-                    _ => None,
-                };
-                if let Some(field) = field {
-                    let sim = sim.bind(py);
-                    let v = sim.borrow().vector3_type()?.floats_of(value)?;
-                    if let Some(v) = v {
-                        return sim.borrow_mut().set_vec3_of(b.bid, field, v);
-                    }
-                }
-            }
-        }
-        slf.get_type()
-            .getattr(intern!(py, "_slow_setattr"))?
-            .call1((slf, name, value))?;
-        Ok(())
     }
     /// `State.pos`: a copy (YADE computes it from se3).
     #[getter]
@@ -1579,6 +1668,7 @@ fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<OmegaBase>()?;
     m.add_class::<FieldAccess>()?;
     m.add_function(wrap_pyfunction!(_install_vector_getitem, m)?)?;
+    m.add_function(wrap_pyfunction!(_state_setattr, m)?)?;
     m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(make_cloud, m)?)?;

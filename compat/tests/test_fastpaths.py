@@ -28,7 +28,7 @@ def test_the_fast_paths_are_in_use():
     _scene()
     # the Vector3 slots were found, so values are built and read without getattr/setattr
     assert O._sim._vector3_slots_found()
-    assert State.__setattr__ is _ryade.StateBase._rs_setattr and isinstance(State(), _ryade.StateBase)
+    assert type(State.__dict__['__setattr__']).__name__ == 'method_descriptor' and isinstance(State(), _ryade.StateBase)
     assert O.forces.f == O._sim.force_vec
 
 
@@ -155,3 +155,23 @@ def test_vector3_getitem_in_c_keeps_minieigen_semantics():
     assert v[1] == 7.0
     v += Vector3(1, 1, 1)
     assert (v[0], v[1], v[2]) == (2.0, 8.0, 4.5)
+
+
+def test_direct_state_store_edge_cases():
+    f, s = _scene()
+    st = O.bodies[s].state
+    v = Vector3(0, 0, 1.0)
+    v._v[2] = 2                            # not a float: the generic path converts it
+    st.vel = v
+    assert O._sim.get_vec3(s, 'vel') == (0.0, 0.0, 2.0) and type(st.vel[2]) is float
+    setattr(st, 'v' + 'el', Vector3(0, 0, 3.0))   # a name built at run time
+    assert st.vel[2] == 3.0
+    st.__setattr__('angVel', Vector3(1.0, 0, 0))
+    assert tuple(O.bodies[s].state.angVel) == (1.0, 0.0, 0.0)
+    with pytest.raises(TypeError):
+        State.__setattr__(st, 'vel')
+    O.reset()                              # the old body's state now points past the (empty) scene
+    with pytest.raises(IndexError):
+        st.vel = Vector3(0, 0, 1.0)
+    with pytest.raises(IndexError):
+        st.vel

@@ -175,7 +175,7 @@ class State(Serializable, _ryade.StateBase):
               'refPos': (0.0, 0.0, 0.0), 'refOri': (1.0, 0.0, 0.0, 0.0), 'angMom': (0.0, 0.0, 0.0),
               'densityScaling': -1.0}
 
-    __setattr__ = _ryade.StateBase._rs_setattr
+    __setattr__ = _ryade._state_setattr(Vector3)
     _slow_setattr = Serializable.__setattr__
 
     def _bind(self, omega, body_id):
