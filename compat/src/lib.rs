@@ -177,6 +177,63 @@ impl Vec3Type {
     }
 }
 
+/// `f(first, *args, **kw)` from a METH_FASTCALL argument vector (`nargs` positional arguments at
+/// `args`, then one value per name in the `kwnames` tuple, or none when it is NULL); `f` is
+/// consumed. Returns a new reference, NULL with the exception set on failure.
+///
+/// # Safety
+/// GIL held; `f` a new reference (or NULL with an exception set), `first` NULL or a borrowed object,
+/// `args`/`nargs`/`kwnames` as CPython passes them to a METH_FASTCALL function.
+unsafe fn call_fastcall(
+    f: *mut ffi::PyObject,
+    first: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+    kwnames: *mut ffi::PyObject,
+) -> *mut ffi::PyObject {
+    if f.is_null() {
+        return f;
+    }
+    let lead = if first.is_null() { 0 } else { 1 };
+    let t = ffi::PyTuple_New(nargs + lead);
+    if t.is_null() {
+        ffi::Py_DECREF(f);
+        return t;
+    }
+    if lead == 1 {
+        ffi::Py_INCREF(first);
+        ffi::PyTuple_SetItem(t, 0, first);
+    }
+    for k in 0..nargs {
+        let a = *args.offset(k);
+        ffi::Py_INCREF(a);
+        ffi::PyTuple_SetItem(t, k + lead, a);
+    }
+    let mut kw = std::ptr::null_mut();
+    if !kwnames.is_null() {
+        kw = ffi::PyDict_New();
+        let ok = !kw.is_null()
+            && (0..ffi::PyTuple_Size(kwnames)).all(|k| {
+                ffi::PyDict_SetItem(
+                    kw,
+                    ffi::PyTuple_GetItem(kwnames, k),
+                    *args.offset(nargs + k),
+                ) == 0
+            });
+        if !ok {
+            ffi::Py_XDECREF(kw);
+            ffi::Py_DECREF(t);
+            ffi::Py_DECREF(f);
+            return std::ptr::null_mut();
+        }
+    }
+    let r = ffi::PyObject_Call(f, t, kw);
+    ffi::Py_XDECREF(kw);
+    ffi::Py_DECREF(t);
+    ffi::Py_DECREF(f);
+    r
+}
+
 // ---- Vector3.__getitem__ in C
 
 /// The classes whose `__getitem__` is `vector_getitem` (a class object, kept alive so that its
@@ -248,25 +305,7 @@ unsafe extern "C" fn vector_getitem(
         ffi::Py_TYPE(slf) as *mut ffi::PyObject,
         c"_py_getitem".as_ptr(),
     );
-    if f.is_null() {
-        return f;
-    }
-    let t = ffi::PyTuple_New(nargs + 1);
-    if t.is_null() {
-        ffi::Py_DECREF(f);
-        return t;
-    }
-    ffi::Py_INCREF(slf);
-    ffi::PyTuple_SetItem(t, 0, slf);
-    for k in 0..nargs {
-        let a = *args.offset(k);
-        ffi::Py_INCREF(a);
-        ffi::PyTuple_SetItem(t, k + 1, a);
-    }
-    let r = ffi::PyObject_Call(f, t, std::ptr::null_mut());
-    ffi::Py_DECREF(t);
-    ffi::Py_DECREF(f);
-    r
+    call_fastcall(f, slf, args, nargs, std::ptr::null_mut())
 }
 
 /// `_install_vector_getitem(cls, n)`: a method descriptor calling `vector_getitem`, for
@@ -348,6 +387,82 @@ impl FieldAccess {
                 n
             ))),
         }
+    }
+}
+
+// ---- O.forces.f / O.forces.t in C
+
+/// `O.forces.f(id, sync=False)` (TORQUE false) or `O.forces.t(id, sync=False)`, bound to the `Sim`:
+/// for one exact non-negative int the Vector3 is built here; any other call (keywords, other types,
+/// errors) is `Sim.force_vec` / `Sim.torque_vec` with the same arguments.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL | METH_KEYWORDS function whose self is a `Sim`, GIL held.
+unsafe extern "C" fn sim_force<const TORQUE: bool>(
+    slf: *mut ffi::PyObject,
+    args: *const *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+    kwnames: *mut ffi::PyObject,
+) -> *mut ffi::PyObject {
+    let py = Python::assume_gil_acquired();
+    if nargs == 1 && kwnames.is_null() && ffi::PyLong_CheckExact(*args) != 0 {
+        let id = ffi::PyLong_AsSsize_t(*args);
+        if id >= 0 {
+            let sim = Bound::from_borrowed_ptr(py, slf).downcast_into_unchecked::<Sim>();
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
+                || -> PyResult<Bound<'_, PyAny>> {
+                    let s = sim.try_borrow()?;
+                    let v = if TORQUE {
+                        s.torque(id as usize)?
+                    } else {
+                        s.force(id as usize)?
+                    };
+                    s.vector3_type()?.plain(py, v)
+                },
+            ));
+            return match r {
+                Ok(Ok(v)) => v.into_ptr(),
+                Ok(Err(e)) => {
+                    e.restore(py);
+                    std::ptr::null_mut()
+                }
+                Err(_) => {
+                    PyRuntimeError::new_err("internal: panic in O.forces").restore(py);
+                    std::ptr::null_mut()
+                }
+            };
+        }
+        ffi::PyErr_Clear(); // -1 for an overflow: the method below raises the error
+    }
+    let name = if TORQUE { c"torque_vec" } else { c"force_vec" };
+    let f = ffi::PyObject_GetAttrString(slf, name.as_ptr());
+    call_fastcall(f, std::ptr::null_mut(), args as *mut _, nargs, kwnames)
+}
+
+/// `_forces_accessor(sim, torque)`: `sim_force` bound to `sim`, for `O.forces.f` (`O.forces.t` when
+/// `torque`).
+#[pyfunction]
+fn _forces_accessor(py: Python<'_>, sim: &Bound<'_, Sim>, torque: bool) -> PyResult<PyObject> {
+    let (name, meth): (&'static std::ffi::CStr, ffi::PyCFunctionFastWithKeywords) = if torque {
+        (c"t", sim_force::<true>)
+    } else {
+        (c"f", sim_force::<false>)
+    };
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: name.as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFastWithKeywords: meth,
+        },
+        ml_flags: ffi::METH_FASTCALL | ffi::METH_KEYWORDS,
+        ml_doc: c"O.forces.f(id, sync=False) / O.forces.t(id, sync=False): a new Vector3".as_ptr(),
+    }));
+    // SAFETY: a builtin function bound to `sim` over a PyMethodDef that lives forever
+    unsafe {
+        Ok(Bound::from_owned_ptr_or_err(
+            py,
+            ffi::PyCFunction_NewEx(def, sim.as_ptr(), std::ptr::null_mut()),
+        )?
+        .unbind())
     }
 }
 
@@ -459,25 +574,7 @@ unsafe extern "C" fn state_setattr(
         ffi::Py_TYPE(slf) as *mut ffi::PyObject,
         c"_slow_setattr".as_ptr(),
     );
-    if f.is_null() {
-        return f;
-    }
-    let t = ffi::PyTuple_New(nargs + 1);
-    if t.is_null() {
-        ffi::Py_DECREF(f);
-        return t;
-    }
-    ffi::Py_INCREF(slf);
-    ffi::PyTuple_SetItem(t, 0, slf);
-    for k in 0..nargs {
-        let a = *args.offset(k);
-        ffi::Py_INCREF(a);
-        ffi::PyTuple_SetItem(t, k + 1, a);
-    }
-    let r = ffi::PyObject_Call(f, t, std::ptr::null_mut());
-    ffi::Py_DECREF(t);
-    ffi::Py_DECREF(f);
-    r
+    call_fastcall(f, slf, args, nargs, std::ptr::null_mut())
 }
 
 /// `_state_setattr(Vector3)`: the method descriptor of `StateBase` calling `state_setattr`, for
@@ -1669,6 +1766,7 @@ fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<FieldAccess>()?;
     m.add_function(wrap_pyfunction!(_install_vector_getitem, m)?)?;
     m.add_function(wrap_pyfunction!(_state_setattr, m)?)?;
+    m.add_function(wrap_pyfunction!(_forces_accessor, m)?)?;
     m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(make_cloud, m)?)?;

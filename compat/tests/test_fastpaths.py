@@ -29,7 +29,7 @@ def test_the_fast_paths_are_in_use():
     # the Vector3 slots were found, so values are built and read without getattr/setattr
     assert O._sim._vector3_slots_found()
     assert type(State.__dict__['__setattr__']).__name__ == 'method_descriptor' and isinstance(State(), _ryade.StateBase)
-    assert O.forces.f == O._sim.force_vec
+    assert O.forces.f.__self__ is O._sim and O.forces.f.__name__ == 'f' and O.forces.t.__name__ == 't'
 
 
 def test_forces_and_cached_body_velocity_match_yade():
@@ -99,6 +99,18 @@ def test_assignments_other_than_a_plain_vector3_take_the_generic_path():
         b.state.se3
     with pytest.raises(IndexError):
         O.forces.f(99)
+    with pytest.raises(IndexError):
+        O.forces.t(99, sync=True)
+    with pytest.raises(OverflowError):
+        O.forces.f(-1)
+    with pytest.raises(TypeError):
+        O.forces.f(1.0)
+    with pytest.raises(TypeError):
+        O.forces.f(s, bogus=1)
+    with pytest.raises(TypeError):
+        O.forces.f()
+    assert O.forces.f(s, True) == O.forces.f(s) == O.forces.f(id=s, sync=False) and O.forces.t(id=s) == Vector3(0, 0, 0)
+    assert O.forces.f(True) == O.forces.f(1)   # a bool is an int (the generic path)
 
 
 def test_unbound_state_and_body_state_attribute():

@@ -673,10 +673,11 @@ class InteractionContainer(object):
 class ForceContainer(object):
     def __init__(self, omega):
         self._o = omega
-        # read every step by controllers: the Rust methods that build the Vector3 themselves (the
-        # instance attributes hide the Python definitions below, which say the same)
-        self.f = omega._sim.force_vec
-        self.t = omega._sim.torque_vec
+        # read every step by controllers: C functions bound to the scene that build the Vector3
+        # themselves (Sim.force_vec/torque_vec for anything but f(id)); the instance attributes hide
+        # the Python definitions below, which say the same
+        self.f = _ryade._forces_accessor(omega._sim, False)
+        self.t = _ryade._forces_accessor(omega._sim, True)
 
     def f(self, bid, sync=False):
         return Vector3._new(list(self._o._sim.force(bid)))
