@@ -187,3 +187,16 @@ def test_direct_state_store_edge_cases():
         st.vel = Vector3(0, 0, 1.0)
     with pytest.raises(IndexError):
         st.vel
+
+
+def test_state_copy_and_pickle():
+    import copy
+    import pickle
+    st = State()
+    st.vel = Vector3(1, 2, 3)
+    assert repr(pickle.loads(pickle.dumps(st)).vel) == 'Vector3(1,2,3)'
+    assert repr(copy.deepcopy(st).vel) == 'Vector3(1,2,3)'
+    f, s = _scene()
+    c = copy.copy(O.bodies[s].state)       # a bound state's copy is a view of the same body
+    c.vel = Vector3(0, 0, 5.0)
+    assert O.bodies[s].state.vel[2] == 5.0 and c.pos[2] == O.bodies[s].state.pos[2]

@@ -182,6 +182,16 @@ class State(Serializable, _ryade.StateBase):
         object.__setattr__(self, '_owner', (omega, body_id))
         self._rs_bind(omega._sim, body_id)
 
+    # copy/pickle: the Python attributes (the Rust base's binding is re-made from _owner)
+    def __getstate__(self):
+        return self.__dict__
+
+    def __setstate__(self, d):
+        self.__dict__.update(d)
+        o = d.get('_owner')
+        if o is not None:
+            self._rs_bind(o[0]._sim, o[1])
+
     def _convert(self, k, v):
         if k in _STATE_VEC or k in ('refPos', 'angMom'):
             return to_vec3(v, 'State.' + k)
