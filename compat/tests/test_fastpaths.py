@@ -1,8 +1,9 @@
 """The Rust fast paths behind a PyRunner controller's hot statements (`O.forces.f(i)`, `b.state.vel = v`
 on a cached Body, `O.bodies[i].state.vel[2]`, `state.pos[2]`, `O.iter`): the values are the ones YADE
-2023.02a printed for the same statements (`yade -n -x`, the script is in this file's history: a sphere
+2023.02a printed for the same statements (`yade -n -x data/scripts/fastpaths_yade_ref.py`: a sphere
 resting on a facet, the facet moved by setting its velocity), and everything the generic paths did
-(conversions, live views, errors naming the class, attribute and script line) still holds."""
+(conversions, live views, errors naming the class, attribute and script line) still holds. The costs per
+operation in both engines: data/scripts/controller_ops_bench.py."""
 import pytest
 
 from yade import (O, utils, FrictMat, State, Body, Sphere, Vector3, ForceResetter, InsertionSortCollider, InteractionLoop,
