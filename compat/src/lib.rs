@@ -5,8 +5,10 @@
 //! (`b.state.vel[2] = 0.1`) on top. A step is driven in segments (`advance`) so that Python engines
 //! (PyRunner) run between built-in engines without holding a borrow of the scene.
 
-use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyIndexError, PyKeyError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple, PyType};
+use pyo3::{ffi, intern};
 use ryade::io::scene_json;
 use ryade::math::{Quat, Vec3};
 use ryade::scene::{Engine, Scene};
@@ -28,12 +30,694 @@ fn err<E: std::fmt::Display>(e: E) -> PyErr {
     PyRuntimeError::new_err(format!("{:#}", e))
 }
 
-#[pyclass(unsendable)]
+#[pyclass]
 struct Sim {
     scene: Scene,
     saved: HashMap<String, Scene>,
     /// Next engine to run in the step in progress (None: between steps).
     cursor: Option<usize>,
+    /// `yade.minieigen.Vector3`, for the values built here (`_set_vector3`).
+    vector3: Option<Vec3Type>,
+}
+
+/// The per-body vector fields of `State` addressed by the fast paths.
+#[derive(Clone, Copy)]
+enum VecField {
+    Pos,
+    Vel,
+    AngVel,
+    Inertia,
+    AngMom,
+}
+
+impl VecField {
+    fn parse(name: &str) -> Option<VecField> {
+        Some(match name {
+            "pos" => VecField::Pos,
+            "vel" => VecField::Vel,
+            "angVel" => VecField::AngVel,
+            "inertia" => VecField::Inertia,
+            "angMom" => VecField::AngMom,
+            _ => return None,
+        })
+    }
+    fn no_such(name: &str) -> PyErr {
+        PyKeyError::new_err(format!("State has no vector attribute '{}' in ryade", name))
+    }
+}
+
+/// `yade.minieigen.Vector3`, the pure-Python class of the values the fast paths make and read, with
+/// where its three slots (`_v` the coefficient list or None for a view, `_g`/`_s` a view's getter and
+/// setter or None) lie in an instance. The offsets are found at run time (`Vec3Type::new`) by
+/// storing marker objects through the slots' own descriptors and looking for them; a layout that
+/// does not match (a `__dict__`, a slot missing or found twice) leaves them unset and every access
+/// then goes through getattr/setattr.
+struct Vec3Type {
+    tp: Py<PyType>,
+    slots: Option<[isize; 3]>,
+}
+
+const V: usize = 0;
+const G: usize = 1;
+const SLOT_NAMES: [&str; 3] = ["_v", "_g", "_s"];
+
+/// A new, zero-filled, unset instance of the Python class `tp` (what `object.__new__(tp)` makes).
+fn alloc_instance<'py>(tp: &Bound<'py, PyType>) -> PyResult<Bound<'py, PyAny>> {
+    // SAFETY: PyType_GenericAlloc is the tp_alloc of a Python class; it returns a new reference
+    // (NULL with an exception set on failure), which from_owned_ptr_or_err takes over.
+    unsafe { Bound::from_owned_ptr_or_err(tp.py(), ffi::PyType_GenericAlloc(tp.as_type_ptr(), 0)) }
+}
+
+impl Vec3Type {
+    fn new(tp: &Bound<'_, PyType>) -> PyResult<Vec3Type> {
+        let py = tp.py();
+        let basic: isize = tp.getattr("__basicsize__")?.extract()?;
+        let dict: isize = tp.getattr("__dictoffset__")?.extract()?;
+        let mut slots = None;
+        if dict == 0 {
+            let obj = alloc_instance(tp)?;
+            let marks = [PyList::empty(py), PyList::empty(py), PyList::empty(py)];
+            for (name, m) in SLOT_NAMES.iter().zip(&marks) {
+                obj.setattr(*name, m)?;
+            }
+            let word = std::mem::size_of::<*mut ffi::PyObject>() as isize;
+            let head = std::mem::size_of::<ffi::PyObject>() as isize;
+            let mut found = [None; 3];
+            let mut ok = true;
+            let mut off = head;
+            while off + word <= basic {
+                // SAFETY: off + word <= tp_basicsize: a word of the instance's memory
+                let p = unsafe {
+                    *(obj.as_ptr() as *const u8)
+                        .offset(off)
+                        .cast::<*mut ffi::PyObject>()
+                };
+                for (k, m) in marks.iter().enumerate() {
+                    if p == m.as_ptr() {
+                        ok &= found[k].replace(off).is_none();
+                    }
+                }
+                off += word;
+            }
+            if let (true, [Some(v), Some(g), Some(s)]) = (ok, found) {
+                slots = Some([v, g, s]);
+            }
+        }
+        Ok(Vec3Type {
+            tp: tp.clone().unbind(),
+            slots,
+        })
+    }
+
+    /// A new instance with its slots `_v`, `_g`, `_s` set to `vals` (consumed).
+    fn make<'py>(
+        &self,
+        py: Python<'py>,
+        vals: [Bound<'py, PyAny>; 3],
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let obj = alloc_instance(self.tp.bind(py))?;
+        match self.slots {
+            Some(offs) => {
+                for (off, v) in offs.iter().zip(vals) {
+                    // SAFETY: a slot of a fresh instance (NULL, nothing to release), found by Vec3Type::new;
+                    // the slot takes over the reference
+                    unsafe {
+                        *(obj.as_ptr() as *mut u8)
+                            .offset(*off)
+                            .cast::<*mut ffi::PyObject>() = v.into_ptr()
+                    };
+                }
+            }
+            None => {
+                for (name, v) in SLOT_NAMES.iter().zip(vals) {
+                    obj.setattr(*name, v)?;
+                }
+            }
+        }
+        Ok(obj)
+    }
+
+    /// A new Vector3 holding `v`: what `Vector3._new([x, y, z])` makes, without running Python code.
+    fn plain<'py>(&self, py: Python<'py>, v: V3) -> PyResult<Bound<'py, PyAny>> {
+        self.make(
+            py,
+            [
+                PyList::new(py, [v.0, v.1, v.2])?.into_any(),
+                py.None().into_bound(py),
+                py.None().into_bound(py),
+            ],
+        )
+    }
+
+    /// A live Vector3 view of a body's vector field (what `Vector3._view(get, set)` makes): its `_g`
+    /// and `_s` are one `FieldAccess`.
+    fn view<'py>(&self, py: Python<'py>, acc: FieldAccess) -> PyResult<Bound<'py, PyAny>> {
+        let acc = Bound::new(py, acc)?.into_any();
+        self.make(py, [py.None().into_bound(py), acc.clone(), acc])
+    }
+}
+
+/// `f(first, *args, **kw)` from a METH_FASTCALL argument vector (`nargs` positional arguments at
+/// `args`, then one value per name in the `kwnames` tuple, or none when it is NULL); `f` is
+/// consumed. Returns a new reference, NULL with the exception set on failure.
+///
+/// # Safety
+/// GIL held; `f` a new reference (or NULL with an exception set), `first` NULL or a borrowed object,
+/// `args`/`nargs`/`kwnames` as CPython passes them to a METH_FASTCALL function.
+unsafe fn call_fastcall(
+    f: *mut ffi::PyObject,
+    first: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+    kwnames: *mut ffi::PyObject,
+) -> *mut ffi::PyObject {
+    if f.is_null() {
+        return f;
+    }
+    let lead = if first.is_null() { 0 } else { 1 };
+    let t = ffi::PyTuple_New(nargs + lead);
+    if t.is_null() {
+        ffi::Py_DECREF(f);
+        return t;
+    }
+    if lead == 1 {
+        ffi::Py_INCREF(first);
+        ffi::PyTuple_SetItem(t, 0, first);
+    }
+    for k in 0..nargs {
+        let a = *args.offset(k);
+        ffi::Py_INCREF(a);
+        ffi::PyTuple_SetItem(t, k + lead, a);
+    }
+    let mut kw = std::ptr::null_mut();
+    if !kwnames.is_null() {
+        kw = ffi::PyDict_New();
+        let ok = !kw.is_null()
+            && (0..ffi::PyTuple_Size(kwnames)).all(|k| {
+                ffi::PyDict_SetItem(
+                    kw,
+                    ffi::PyTuple_GetItem(kwnames, k),
+                    *args.offset(nargs + k),
+                ) == 0
+            });
+        if !ok {
+            ffi::Py_XDECREF(kw);
+            ffi::Py_DECREF(t);
+            ffi::Py_DECREF(f);
+            return std::ptr::null_mut();
+        }
+    }
+    let r = ffi::PyObject_Call(f, t, kw);
+    ffi::Py_XDECREF(kw);
+    ffi::Py_DECREF(t);
+    ffi::Py_DECREF(f);
+    r
+}
+
+// ---- Vector3.__getitem__ in C
+
+/// The classes whose `__getitem__` is `vector_getitem` (a class object, kept alive so that its
+/// address is never reused, with its slot offsets and length). Appended to by
+/// `_install_vector_getitem` (a new list replaces the old one, which is leaked: a few per process);
+/// read by `vector_getitem` with the GIL held.
+type GetitemClasses = Vec<(Py<PyType>, [isize; 3], isize)>;
+static GETITEM_CLASSES: std::sync::atomic::AtomicPtr<GetitemClasses> =
+    std::sync::atomic::AtomicPtr::new(std::ptr::null_mut());
+
+/// Slot `off` of `obj` (borrowed; NULL when unset).
+///
+/// # Safety
+/// `obj` is an instance of a class whose slots lie at `off` (`Vec3Type::new`).
+unsafe fn slot_ptr(obj: *mut ffi::PyObject, off: isize) -> *mut ffi::PyObject {
+    *(obj as *const u8).offset(off).cast::<*mut ffi::PyObject>()
+}
+
+/// `__getitem__` of the registered vector classes, with their Python definition's effect: for an
+/// exact int `i` in `0..N`, `self._v[i]` (a plain value) or `self._g()[i]` (a view); anything else
+/// (negative or out-of-range indices, slices, subclass instances) calls the Python definition,
+/// `type(self)._py_getitem(self, i)`, which raises minieigen's errors.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL method (`slf`, `nargs` arguments at `args`), GIL held.
+unsafe extern "C" fn vector_getitem(
+    slf: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+) -> *mut ffi::PyObject {
+    let classes = GETITEM_CLASSES.load(std::sync::atomic::Ordering::Acquire);
+    if nargs == 1 && !classes.is_null() {
+        let i = *args;
+        let tp = ffi::Py_TYPE(slf);
+        if let Some((_, offs, n)) = (*classes)
+            .iter()
+            .find(|c| c.0.as_ptr() as *mut ffi::PyTypeObject == tp)
+        {
+            if ffi::PyLong_CheckExact(i) != 0 {
+                let mut overflow = 0;
+                let k = ffi::PyLong_AsLongAndOverflow(i, &mut overflow) as isize;
+                if overflow == 0 && (0..*n).contains(&k) {
+                    let g = slot_ptr(slf, offs[G]);
+                    let v = slot_ptr(slf, offs[V]);
+                    if g == ffi::Py_None()
+                        && !v.is_null()
+                        && ffi::PyList_CheckExact(v) != 0
+                        && ffi::PyList_Size(v) == *n
+                    {
+                        let item = ffi::PyList_GetItem(v, k);
+                        ffi::Py_INCREF(item);
+                        return item;
+                    }
+                    if !g.is_null() && g != ffi::Py_None() {
+                        let t = ffi::PyObject_CallNoArgs(g);
+                        if t.is_null() {
+                            return t;
+                        }
+                        let r = ffi::PyObject_GetItem(t, i);
+                        ffi::Py_DECREF(t);
+                        return r;
+                    }
+                }
+            }
+        }
+    }
+    // the Python definition: type(slf)._py_getitem(slf, *args)
+    let f = ffi::PyObject_GetAttrString(
+        ffi::Py_TYPE(slf) as *mut ffi::PyObject,
+        c"_py_getitem".as_ptr(),
+    );
+    call_fastcall(f, slf, args, nargs, std::ptr::null_mut())
+}
+
+/// `_install_vector_getitem(cls, n)`: a method descriptor calling `vector_getitem`, for
+/// `cls.__getitem__` (the Python definition must be kept as `cls._py_getitem`); `cls` is a
+/// minieigen vector class of length `n` with the slots `_v`, `_g`, `_s`. Returns None (and
+/// registers nothing) when those slots cannot be located.
+#[pyfunction]
+fn _install_vector_getitem(
+    py: Python<'_>,
+    cls: &Bound<'_, PyType>,
+    n: isize,
+) -> PyResult<PyObject> {
+    let Some(offs) = Vec3Type::new(cls)?.slots else {
+        return Ok(py.None());
+    };
+    // SAFETY: the list is only replaced (never freed) and read with the GIL held, which this holds
+    let old = GETITEM_CLASSES.load(std::sync::atomic::Ordering::Acquire);
+    let mut list: GetitemClasses = if old.is_null() {
+        Vec::new()
+    } else {
+        unsafe {
+            (*old)
+                .iter()
+                .map(|(t, o, n)| (t.clone_ref(py), *o, *n))
+                .collect()
+        }
+    };
+    list.push((cls.clone().unbind(), offs, n));
+    GETITEM_CLASSES.store(
+        Box::into_raw(Box::new(list)),
+        std::sync::atomic::Ordering::Release,
+    );
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: c"__getitem__".as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFast: vector_getitem,
+        },
+        ml_flags: ffi::METH_FASTCALL,
+        ml_doc: c"v[i] (yade._ryade.vector_getitem; the Python definition is _py_getitem)".as_ptr(),
+    }));
+    // SAFETY: a method descriptor of `object` (so that it applies to every instance; the function
+    // checks the class itself) over a PyMethodDef that lives forever
+    unsafe {
+        Ok(Bound::from_owned_ptr_or_err(
+            py,
+            ffi::PyDescr_NewMethod(std::ptr::addr_of_mut!(ffi::PyBaseObject_Type), def),
+        )?
+        .unbind())
+    }
+}
+
+/// `get()` / `set(tuple)` of a live vector view onto a body's field in the scene.
+#[pyclass(module = "yade._ryade")]
+struct FieldAccess {
+    sim: Py<Sim>,
+    bid: usize,
+    field: VecField,
+}
+
+#[pymethods]
+impl FieldAccess {
+    /// `acc()` returns the field as a 3-tuple; `acc(t)` stores the 3-tuple `t`.
+    #[pyo3(signature = (*args))]
+    fn __call__(&self, py: Python<'_>, args: &Bound<'_, PyTuple>) -> PyResult<Option<V3>> {
+        match args.len() {
+            0 => Ok(Some(
+                self.sim.bind(py).borrow().vec3_of(self.bid, self.field)?,
+            )),
+            1 => {
+                let t: V3 = args.get_item(0)?.extract()?;
+                self.sim
+                    .bind(py)
+                    .borrow_mut()
+                    .set_vec3_of(self.bid, self.field, t)?;
+                Ok(None)
+            }
+            n => Err(PyTypeError::new_err(format!(
+                "a vector view takes 0 (get) or 1 (set) arguments, got {}",
+                n
+            ))),
+        }
+    }
+}
+
+// ---- O.forces.f / O.forces.t in C
+
+/// `O.forces.f(id, sync=False)` (TORQUE false) or `O.forces.t(id, sync=False)`, bound to the `Sim`:
+/// for one exact non-negative int the Vector3 is built here; any other call (keywords, other types,
+/// errors) is `Sim.force_vec` / `Sim.torque_vec` with the same arguments.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL | METH_KEYWORDS function whose self is a `Sim`, GIL held.
+unsafe extern "C" fn sim_force<const TORQUE: bool>(
+    slf: *mut ffi::PyObject,
+    args: *const *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+    kwnames: *mut ffi::PyObject,
+) -> *mut ffi::PyObject {
+    let py = Python::assume_gil_acquired();
+    if nargs == 1 && kwnames.is_null() && ffi::PyLong_CheckExact(*args) != 0 {
+        let id = ffi::PyLong_AsSsize_t(*args);
+        if id >= 0 {
+            let sim = Bound::from_borrowed_ptr(py, slf).downcast_into_unchecked::<Sim>();
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
+                || -> PyResult<Bound<'_, PyAny>> {
+                    let s = sim.try_borrow()?;
+                    let v = if TORQUE {
+                        s.torque(id as usize)?
+                    } else {
+                        s.force(id as usize)?
+                    };
+                    s.vector3_type()?.plain(py, v)
+                },
+            ));
+            return match r {
+                Ok(Ok(v)) => v.into_ptr(),
+                Ok(Err(e)) => {
+                    e.restore(py);
+                    std::ptr::null_mut()
+                }
+                Err(_) => {
+                    PyRuntimeError::new_err("internal: panic in O.forces").restore(py);
+                    std::ptr::null_mut()
+                }
+            };
+        }
+        ffi::PyErr_Clear(); // -1 for an overflow: the method below raises the error
+    }
+    let name = if TORQUE { c"torque_vec" } else { c"force_vec" };
+    let f = ffi::PyObject_GetAttrString(slf, name.as_ptr());
+    call_fastcall(f, std::ptr::null_mut(), args as *mut _, nargs, kwnames)
+}
+
+/// `_forces_accessor(sim, torque)`: `sim_force` bound to `sim`, for `O.forces.f` (`O.forces.t` when
+/// `torque`).
+#[pyfunction]
+fn _forces_accessor(py: Python<'_>, sim: &Bound<'_, Sim>, torque: bool) -> PyResult<PyObject> {
+    let (name, meth): (&'static std::ffi::CStr, ffi::PyCFunctionFastWithKeywords) = if torque {
+        (c"t", sim_force::<true>)
+    } else {
+        (c"f", sim_force::<false>)
+    };
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: name.as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFastWithKeywords: meth,
+        },
+        ml_flags: ffi::METH_FASTCALL | ffi::METH_KEYWORDS,
+        ml_doc: c"O.forces.f(id, sync=False) / O.forces.t(id, sync=False): a new Vector3".as_ptr(),
+    }));
+    // SAFETY: a builtin function bound to `sim` over a PyMethodDef that lives forever
+    unsafe {
+        Ok(Bound::from_owned_ptr_or_err(
+            py,
+            ffi::PyCFunction_NewEx(def, sim.as_ptr(), std::ptr::null_mut()),
+        )?
+        .unbind())
+    }
+}
+
+// ---- State.__setattr__ in C
+
+/// What `state_setattr` compares with: the interned names of the vector fields it stores directly (in
+/// `FAST_FIELDS` order) and the Vector3 class with its slot offsets (None: never direct).
+struct StateSetattr {
+    names: [Py<PyString>; 4],
+    vector3: Option<(Py<PyType>, [isize; 3])>,
+}
+
+const FAST_FIELDS: [(&str, VecField); 4] = [
+    ("pos", VecField::Pos),
+    ("vel", VecField::Vel),
+    ("angVel", VecField::AngVel),
+    ("inertia", VecField::Inertia),
+];
+
+/// Set once by `_state_setattr` (a second call replaces it; the old one is leaked), read with the GIL.
+static STATE_SETATTR: std::sync::atomic::AtomicPtr<StateSetattr> =
+    std::sync::atomic::AtomicPtr::new(std::ptr::null_mut());
+
+/// The 3 coefficients of `value` if it is a plain (`_g is None`) Vector3 holding a list of 3 floats.
+///
+/// # Safety
+/// `value` is an instance of the Vector3 class whose slots lie at `offs`; GIL held.
+unsafe fn plain_vector3_floats(value: *mut ffi::PyObject, offs: &[isize; 3]) -> Option<V3> {
+    if slot_ptr(value, offs[G]) != ffi::Py_None() {
+        return None;
+    }
+    let v = slot_ptr(value, offs[V]);
+    if v.is_null() || ffi::PyList_CheckExact(v) == 0 || ffi::PyList_Size(v) != 3 {
+        return None;
+    }
+    let mut out = [0.0; 3];
+    for (k, o) in out.iter_mut().enumerate() {
+        let x = ffi::PyList_GetItem(v, k as ffi::Py_ssize_t);
+        // Vector3 keeps floats (its constructors convert); anything else takes the generic path
+        if ffi::PyFloat_CheckExact(x) == 0 {
+            return None;
+        }
+        *o = ffi::PyFloat_AsDouble(x);
+    }
+    Some((out[0], out[1], out[2]))
+}
+
+/// Store `v` into field `f` of the body a bound state belongs to; false for an unbound state.
+fn state_store(st: &Bound<'_, StateBase>, f: VecField, v: V3) -> PyResult<bool> {
+    let b = st.try_borrow()?;
+    match &b.sim {
+        Some(sim) => {
+            sim.bind(st.py())
+                .try_borrow_mut()?
+                .set_vec3_of(b.bid, f, v)?;
+            Ok(true)
+        }
+        None => Ok(false),
+    }
+}
+
+/// `State.__setattr__(self, name, value)`: a plain Vector3 (of floats) into pos/vel/angVel/inertia of a
+/// bound state goes straight into the scene, the effect of `Serializable._assign` (convert, store,
+/// `_changed`; the bound state reads these from the scene, so no copy is stored); everything else is
+/// `type(self)._slow_setattr(self, name, value)`, the generic path.
+///
+/// # Safety
+/// Called by CPython as a METH_FASTCALL method of `StateBase` (`slf` is a StateBase instance, checked
+/// by the method descriptor), GIL held.
+unsafe extern "C" fn state_setattr(
+    slf: *mut ffi::PyObject,
+    args: *mut *mut ffi::PyObject,
+    nargs: ffi::Py_ssize_t,
+) -> *mut ffi::PyObject {
+    let py = Python::assume_gil_acquired();
+    let fast = STATE_SETATTR.load(std::sync::atomic::Ordering::Acquire);
+    if nargs == 2 && !fast.is_null() {
+        if let Some((tp, offs)) = &(*fast).vector3 {
+            let (name, value) = (*args, *args.offset(1));
+            // attribute names reach tp_setattro interned (PyObject_SetAttr interns them)
+            if ffi::Py_TYPE(value) == tp.as_ptr() as *mut ffi::PyTypeObject {
+                if let Some(k) = (*fast).names.iter().position(|n| n.as_ptr() == name) {
+                    if let Some(v) = plain_vector3_floats(value, offs) {
+                        let st = Bound::from_borrowed_ptr(py, slf)
+                            .downcast_into_unchecked::<StateBase>();
+                        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                            state_store(&st, FAST_FIELDS[k].1, v)
+                        }));
+                        match r {
+                            Ok(Ok(true)) => return py.None().into_ptr(),
+                            Ok(Ok(false)) => {}
+                            Ok(Err(e)) => {
+                                e.restore(py);
+                                return std::ptr::null_mut();
+                            }
+                            Err(_) => {
+                                PyRuntimeError::new_err("internal: panic in State.__setattr__")
+                                    .restore(py);
+                                return std::ptr::null_mut();
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // the generic path: type(slf)._slow_setattr(slf, *args)
+    let f = ffi::PyObject_GetAttrString(
+        ffi::Py_TYPE(slf) as *mut ffi::PyObject,
+        c"_slow_setattr".as_ptr(),
+    );
+    call_fastcall(f, slf, args, nargs, std::ptr::null_mut())
+}
+
+/// `_state_setattr(Vector3)`: the method descriptor of `StateBase` calling `state_setattr`, for
+/// `State.__setattr__` (`State._slow_setattr` must be the generic one); plain values of `Vector3`
+/// are stored directly when its slots can be located.
+#[pyfunction]
+fn _state_setattr(py: Python<'_>, vector3: &Bound<'_, PyType>) -> PyResult<PyObject> {
+    let names = FAST_FIELDS.map(|(n, _)| PyString::intern(py, n).unbind());
+    let vector3 = Vec3Type::new(vector3)?
+        .slots
+        .map(|o| (vector3.clone().unbind(), o));
+    STATE_SETATTR.store(
+        Box::into_raw(Box::new(StateSetattr { names, vector3 })),
+        std::sync::atomic::Ordering::Release,
+    );
+    let def = Box::leak(Box::new(ffi::PyMethodDef {
+        ml_name: c"__setattr__".as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer {
+            PyCFunctionFast: state_setattr,
+        },
+        ml_flags: ffi::METH_FASTCALL,
+        ml_doc: c"State.__setattr__ (yade._ryade.state_setattr; the generic path is _slow_setattr)"
+            .as_ptr(),
+    }));
+    let tp = py.get_type::<StateBase>();
+    // SAFETY: a method descriptor of StateBase over a PyMethodDef that lives forever
+    unsafe {
+        Ok(
+            Bound::from_owned_ptr_or_err(py, ffi::PyDescr_NewMethod(tp.as_type_ptr(), def))?
+                .unbind(),
+        )
+    }
+}
+
+/// Base class of `yade._core.Omega` (`O`): `O.iter` and `O.time`, read every step by controllers, are
+/// read here from the scene without a Python frame.
+#[pyclass(subclass, module = "yade._ryade")]
+struct OmegaBase {
+    sim: Option<Py<Sim>>,
+}
+
+impl OmegaBase {
+    fn sim<'py>(&self, py: Python<'py>) -> PyResult<PyRef<'py, Sim>> {
+        match &self.sim {
+            Some(s) => Ok(s.bind(py).borrow()),
+            None => Err(PyRuntimeError::new_err(
+                "internal: Omega._rs_set_sim was not called",
+            )),
+        }
+    }
+}
+
+#[pymethods]
+impl OmegaBase {
+    #[new]
+    #[pyo3(signature = (*_args, **_kw))]
+    fn new(_args: &Bound<'_, PyTuple>, _kw: Option<&Bound<'_, PyDict>>) -> Self {
+        OmegaBase { sim: None }
+    }
+    fn _rs_set_sim(&mut self, sim: Py<Sim>) {
+        self.sim = Some(sim);
+    }
+    /// `O.iter`: the number of steps done.
+    #[getter]
+    fn iter(&self, py: Python<'_>) -> PyResult<i64> {
+        Ok(self.sim(py)?.scene.iter)
+    }
+    /// `O.time`: the simulated time.
+    #[getter]
+    fn time(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.sim(py)?.scene.time)
+    }
+}
+
+/// Base class of `yade._core.State` holding what its hot paths need without Python code: the scene
+/// (`Sim`) and the body id once the body is in `O.bodies`. `State.__setattr__` is `state_setattr`
+/// (a Vector3 stored into pos/vel/angVel/inertia of a bound state goes straight to the scene; every
+/// other assignment is `State._slow_setattr`, the generic path); `pos`, `vel`, `angVel` are read here.
+#[pyclass(subclass, module = "yade._ryade")]
+struct StateBase {
+    sim: Option<Py<Sim>>,
+    bid: usize,
+}
+
+impl StateBase {
+    fn read(slf: &Bound<'_, Self>, field: VecField, name: &str) -> PyResult<PyObject> {
+        let py = slf.py();
+        let (sim, bid) = {
+            let b = slf.borrow();
+            match &b.sim {
+                Some(s) => (s.clone_ref(py), b.bid),
+                None => return Ok(slf.call_method1(intern!(py, "_read"), (name,))?.unbind()),
+            }
+        };
+        let s = sim.bind(py).borrow();
+        let tp = s.vector3_type()?;
+        if let VecField::Pos = field {
+            // YADE quirk kept on purpose: pos and ori are computed properties (se3), so
+            // `b.state.pos[1] = 3` changes a temporary copy and leaves the body where it was
+            return Ok(tp.plain(py, s.vec3_of(bid, field)?)?.unbind());
+        }
+        s.check_id(bid)?;
+        let sim2 = sim.clone_ref(py);
+        Ok(tp
+            .view(
+                py,
+                FieldAccess {
+                    sim: sim2,
+                    bid,
+                    field,
+                },
+            )?
+            .unbind())
+    }
+}
+
+#[pymethods]
+impl StateBase {
+    #[new]
+    #[pyo3(signature = (*_args, **_kw))]
+    fn new(_args: &Bound<'_, PyTuple>, _kw: Option<&Bound<'_, PyDict>>) -> Self {
+        StateBase { sim: None, bid: 0 }
+    }
+    /// The state now belongs to body `bid` of `sim`.
+    fn _rs_bind(&mut self, sim: Py<Sim>, bid: usize) {
+        self.sim = Some(sim);
+        self.bid = bid;
+    }
+    /// `State.pos`: a copy (YADE computes it from se3).
+    #[getter]
+    fn pos(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::Pos, "pos")
+    }
+    /// `State.vel`: a live view (`b.state.vel[2] = 0.1` moves the body).
+    #[getter]
+    fn vel(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::Vel, "vel")
+    }
+    /// `State.angVel`: a live view.
+    #[getter(angVel)]
+    fn ang_vel(slf: &Bound<'_, Self>) -> PyResult<PyObject> {
+        Self::read(slf, VecField::AngVel, "angVel")
+    }
 }
 
 impl Sim {
@@ -46,6 +730,37 @@ impl Sim {
             )));
         }
         Ok(())
+    }
+
+    fn vec3_of(&self, id: usize, f: VecField) -> PyResult<V3> {
+        self.check_id(id)?;
+        let b = &self.scene.bodies;
+        Ok(v3(match f {
+            VecField::Pos => &b.pos[id],
+            VecField::Vel => &b.vel[id],
+            VecField::AngVel => &b.ang_vel[id],
+            VecField::Inertia => &b.inertia[id],
+            VecField::AngMom => &b.ang_mom[id],
+        }))
+    }
+
+    fn set_vec3_of(&mut self, id: usize, f: VecField, v: V3) -> PyResult<()> {
+        self.check_id(id)?;
+        let b = &mut self.scene.bodies;
+        *(match f {
+            VecField::Pos => &mut b.pos[id],
+            VecField::Vel => &mut b.vel[id],
+            VecField::AngVel => &mut b.ang_vel[id],
+            VecField::Inertia => &mut b.inertia[id],
+            VecField::AngMom => &mut b.ang_mom[id],
+        }) = vec(v);
+        Ok(())
+    }
+
+    fn vector3_type(&self) -> PyResult<&Vec3Type> {
+        self.vector3
+            .as_ref()
+            .ok_or_else(|| PyRuntimeError::new_err("internal: Sim._set_vector3 was not called"))
     }
 
     fn intr_index(&self, a: u32, b: u32) -> PyResult<usize> {
@@ -64,7 +779,17 @@ impl Sim {
             scene: Scene::default(),
             saved: HashMap::new(),
             cursor: None,
+            vector3: None,
         }
+    }
+    /// The `Vector3` class the fast paths (`force_vec`, `StateBase`) build their values of.
+    fn _set_vector3(&mut self, tp: &Bound<'_, PyType>) -> PyResult<()> {
+        self.vector3 = Some(Vec3Type::new(tp)?);
+        Ok(())
+    }
+    /// Whether the slots of the Vector3 class were found (the fast paths then skip getattr/setattr).
+    fn _vector3_slots_found(&self) -> bool {
+        self.vector3.as_ref().is_some_and(|t| t.slots.is_some())
     }
 
     /// `O.reset()`: empty scene, no engines, dt = 1e-8.
@@ -181,38 +906,18 @@ impl Sim {
     }
     fn get_vec3(&self, id: usize, field: &str) -> PyResult<V3> {
         self.check_id(id)?;
-        let b = &self.scene.bodies;
-        Ok(match field {
-            "pos" => v3(&b.pos[id]),
-            "vel" => v3(&b.vel[id]),
-            "angVel" => v3(&b.ang_vel[id]),
-            "inertia" => v3(&b.inertia[id]),
-            "angMom" => v3(&b.ang_mom[id]),
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "State has no vector attribute '{}' in ryade",
-                    field
-                )))
-            }
-        })
+        self.vec3_of(
+            id,
+            VecField::parse(field).ok_or_else(|| VecField::no_such(field))?,
+        )
     }
     fn set_vec3(&mut self, id: usize, field: &str, v: V3) -> PyResult<()> {
         self.check_id(id)?;
-        let b = &mut self.scene.bodies;
-        match field {
-            "pos" => b.pos[id] = vec(v),
-            "vel" => b.vel[id] = vec(v),
-            "angVel" => b.ang_vel[id] = vec(v),
-            "inertia" => b.inertia[id] = vec(v),
-            "angMom" => b.ang_mom[id] = vec(v),
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "State has no vector attribute '{}' in ryade",
-                    field
-                )))
-            }
-        }
-        Ok(())
+        self.set_vec3_of(
+            id,
+            VecField::parse(field).ok_or_else(|| VecField::no_such(field))?,
+            v,
+        )
     }
     /// Orientation as (w, x, y, z).
     fn get_ori(&self, id: usize) -> PyResult<(f64, f64, f64, f64)> {
@@ -594,6 +1299,28 @@ impl Sim {
     }
 
     // ---- forces ----
+    /// `O.forces.f(id)`: the force as a new Vector3.
+    #[pyo3(signature = (id, sync=false))]
+    fn force_vec<'py>(
+        &self,
+        py: Python<'py>,
+        id: usize,
+        sync: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let _ = sync;
+        self.vector3_type()?.plain(py, self.force(id)?)
+    }
+    /// `O.forces.t(id)`: the torque as a new Vector3.
+    #[pyo3(signature = (id, sync=false))]
+    fn torque_vec<'py>(
+        &self,
+        py: Python<'py>,
+        id: usize,
+        sync: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let _ = sync;
+        self.vector3_type()?.plain(py, self.torque(id)?)
+    }
     fn force(&self, id: usize) -> PyResult<V3> {
         self.check_id(id)?;
         Ok(self
@@ -1034,6 +1761,12 @@ fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
 #[pymodule]
 fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Sim>()?;
+    m.add_class::<StateBase>()?;
+    m.add_class::<OmegaBase>()?;
+    m.add_class::<FieldAccess>()?;
+    m.add_function(wrap_pyfunction!(_install_vector_getitem, m)?)?;
+    m.add_function(wrap_pyfunction!(_state_setattr, m)?)?;
+    m.add_function(wrap_pyfunction!(_forces_accessor, m)?)?;
     m.add_function(wrap_pyfunction!(box_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(voxel_porosity, m)?)?;
     m.add_function(wrap_pyfunction!(make_cloud, m)?)?;

@@ -5,6 +5,7 @@ YADE's live-reference semantics hold (`O.bodies[1].state.vel[2] = 0.1` moves the
 import builtins
 import json
 import math
+import operator
 import sys
 
 from . import _ryade
@@ -161,28 +162,35 @@ class Clump(Shape):
 _STATE_VEC = ('pos', 'vel', 'angVel', 'inertia')
 
 
-class State(Serializable):
-    """`State`: kinematic state. Unbound (before O.bodies.append) it stores values; bound it is a view."""
+class State(Serializable, _ryade.StateBase):
+    """`State`: kinematic state. Unbound (before O.bodies.append) it stores values; bound it is a view.
+
+    Its hot paths are in the Rust base `_ryade.StateBase` (controllers read and set velocities every
+    step): `__setattr__` stores a plain Vector3 into pos/vel/angVel/inertia of a bound state straight
+    into the scene (the same effect as `Serializable._assign`: convert, then `_changed`) and hands every
+    other assignment to `_slow_setattr`; `pos` (a copy, YADE computes it), `vel` and `angVel` (live
+    views) are read there, unbound ones through `_read`."""
     _attrs = {'pos': (0.0, 0.0, 0.0), 'vel': (0.0, 0.0, 0.0), 'angVel': (0.0, 0.0, 0.0), 'inertia': (0.0, 0.0, 0.0),
               'ori': (1.0, 0.0, 0.0, 0.0), 'mass': 0.0, 'blockedDOFs': '', 'isDamped': True,
               'refPos': (0.0, 0.0, 0.0), 'refOri': (1.0, 0.0, 0.0, 0.0), 'angMom': (0.0, 0.0, 0.0),
               'densityScaling': -1.0}
 
+    __setattr__ = _ryade._state_setattr(Vector3)
+    _slow_setattr = Serializable.__setattr__
+
     def _bind(self, omega, body_id):
         object.__setattr__(self, '_owner', (omega, body_id))
+        self._rs_bind(omega._sim, body_id)
 
-    def __setattr__(self, k, v):
-        # hot path (controllers set velocities every step): a Vector3 into pos/vel/angVel/inertia,
-        # the same effect as Serializable._assign (convert, then _changed)
-        if type(v) is Vector3 and k in _STATE_VEC:
-            a = v._v if v._g is None else v._r()
-            t = (a[0], a[1], a[2])
-            self._values[k] = t
-            o = self._owner
-            if o is not None:
-                o[0]._sim.set_vec3(o[1], k, t)
-            return
-        Serializable.__setattr__(self, k, v)
+    # copy/pickle: the Python attributes (the Rust base's binding is re-made from _owner)
+    def __getstate__(self):
+        return self.__dict__
+
+    def __setstate__(self, d):
+        self.__dict__.update(d)
+        o = d.get('_owner')
+        if o is not None:
+            self._rs_bind(o[0]._sim, o[1])
 
     def _convert(self, k, v):
         if k in _STATE_VEC or k in ('refPos', 'angMom'):
@@ -263,28 +271,6 @@ class State(Serializable):
                   'isDamped': bool(v['isDamped'])})
 
 
-def _state_vec_property(k):
-    """`State.pos/vel/angVel` as properties (read by controllers every step); the same values as
-    `State._read`: pos a copy (YADE computes it), vel/angVel live views."""
-    def get(self):
-        o = self._owner
-        if o is None:
-            return Vector3(*self._values[k])
-        sim, bid = o[0]._sim, o[1]
-        if k == 'pos':
-            return Vector3._new(list(sim.get_vec3(bid, 'pos')))
-        return Vector3._view(lambda: sim.get_vec3(bid, k), lambda t: sim.set_vec3(bid, k, tuple(t)))
-
-    def set(self, v):
-        self._assign(k, v)
-    return property(get, set)
-
-
-for _k in ('pos', 'vel', 'angVel'):
-    setattr(State, _k, _state_vec_property(_k))
-del _k
-
-
 class Body(Serializable):
     _attrs = {'shape': None, 'state': None, 'material': None, 'groupMask': 1, 'bounded': True, 'aspherical': False,
               'bound': None, 'clumpId': -1, 'iterBorn': -1, 'timeBorn': -1.0, 'flags': 0}
@@ -293,6 +279,9 @@ class Body(Serializable):
         Serializable.__init__(self, **kw)
         if self._values['state'] is None:
             self._values['state'] = State()
+        # `b.state` is read every step by controllers: a plain instance attribute (no property call),
+        # kept equal to _values['state'] by _assign
+        self.__dict__['state'] = self._values['state']
         object.__setattr__(self, '_id', -1)
 
     @property
@@ -343,14 +332,10 @@ class Body(Serializable):
         c = self.clumpId
         return c >= 0 and c != self._id
 
-    # `b.state` as a property: read every step by controllers (same value as the generic path)
-    @property
-    def state(self):
-        return self._values['state']
-
-    @state.setter
-    def state(self, v):
-        self._assign('state', v)
+    def _assign(self, k, v):
+        Serializable._assign(self, k, v)
+        if k == 'state':
+            self.__dict__['state'] = self._values['state']
 
     def _changed(self, k):
         if self._owner is None:
@@ -698,6 +683,11 @@ class InteractionContainer(object):
 class ForceContainer(object):
     def __init__(self, omega):
         self._o = omega
+        # read every step by controllers: C functions bound to the scene that build the Vector3
+        # themselves (Sim.force_vec/torque_vec for anything but f(id)); the instance attributes hide
+        # the Python definitions below, which say the same
+        self.f = _ryade._forces_accessor(omega._sim, False)
+        self.t = _ryade._forces_accessor(omega._sim, True)
 
     def f(self, bid, sync=False):
         return Vector3._new(list(self._o._sim.force(bid)))
@@ -834,19 +824,22 @@ class EnergyTracker(object):
 
 # ---------------------------------------------------------------- Omega
 
-class Omega(object):
-    """`O`: the simulation. `Omega()` returns the same object, as in YADE."""
+class Omega(_ryade.OmegaBase):
+    """`O`: the simulation. `Omega()` returns the same object, as in YADE. `O.iter` and `O.time` are
+    read by the Rust base class (`_ryade.OmegaBase`, controllers read them every step)."""
     _instance = None
 
     def __new__(cls, *a, **kw):
         if Omega._instance is None:
-            inst = object.__new__(cls)
+            inst = _ryade.OmegaBase.__new__(cls)
             inst._init()
             Omega._instance = inst
         return Omega._instance
 
     def _init(self):
         self._sim = _ryade.Sim()
+        self._sim._set_vector3(Vector3)
+        self._rs_set_sim(self._sim)
         self.bodies = BodyContainer(self)
         self.materials = MaterialContainer(self)
         self.interactions = InteractionContainer(self)
@@ -878,9 +871,8 @@ class Omega(object):
                         NewtonIntegrator(damping=0.2)]
 
     # ---- time ----
-    dt = property(lambda self: self._sim.dt, lambda self, v: setattr(self._sim, 'dt', float(v)))
-    iter = property(lambda self: self._sim.iter)
-    time = property(lambda self: self._sim.time)
+    # O.iter and O.time: OmegaBase
+    dt = property(operator.attrgetter('_sim.dt'), lambda self, v: setattr(self._sim, 'dt', float(v)))
 
     @property
     def realtime(self):

@@ -1776,3 +1776,23 @@ class Quaternion(_Dense):
         self._w(_two_vectors(a, b))
 
     Identity = _ClassConst(lambda cls: cls._new([1.0, 0.0, 0.0, 0.0]))
+
+
+def _install_fast_getitem():
+    """`Vector3.__getitem__` in C when the yade package's extension is there (``v[2]`` is read
+    everywhere in scripts): ``yade._ryade._install_vector_getitem`` gives a method descriptor doing
+    what the Python definition does for an ``int`` index in 0..2 and calling that definition, kept
+    as ``Vector3._py_getitem``, for anything else. Loaded standalone (no package), the module stays
+    pure Python."""
+    try:
+        from ._ryade import _install_vector_getitem
+    except ImportError:
+        return
+    py = Vector3.__dict__['__getitem__']
+    fast = _install_vector_getitem(Vector3, Vector3._N)
+    if fast is not None:
+        Vector3._py_getitem = py
+        Vector3.__getitem__ = fast
+
+
+_install_fast_getitem()

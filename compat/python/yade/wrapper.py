@@ -10,6 +10,8 @@ translated to the engine descriptions the Rust core reads (``_json``).
 import json
 import math
 import os
+import sys
+import time as _time
 
 from ._errors import unsupported
 
@@ -530,9 +532,8 @@ class PeriodicEngine(GlobalEngine):
         return False
 
     def _is_activated(self, omega):
-        import time as _t
         v = self._values
-        virt_now, real_now, iter_now = omega.time, _t.time(), omega.iter
+        virt_now, real_now, iter_now = omega.time, _time.time(), omega.iter
         if v['firstIterRun'] > 0 and v['nDone'] == 0:
             if v['firstIterRun'] == iter_now:
                 v['realLast'], v['virtLast'], v['iterLast'] = real_now, virt_now, iter_now
@@ -574,13 +575,12 @@ class PyRunner(PeriodicEngine):
         cmd = self._values['command']
         if not cmd:
             return
-        import __main__
         code = self.__dict__.get('_code')
         if code is None or code[0] != cmd:  # compiled once per command string
             code = (cmd, compile(cmd, '<PyRunner %s>' % (self._values['label'] or 'command'), 'exec'))
             object.__setattr__(self, '_code', code)
         try:
-            exec(code[1], __main__.__dict__)
+            exec(code[1], sys.modules['__main__'].__dict__)  # what `import __main__` gives, without the import machinery
         except Exception:
             if not self._values['ignoreErrors']:
                 raise
