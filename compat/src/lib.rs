@@ -771,16 +771,33 @@ impl Sim {
     }
 }
 
+/// The thread count `compat run -jN` passes in `RYADE_THREADS` (1 when unset or not a count >= 1).
+fn env_threads() -> usize {
+    std::env::var("RYADE_THREADS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .filter(|&n| n >= 1)
+        .unwrap_or(1)
+}
+
 #[pymethods]
 impl Sim {
     #[new]
     fn new() -> Self {
         Sim {
-            scene: Scene::default(),
+            scene: Scene {
+                threads: env_threads(),
+                ..Scene::default()
+            },
             saved: HashMap::new(),
             cursor: None,
             vector3: None,
         }
+    }
+    /// `O.numThreads`: the YADE-order path's thread count (`compat run -jN`; same bits for any).
+    #[getter]
+    fn threads(&self) -> usize {
+        self.scene.threads
     }
     /// The `Vector3` class the fast paths (`force_vec`, `StateBase`) build their values of.
     fn _set_vector3(&mut self, tp: &Bound<'_, PyType>) -> PyResult<()> {
@@ -794,7 +811,10 @@ impl Sim {
 
     /// `O.reset()`: empty scene, no engines, dt = 1e-8.
     fn reset(&mut self) {
-        self.scene = Scene::default();
+        self.scene = Scene {
+            threads: self.scene.threads,
+            ..Scene::default()
+        };
         self.cursor = None;
     }
 

@@ -881,7 +881,8 @@ class Omega(_ryade.OmegaBase):
 
     @property
     def numThreads(self):
-        return 1
+        # `compat run -jN` (YADE: `yade -jN`); ryade's YADE-order path gives the same bits for any N
+        return self._sim.threads
 
     @property
     def usesTimeStepper(self):
