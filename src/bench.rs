@@ -236,8 +236,8 @@ pub fn stats(v: &[f64]) -> Stats {
 /// A bench scene that is a YADE script run unchanged by both engines (`*.study.json`): `yade -n -x
 /// SCRIPT ARGS --out DIR` against `compat run SCRIPT ARGS --out DIR` (the YADE-order path; the fast
 /// path models spheres only). The script writes `DIR/summary.json` with `timings` (phase, steps,
-/// cpu_s) and `derived.nSpheres`; the CPU seconds of `phase` are timed, so start-up, the specimen
-/// import and the other phases are not.
+/// cpu_s, wall_s) and `derived.nSpheres`; the CPU seconds of `phase` are timed (wall seconds for
+/// a threaded variant), so start-up, the specimen import and the other phases are not.
 #[derive(Clone, Debug, serde::Deserialize)]
 pub struct ScriptScene {
     pub label: String,
@@ -315,7 +315,12 @@ fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Resul
         .and_then(|t| t.iter().find(|p| p["phase"] == sc.phase.as_str()))
         .ok_or_else(|| anyhow!("summary.json has no timing for phase '{}'", sc.phase))?;
     let steps = ph["steps"].as_f64().unwrap_or(0.0);
-    let cpu = ph["cpu_s"].as_f64().unwrap_or(0.0);
+    // one thread: CPU seconds (robust on a shared machine); more: wall seconds (the CPU of all
+    // threads adds up)
+    let threaded = matches!(v, Variant::YadeOrder(t) if t > 1);
+    let cpu = ph[if threaded { "wall_s" } else { "cpu_s" }]
+        .as_f64()
+        .unwrap_or(0.0);
     let n = sum["derived"]["nSpheres"].as_f64().unwrap_or(0.0);
     if steps <= 0.0 || cpu <= 0.0 || n <= 0.0 {
         bail!(
@@ -552,7 +557,7 @@ pub fn format_report(r: &BenchReport) -> String {
         }
     }
     if r.script.is_some() {
-        out += "  (script scene: CPU seconds of the timed phase, particles = spheres; contacts not counted; the fast path models spheres only)\n";
+        out += "  (script scene: CPU seconds of the timed phase, wall seconds for 2+ threads, particles = spheres; contacts not counted; the fast path models spheres only)\n";
         out += &format!(
             "  history.csv of every run, both engines: {}\n",
             if r.histories_identical == Some(true) {
