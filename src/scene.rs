@@ -9,7 +9,7 @@ use crate::cell::Cell;
 use crate::collider::{Collider, ColliderCtx};
 use crate::dispatch::{self, Entry};
 use crate::forces::Forces;
-use crate::geom::{self, GeomClass, GeomCtx, Kin, Pair};
+use crate::geom::{self, GeomClass, GeomCtx, Pair};
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
 use crate::law::{self, LawBodies, LawEnergy, LawFunctor};
@@ -740,20 +740,7 @@ impl Scene {
                 Shape::Sphere { radius: r1 },
                 Shape::Sphere { radius: r2 },
             ) => {
-                let b = &self.bodies;
-                let kin = |id: usize| Kin {
-                    pos: b.pos[id],
-                    vel: b.vel[id],
-                    ang_vel: b.ang_vel[id],
-                    ori: b.ori[id],
-                };
-                let pr = Pair {
-                    s1: kin(id1),
-                    s2: kin(id2),
-                    shift2,
-                    is_real: was_real,
-                    ctx,
-                };
+                let pr = Pair::of(&self.bodies, id1, id2, shift2, was_real, ctx);
                 geom::sphere_sphere::go(
                     il.sphere_sphere.as_ref().unwrap(),
                     *r1,
@@ -926,19 +913,7 @@ impl Scene {
                 shift2,
             );
         }
-        let kin = |id: usize| Kin {
-            pos: b.pos[id],
-            vel: b.vel[id],
-            ang_vel: b.ang_vel[id],
-            ori: b.ori[id],
-        };
-        let pr = Pair {
-            s1: kin(id1),
-            s2: kin(id2),
-            shift2: *shift2,
-            is_real: was_real,
-            ctx: *ctx,
-        };
+        let pr = Pair::of(b, id1, id2, *shift2, was_real, *ctx);
         let it = &mut self.interactions.list[k];
         let g = &mut it.geom;
         let mut conn_sync = None;
@@ -1263,19 +1238,7 @@ fn pre_slot(
         Some(c) => (c.shift_pos(&it.cell_dist), c.shift_vel(&it.cell_dist)),
         None => (Vec3::zeros(), Vec3::zeros()),
     };
-    let kin = |id: usize| Kin {
-        pos: b.pos[id],
-        vel: b.vel[id],
-        ang_vel: b.ang_vel[id],
-        ori: b.ori[id],
-    };
-    let pr = Pair {
-        s1: kin(id1),
-        s2: kin(id2),
-        shift2,
-        is_real: true,
-        ctx: GeomCtx { dt, shift_vel },
-    };
+    let pr = Pair::of(b, id1, id2, shift2, true, GeomCtx { dt, shift_vel });
     geom::sphere_sphere::go(ss, r1, r2, &pr, &mut it.geom);
     let lb = LawBodies {
         pos1: &b.pos[id1],

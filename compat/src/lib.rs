@@ -338,23 +338,34 @@ fn _install_vector_getitem(
         Box::into_raw(Box::new(list)),
         std::sync::atomic::Ordering::Release,
     );
+    // a method descriptor of `object`, so that it applies to every instance (the function checks
+    // the class itself)
+    fastcall_descriptor(
+        py,
+        std::ptr::addr_of_mut!(ffi::PyBaseObject_Type),
+        c"__getitem__",
+        vector_getitem,
+        c"v[i] (yade._ryade.vector_getitem; the Python definition is _py_getitem)",
+    )
+}
+
+/// A method descriptor of type `tp` for the METH_FASTCALL function `f`, over a PyMethodDef that
+/// lives forever (leaked: one per installed fast path).
+fn fastcall_descriptor(
+    py: Python<'_>,
+    tp: *mut ffi::PyTypeObject,
+    name: &'static std::ffi::CStr,
+    f: ffi::PyCFunctionFast,
+    doc: &'static std::ffi::CStr,
+) -> PyResult<PyObject> {
     let def = Box::leak(Box::new(ffi::PyMethodDef {
-        ml_name: c"__getitem__".as_ptr(),
-        ml_meth: ffi::PyMethodDefPointer {
-            PyCFunctionFast: vector_getitem,
-        },
+        ml_name: name.as_ptr(),
+        ml_meth: ffi::PyMethodDefPointer { PyCFunctionFast: f },
         ml_flags: ffi::METH_FASTCALL,
-        ml_doc: c"v[i] (yade._ryade.vector_getitem; the Python definition is _py_getitem)".as_ptr(),
+        ml_doc: doc.as_ptr(),
     }));
-    // SAFETY: a method descriptor of `object` (so that it applies to every instance; the function
-    // checks the class itself) over a PyMethodDef that lives forever
-    unsafe {
-        Ok(Bound::from_owned_ptr_or_err(
-            py,
-            ffi::PyDescr_NewMethod(std::ptr::addr_of_mut!(ffi::PyBaseObject_Type), def),
-        )?
-        .unbind())
-    }
+    // SAFETY: `tp` is a live type object and `def` is never freed
+    unsafe { Ok(Bound::from_owned_ptr_or_err(py, ffi::PyDescr_NewMethod(tp, def))?.unbind()) }
 }
 
 /// `get()` / `set(tuple)` of a live vector view onto a body's field in the scene.
@@ -590,23 +601,13 @@ fn _state_setattr(py: Python<'_>, vector3: &Bound<'_, PyType>) -> PyResult<PyObj
         Box::into_raw(Box::new(StateSetattr { names, vector3 })),
         std::sync::atomic::Ordering::Release,
     );
-    let def = Box::leak(Box::new(ffi::PyMethodDef {
-        ml_name: c"__setattr__".as_ptr(),
-        ml_meth: ffi::PyMethodDefPointer {
-            PyCFunctionFast: state_setattr,
-        },
-        ml_flags: ffi::METH_FASTCALL,
-        ml_doc: c"State.__setattr__ (yade._ryade.state_setattr; the generic path is _slow_setattr)"
-            .as_ptr(),
-    }));
-    let tp = py.get_type::<StateBase>();
-    // SAFETY: a method descriptor of StateBase over a PyMethodDef that lives forever
-    unsafe {
-        Ok(
-            Bound::from_owned_ptr_or_err(py, ffi::PyDescr_NewMethod(tp.as_type_ptr(), def))?
-                .unbind(),
-        )
-    }
+    fastcall_descriptor(
+        py,
+        py.get_type::<StateBase>().as_type_ptr(),
+        c"__setattr__",
+        state_setattr,
+        c"State.__setattr__ (yade._ryade.state_setattr; the generic path is _slow_setattr)",
+    )
 }
 
 /// Base class of `yade._core.Omega` (`O`): `O.iter` and `O.time`, read every step by controllers, are

@@ -324,12 +324,7 @@ pub fn sphere_gridco(
     // (dimensionally m²/s); the twist part is interpolated along the axis
     let tws = segt * tw;
     x.fict.ang_vel = Vec3::new(tws[0] / len, tws[1] / len, tws[2] / len) + cross(&segt, &(v2 - v1));
-    let s1 = Kin {
-        pos: bodies.pos[id1 as usize],
-        vel: bodies.vel[id1 as usize],
-        ang_vel: bodies.ang_vel[id1 as usize],
-        ori: bodies.ori[id1 as usize],
-    };
+    let s1 = Kin::of(bodies, id1 as usize);
     g.precompute(&s1, &x.fict.kin(), ctx, &normal, is_new, shift2, true);
     write_back(intrs, k, target, &g, &x);
     Ok(true)

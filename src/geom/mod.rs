@@ -189,6 +189,40 @@ pub struct Pair {
     pub ctx: GeomCtx,
 }
 
+impl Kin {
+    /// Body `id`'s kinematics.
+    #[inline(always)]
+    pub fn of(b: &crate::body::Bodies, id: usize) -> Kin {
+        Kin {
+            pos: b.pos[id],
+            vel: b.vel[id],
+            ang_vel: b.ang_vel[id],
+            ori: b.ori[id],
+        }
+    }
+}
+
+impl Pair {
+    /// Bodies `id1` and `id2` as a geometry functor sees them.
+    #[inline(always)]
+    pub fn of(
+        b: &crate::body::Bodies,
+        id1: usize,
+        id2: usize,
+        shift2: Vec3,
+        is_real: bool,
+        ctx: GeomCtx,
+    ) -> Pair {
+        Pair {
+            s1: Kin::of(b, id1),
+            s2: Kin::of(b, id2),
+            shift2,
+            is_real,
+            ctx,
+        }
+    }
+}
+
 /// Sphere-contact geometry (YADE `pkg/dem/ScGeom.hpp`, with `GenericSpheresContact`'s refR1/refR2,
 /// which are `radius1`/`radius2` here).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
