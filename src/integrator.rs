@@ -139,11 +139,12 @@ impl Newton {
         clumps.clear();
         let mut failed = None;
         for id in 0..bodies.len() {
-            // clump members are moved by their clump; `clumpId` equal to the own id marks a clump
-            let is_clump = match bodies.clump_id[id] {
-                Some(c) if c as usize != id => continue,
-                c => c.is_some(),
-            };
+            // clump members are moved by their clump
+            if bodies.is_clump_member(id) {
+                continue;
+            }
+            // a clump carries its own id as `clumpId` (cheaper to read than the shape)
+            let is_clump = bodies.clump_id[id].is_some();
             if self.mask > 0 && (bodies.mask[id] & self.mask) == 0 {
                 continue;
             }

@@ -625,30 +625,14 @@ impl Scene {
         // summary alone (same operands, so the same decision), without touching the interaction
         let sc = self.interactions.scan[k];
         if sc.idle {
-            if let (Some(p), Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) = (
-                &il.sphere_sphere,
-                &self.bodies.shape[sc.id1 as usize],
-                &self.bodies.shape[sc.id2 as usize],
-            ) {
+            if let Some(p) = &il.sphere_sphere {
                 debug_assert!({
                     let it = &self.interactions.list[k];
                     !it.is_real()
                         && it.functor == GeomFunctor::SphereSphere
                         && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
                 });
-                // a zero period gives a zero shift (its sign cannot change the squared distance)
-                let shift2 = match &self.cell {
-                    Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
-                    _ => Vec3::zeros(),
-                };
-                if !geom::sphere_sphere::within_reach(
-                    p,
-                    *r1,
-                    *r2,
-                    &self.bodies.pos[sc.id1 as usize],
-                    &self.bodies.pos[sc.id2 as usize],
-                    &shift2,
-                ) {
+                if idle_within_reach(p, &self.bodies, self.cell.as_ref(), &sc) == Some(false) {
                     return Ok(());
                 }
             }
@@ -1194,6 +1178,37 @@ enum Event {
     Erase(u32),
 }
 
+/// The radii of bodies `a` and `b` when both are plain spheres.
+#[inline(always)]
+fn sphere_radii(b: &Bodies, a: u32, c: u32) -> Option<(f64, f64)> {
+    match (&b.shape[a as usize], &b.shape[c as usize]) {
+        (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => Some((*r1, *r2)),
+        _ => None,
+    }
+}
+
+/// YADE's distance pre-check for an idle sphere-sphere pair from its compact summary alone (same
+/// operands as `Ig2_Sphere_Sphere_ScGeom::go`, so the same decision); None unless both bodies are
+/// plain spheres.
+#[inline(always)]
+fn idle_within_reach(
+    p: &geom::sphere_sphere::Params,
+    b: &Bodies,
+    cell: Option<&Cell>,
+    sc: &crate::interaction::ScanEntry,
+) -> Option<bool> {
+    let (r1, r2) = sphere_radii(b, sc.id1, sc.id2)?;
+    // a zero period gives a zero shift (its sign cannot change the squared distance)
+    let shift2 = match cell {
+        Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
+        _ => Vec3::zeros(),
+    };
+    let (p1, p2) = (&b.pos[sc.id1 as usize], &b.pos[sc.id2 as usize]);
+    Some(geom::sphere_sphere::within_reach(
+        p, r1, r2, p1, p2, &shift2,
+    ))
+}
+
 /// The part of slot `k`'s work that depends only on positions, velocities and its own state (see
 /// `Scene::pre_pass`): None for an idle sphere-sphere pair still apart (YADE's distance pre-check,
 /// same operands), the load (or erasure) of a steady contact, otherwise `Event::Visit(k)`.
@@ -1209,28 +1224,16 @@ fn pre_slot(
     sc: &crate::interaction::ScanEntry,
     it: &mut crate::interaction::Interaction,
 ) -> Option<Event> {
-    let spheres = |a: u32, c: u32| match (&b.shape[a as usize], &b.shape[c as usize]) {
-        (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => Some((*r1, *r2)),
-        _ => None,
-    };
     if sc.idle {
-        if let Some((r1, r2)) = spheres(sc.id1, sc.id2) {
-            // a zero period gives a zero shift (its sign cannot change the squared distance)
-            let shift2 = match cell {
-                Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
-                _ => Vec3::zeros(),
-            };
-            let (p1, p2) = (&b.pos[sc.id1 as usize], &b.pos[sc.id2 as usize]);
-            if !geom::sphere_sphere::within_reach(ss, r1, r2, p1, p2, &shift2) {
-                return None;
-            }
-        }
-        return Some(Event::Visit(k));
+        return match idle_within_reach(ss, b, cell, sc) {
+            Some(false) => None,
+            _ => Some(Event::Visit(k)),
+        };
     }
     if !(it.functor == GeomFunctor::SphereSphere && it.is_real() && it.ext.is_none()) {
         return Some(Event::Visit(k));
     }
-    let Some((r1, r2)) = spheres(it.id1, it.id2) else {
+    let Some((r1, r2)) = sphere_radii(b, it.id1, it.id2) else {
         return Some(Event::Visit(k));
     };
     let (id1, id2) = (it.id1 as usize, it.id2 as usize);
