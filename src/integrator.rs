@@ -356,44 +356,27 @@ fn rotate_spherical_par(pool: &rayon::ThreadPool, bodies: &mut Bodies, ids: &[u3
 
 /// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
 /// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`. Done in
-/// three passes over blocks of bodies (square root and divisions; sin/cos; product and
+/// two passes over blocks of bodies (square root and divisions; sin/cos, product and
 /// normalisation) so the long, independent latency chains of neighbouring bodies overlap; every
 /// body sees exactly the operations of the one-pass form, so the bits are the same. `ori` holds
 /// the orientations of the bodies from id `base` on.
 fn rotate_spherical(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
     const BLOCK: usize = 64;
     for block in ids.chunks(BLOCK) {
-        let mut turn = [false; BLOCK];
-        let mut axis = [Vec3::zeros(); BLOCK];
-        let mut half = [0.0f64; BLOCK];
+        // None: w = 0, no rotation
+        let mut turn = [None; BLOCK];
         for (j, &id) in block.iter().enumerate() {
             let w = ang_vel[id as usize];
             let w2 = norm2(&w);
             if w2 != 0.0 {
                 let wn = w2.sqrt();
-                axis[j] = Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn);
-                // Quat::from_angle_axis(wn * dt, axis) halves the angle first
-                half[j] = 0.5 * (wn * dt);
-                turn[j] = true;
-            }
-        }
-        let mut sin_cos = [(0.0f64, 0.0f64); BLOCK];
-        for j in 0..block.len() {
-            if turn[j] {
-                sin_cos[j] = (half[j].sin(), half[j].cos());
+                turn[j] = Some((wn * dt, Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn)));
             }
         }
         for (j, &id) in block.iter().enumerate() {
             let q0 = &mut ori[id as usize - base];
-            if turn[j] {
-                let (s, c) = sin_cos[j];
-                let q = Quat {
-                    w: c,
-                    x: s * axis[j][0],
-                    y: s * axis[j][1],
-                    z: s * axis[j][2],
-                };
-                *q0 = q.mul(q0);
+            if let Some((angle, axis)) = &turn[j] {
+                *q0 = Quat::from_angle_axis(*angle, axis).mul(q0);
             }
             q0.normalize();
         }
