@@ -683,17 +683,11 @@ class InteractionContainer(object):
 class ForceContainer(object):
     def __init__(self, omega):
         self._o = omega
-        # read every step by controllers: C functions bound to the scene that build the Vector3
-        # themselves (Sim.force_vec/torque_vec for anything but f(id)); the instance attributes hide
-        # the Python definitions below, which say the same
+        # O.forces.f(id, sync=False) / O.forces.t(id, sync=False), read every step by controllers:
+        # C functions bound to the scene that build the Vector3 themselves (Sim.force_vec/torque_vec
+        # for anything but f(id))
         self.f = _ryade._forces_accessor(omega._sim, False)
         self.t = _ryade._forces_accessor(omega._sim, True)
-
-    def f(self, bid, sync=False):
-        return Vector3._new(list(self._o._sim.force(bid)))
-
-    def t(self, bid, sync=False):
-        return Vector3._new(list(self._o._sim.torque(bid)))
 
     def m(self, bid, sync=False):
         return self.t(bid)
