@@ -146,13 +146,27 @@ fn key(a: u32, b: u32) -> u64 {
 /// `cell_dist` are copied from the interaction at that moment. Invariant: while `idle` is set the
 /// interaction is potential (no geometry, no physics), its functor is `SphereSphere` and its ids and
 /// period equal the copies here. Only the interaction loop turns such a pair real, and it clears
-/// `idle` when it does; new slots start with `idle` cleared.
-#[derive(Clone, Copy, Debug, Default)]
+/// `idle` when it does; new slots start with `idle` cleared. `deadline` is read only while `idle`
+/// is set: the pair is provably still apart while `IdleSkip::travel` stays below it.
+#[derive(Clone, Copy, Debug)]
 pub struct ScanEntry {
     pub id1: u32,
     pub id2: u32,
     pub cell_dist: [i32; 3],
     pub idle: bool,
+    pub deadline: f64,
+}
+
+impl Default for ScanEntry {
+    fn default() -> Self {
+        ScanEntry {
+            id1: 0,
+            id2: 0,
+            cell_dist: [0; 3],
+            idle: false,
+            deadline: f64::NEG_INFINITY,
+        }
+    }
 }
 
 #[derive(Clone, Debug, Default)]

@@ -19,6 +19,7 @@ pub mod gap_run;
 pub mod geogrid;
 pub mod geom;
 pub mod harness;
+pub mod idle_skip;
 pub mod integrator;
 pub mod interaction;
 pub mod io;

@@ -10,6 +10,7 @@ use crate::collider::{Collider, ColliderCtx};
 use crate::dispatch::{self, Entry};
 use crate::forces::Forces;
 use crate::geom::{self, GeomClass, GeomCtx, Pair};
+use crate::idle_skip::IdleSkip;
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
 use crate::law::{self, LawBodies, LawEnergy, LawFunctor};
@@ -295,6 +296,9 @@ pub struct Scene {
     /// YADE's single-thread bits.
     pub threads: usize,
     pub pool: Pool,
+    /// Lets the interaction loop skip the distance checks of idle pairs that provably stay apart
+    /// (same decisions, see `idle_skip`).
+    pub idle_skip: IdleSkip,
 }
 
 /// The thread pool of the YADE-order path, built on first use for `Scene::threads`.
@@ -318,6 +322,7 @@ impl Default for Scene {
             energy: Energy::default(),
             threads: 1,
             pool: Pool::default(),
+            idle_skip: IdleSkip::default(),
         }
     }
 }
@@ -579,6 +584,14 @@ impl Scene {
         };
         let mut energy = LawEnergy::default();
         let mut geom_entries = None;
+        if let Some(p) = &il.sphere_sphere {
+            self.idle_skip.prepare(
+                &self.bodies,
+                self.cell.as_ref(),
+                p.interaction_detection_factor,
+                &mut self.interactions.scan,
+            );
+        }
         if let Some(runs) = self.pre_pass(il) {
             for ev in runs.iter().flatten() {
                 match *ev {
@@ -623,7 +636,7 @@ impl Scene {
     ) -> Result<(), String> {
         // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
         // summary alone (same operands, so the same decision), without touching the interaction
-        let sc = self.interactions.scan[k];
+        let sc = &mut self.interactions.scan[k];
         if sc.idle {
             if let Some(p) = &il.sphere_sphere {
                 debug_assert!({
@@ -632,11 +645,11 @@ impl Scene {
                         && it.functor == GeomFunctor::SphereSphere
                         && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
                 });
-                if idle_within_reach(p, &self.bodies, self.cell.as_ref(), &sc) == Some(false) {
+                if idle_apart(p, &self.bodies, self.cell.as_ref(), &self.idle_skip, sc) {
                     return Ok(());
                 }
             }
-            self.interactions.scan[k].idle = false;
+            sc.idle = false;
         }
         let (id1_raw, id2_raw) = {
             let it = &self.interactions.list[k];
@@ -744,6 +757,7 @@ impl Scene {
                     id2: id2 as u32,
                     cell_dist,
                     idle: true,
+                    deadline: f64::NEG_INFINITY,
                 };
             }
             return Ok(());
@@ -833,16 +847,17 @@ impl Scene {
         let b = &self.bodies;
         let cell = self.cell.as_ref();
         let dt = self.dt;
-        let scan = &self.interactions.scan;
+        let skip = &self.idle_skip;
+        let scan = &mut self.interactions.scan;
         let list = &mut self.interactions.list;
         const RUN: usize = 2048;
         let runs = pool.install(|| {
             use rayon::prelude::*;
             list.par_chunks_mut(RUN)
+                .zip(scan.par_chunks_mut(RUN))
                 .enumerate()
-                .map(|(c, its)| {
+                .map(|(c, (its, sc_run))| {
                     let k0 = c * RUN;
-                    let sc_run = &scan[k0..k0 + its.len()];
                     let mut events = Vec::with_capacity(its.len());
                     for j in 0..its.len() {
                         const AHEAD: usize = 24;
@@ -850,7 +865,8 @@ impl Scene {
                             crate::interaction::prefetch(&its[j + AHEAD]);
                         }
                         let k = (k0 + j) as u32;
-                        if let Some(ev) = pre_slot(ss, cs, b, cell, dt, k, &sc_run[j], &mut its[j])
+                        if let Some(ev) =
+                            pre_slot(ss, cs, b, cell, dt, skip, k, &mut sc_run[j], &mut its[j])
                         {
                             events.push(ev);
                         }
@@ -1178,35 +1194,36 @@ enum Event {
     Erase(u32),
 }
 
-/// The radii of bodies `a` and `b` when both are plain spheres.
+/// True when an idle sphere-sphere pair is still apart, so its visit ends here: by `skip`'s bound
+/// without reading the bodies, or by YADE's distance pre-check from the compact summary alone
+/// (same operands as `Ig2_Sphere_Sphere_ScGeom::go`, so the same decision), which also renews the
+/// pair's deadline. False also when the bodies are no longer both plain spheres.
 #[inline(always)]
-fn sphere_radii(b: &Bodies, a: u32, c: u32) -> Option<(f64, f64)> {
-    match (&b.shape[a as usize], &b.shape[c as usize]) {
-        (Shape::Sphere { radius: r1 }, Shape::Sphere { radius: r2 }) => Some((*r1, *r2)),
-        _ => None,
-    }
-}
-
-/// YADE's distance pre-check for an idle sphere-sphere pair from its compact summary alone (same
-/// operands as `Ig2_Sphere_Sphere_ScGeom::go`, so the same decision); None unless both bodies are
-/// plain spheres.
-#[inline(always)]
-fn idle_within_reach(
+fn idle_apart(
     p: &geom::sphere_sphere::Params,
     b: &Bodies,
     cell: Option<&Cell>,
-    sc: &crate::interaction::ScanEntry,
-) -> Option<bool> {
-    let (r1, r2) = sphere_radii(b, sc.id1, sc.id2)?;
+    skip: &IdleSkip,
+    sc: &mut crate::interaction::ScanEntry,
+) -> bool {
+    if skip.skips(sc) {
+        return true;
+    }
+    let Some((r1, r2)) = skip.sphere_radii(sc.id1, sc.id2) else {
+        return false;
+    };
     // a zero period gives a zero shift (its sign cannot change the squared distance)
     let shift2 = match cell {
         Some(c) if sc.cell_dist != [0; 3] => c.shift_pos(&sc.cell_dist),
         _ => Vec3::zeros(),
     };
     let (p1, p2) = (&b.pos[sc.id1 as usize], &b.pos[sc.id2 as usize]);
-    Some(geom::sphere_sphere::within_reach(
-        p, r1, r2, p1, p2, &shift2,
-    ))
+    if geom::sphere_sphere::within_reach(p, r1, r2, p1, p2, &shift2) {
+        return false;
+    }
+    let reach = p.interaction_detection_factor * (r1 + r2);
+    sc.deadline = skip.deadline(p1, &(p2 + shift2), reach);
+    true
 }
 
 /// The part of slot `k`'s work that depends only on positions, velocities and its own state (see
@@ -1220,20 +1237,22 @@ fn pre_slot(
     b: &Bodies,
     cell: Option<&Cell>,
     dt: f64,
+    skip: &IdleSkip,
     k: u32,
-    sc: &crate::interaction::ScanEntry,
+    sc: &mut crate::interaction::ScanEntry,
     it: &mut crate::interaction::Interaction,
 ) -> Option<Event> {
     if sc.idle {
-        return match idle_within_reach(ss, b, cell, sc) {
-            Some(false) => None,
-            _ => Some(Event::Visit(k)),
+        return if idle_apart(ss, b, cell, skip, sc) {
+            None
+        } else {
+            Some(Event::Visit(k))
         };
     }
     if !(it.functor == GeomFunctor::SphereSphere && it.is_real() && it.ext.is_none()) {
         return Some(Event::Visit(k));
     }
-    let Some((r1, r2)) = sphere_radii(b, it.id1, it.id2) else {
+    let Some((r1, r2)) = skip.sphere_radii(it.id1, it.id2) else {
         return Some(Event::Visit(k));
     };
     let (id1, id2) = (it.id1 as usize, it.id2 as usize);
