@@ -138,7 +138,49 @@ impl Newton {
         spherical.clear();
         clumps.clear();
         let mut failed = None;
-        for id in 0..bodies.len() {
+        let n = bodies.len();
+        let lane_ctx = Lanes {
+            dt,
+            damping: self.damping,
+            gravity: g,
+            damp_gravity: self.damp_gravity,
+            periodic,
+            homo_deform,
+            prev_vel_grad: self.prev_vel_grad,
+            dvel_grad,
+            dspin,
+        };
+        let mut id = 0;
+        while id < n {
+            // a run of plain bodies: the same arithmetic over arrays (see `plain_run`)
+            let run = (id..n.min(id + RUN))
+                .take_while(|&j| self.is_plain(bodies, j))
+                .count();
+            if run >= 4 {
+                let done = plain_run(&lane_ctx, bodies, forces, id, run);
+                for j in id..id + done {
+                    spherical.push(j as u32);
+                    self.save_maxima_displacement(bodies, j);
+                }
+                if done < run {
+                    let j = id + done - 1;
+                    let f = forces.force[j];
+                    failed = Some(NewtonError::NonFinite {
+                        id: j,
+                        what: if f.iter().all(|x| x.is_finite()) {
+                            "position/velocity"
+                        } else {
+                            "force"
+                        },
+                    });
+                    break;
+                }
+                id += run;
+                continue;
+            }
+            let this = id;
+            id += 1;
+            let id = this;
             // clump members are moved by their clump
             if bodies.is_clump_member(id) {
                 continue;
@@ -301,6 +343,16 @@ impl Newton {
         Ok(())
     }
 
+    /// A body `plain4` may integrate: standalone (no clump), selected by the mask, no blocked DOF,
+    /// spherical rotation.
+    #[inline(always)]
+    fn is_plain(&self, bodies: &Bodies, id: usize) -> bool {
+        bodies.clump_id[id].is_none()
+            && (self.mask <= 0 || (bodies.mask[id] & self.mask) != 0)
+            && bodies.blocked[id] == 0
+            && !(self.exact_aspherical_rot && bodies.aspherical[id])
+    }
+
     /// `Clump::moveMembers` (core/Clump.hpp): each member's pose and velocity from the clump's,
     /// then `saveMaximaDisplacement` for the member.
     fn move_members(&mut self, bodies: &mut Bodies, cid: usize) {
@@ -327,6 +379,180 @@ impl Newton {
             self.save_maxima_displacement(bodies, id);
         }
     }
+}
+
+/// Most bodies per `plain_run` call.
+const RUN: usize = 64;
+type F = [f64; RUN];
+
+/// What `plain_run` needs of the step (the scalar loop's locals).
+struct Lanes {
+    dt: f64,
+    damping: f64,
+    gravity: Vec3,
+    damp_gravity: bool,
+    periodic: bool,
+    homo_deform: i32,
+    prev_vel_grad: Mat3,
+    dvel_grad: Mat3,
+    dspin: Vec3,
+}
+
+/// `mat_vec` over the first `len` entries of arrays: row i is `m_i0 v0 + (m_i1 v1 + m_i2 v2)`.
+#[inline(always)]
+fn mat_vec_run(m: &Mat3, v: &[F; 3], len: usize) -> [F; 3] {
+    let mut r = [[0.0; RUN]; 3];
+    for (i, ri) in r.iter_mut().enumerate() {
+        for j in 0..len {
+            ri[j] = m[(i, 0)] * v[0][j] + (m[(i, 1)] * v[1][j] + m[(i, 2)] * v[2][j]);
+        }
+    }
+    r
+}
+
+/// `cundallDamp2nd` over arrays, for the entries with `on` set.
+#[inline(always)]
+fn damp_run(damping: f64, dt: f64, v: &F, a: &mut F, on: &[bool; RUN], len: usize) {
+    for j in 0..len {
+        let d = a[j] * (1.0 - damping * sign(a[j] * (v[j] + 0.5 * dt * a[j])));
+        a[j] = if on[j] { d } else { a[j] };
+    }
+}
+
+/// The velocity, position and angular-velocity part of `NewtonIntegrator::action` for `len`
+/// (at most `RUN`) consecutive plain bodies (`Newton::is_plain`), component by component over
+/// arrays so that the divisions and matrix products run four wide. Each body gets exactly the
+/// scalar loop's operations (IEEE arithmetic is exact per element, and no FMA is formed), so the
+/// bits are the same. Returns how many bodies were integrated: `len`, or up to and including the
+/// first body whose position or velocity came out non-finite (the later ones untouched, as YADE's
+/// loop stops there).
+fn plain_run(c: &Lanes, bodies: &mut Bodies, forces: &Forces, id0: usize, len: usize) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { plain_run_avx2(c, bodies, forces, id0, len) };
+    }
+    plain_run_impl(c, bodies, forces, id0, len)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn plain_run_avx2(
+    c: &Lanes,
+    bodies: &mut Bodies,
+    forces: &Forces,
+    id0: usize,
+    len: usize,
+) -> usize {
+    plain_run_impl(c, bodies, forces, id0, len)
+}
+
+#[inline(always)]
+fn plain_run_impl(
+    c: &Lanes,
+    bodies: &mut Bodies,
+    forces: &Forces,
+    id0: usize,
+    len: usize,
+) -> usize {
+    let ids = id0..id0 + len;
+    let get = |a: &[Vec3]| -> [F; 3] {
+        let mut r = [[0.0; RUN]; 3];
+        for (j, x) in a.iter().enumerate() {
+            for k in 0..3 {
+                r[k][j] = x[k];
+            }
+        }
+        r
+    };
+    let (f, m) = (get(&forces.force[ids.clone()]), get(&forces.torque[ids.clone()]));
+    let mut vel = get(&bodies.vel[ids.clone()]);
+    let pos = get(&bodies.pos[ids.clone()]);
+    let mut w = get(&bodies.ang_vel[ids.clone()]);
+    let inertia = get(&bodies.inertia[ids.clone()]);
+    let mut mass = [1.0; RUN];
+    mass[..len].copy_from_slice(&bodies.mass[ids.clone()]);
+    let mut damped = [false; RUN];
+    damped[..len].copy_from_slice(&bodies.is_damped[ids.clone()]);
+    let (dt, g) = (c.dt, c.gravity);
+    let fluct = if c.periodic {
+        let mv = mat_vec_run(&c.prev_vel_grad, &pos, len);
+        let mut r = vel;
+        for k in 0..3 {
+            for j in 0..len {
+                r[k][j] = vel[k][j] - mv[k][j];
+            }
+        }
+        r
+    } else {
+        vel
+    };
+    let mut a = [[0.0; RUN]; 3];
+    for k in 0..3 {
+        for j in 0..len {
+            a[k][j] = if c.damp_gravity {
+                f[k][j] / mass[j] + g[k]
+            } else {
+                f[k][j] / mass[j]
+            };
+        }
+        damp_run(c.damping, dt, &fluct[k], &mut a[k], &damped, len);
+        if !c.damp_gravity {
+            for x in a[k][..len].iter_mut() {
+                *x += g[k];
+            }
+        }
+    }
+    if c.periodic && c.homo_deform > 1 {
+        let mv = mat_vec_run(&c.prev_vel_grad, &vel, len);
+        for k in 0..3 {
+            for j in 0..len {
+                a[k][j] += mv[k][j];
+            }
+        }
+    }
+    for k in 0..3 {
+        for j in 0..len {
+            vel[k][j] += a[k][j] * dt;
+        }
+    }
+    let mut aa = [[0.0; RUN]; 3];
+    for k in 0..3 {
+        for j in 0..len {
+            aa[k][j] = m[k][j] / inertia[k][j];
+        }
+        damp_run(c.damping, dt, &w[k], &mut aa[k], &damped, len);
+        for j in 0..len {
+            w[k][j] += aa[k][j] * dt;
+        }
+    }
+    if c.periodic && c.homo_deform != 0 {
+        let dv = mat_vec_run(&c.dvel_grad, &pos, len);
+        for k in 0..3 {
+            for j in 0..len {
+                vel[k][j] += dv[k][j];
+                w[k][j] += c.dspin[k];
+            }
+        }
+    }
+    let mut new_pos = pos;
+    for k in 0..3 {
+        for j in 0..len {
+            new_pos[k][j] = pos[k][j] + vel[k][j] * dt;
+        }
+    }
+    for j in 0..len {
+        let id = id0 + j;
+        bodies.vel[id] = Vec3::new(vel[0][j], vel[1][j], vel[2][j]);
+        bodies.ang_vel[id] = Vec3::new(w[0][j], w[1][j], w[2][j]);
+        bodies.pos[id] = Vec3::new(new_pos[0][j], new_pos[1][j], new_pos[2][j]);
+        if !(bodies.pos[id].iter().all(|x| x.is_finite())
+            && bodies.vel[id].iter().all(|x| x.is_finite()))
+        {
+            return j + 1;
+        }
+    }
+    len
 }
 
 /// Bodies per task of the parallel orientation pass.
@@ -361,24 +587,72 @@ fn rotate_spherical_par(pool: &rayon::ThreadPool, bodies: &mut Bodies, ids: &[u3
 /// body sees exactly the operations of the one-pass form, so the bits are the same. `ori` holds
 /// the orientations of the bodies from id `base` on.
 fn rotate_spherical(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { rotate_spherical_avx2(ori, ang_vel, base, ids, dt) };
+    }
+    rotate_spherical_impl(ori, ang_vel, base, ids, dt)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn rotate_spherical_avx2(
+    ori: &mut [Quat],
+    ang_vel: &[Vec3],
+    base: usize,
+    ids: &[u32],
+    dt: f64,
+) {
+    rotate_spherical_impl(ori, ang_vel, base, ids, dt)
+}
+
+/// `rotate_spherical` in three passes per block, the first and last over arrays (component by
+/// component, so that square roots and divisions run four wide; every body's values get the
+/// operations of the one-pass form, so the same bits): |ω|, the axis ω/|ω| and the angle; the
+/// quaternion product (sin/cos one body at a time); the normalisation.
+#[inline(always)]
+fn rotate_spherical_impl(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
     const BLOCK: usize = 64;
     for block in ids.chunks(BLOCK) {
-        // None: w = 0, no rotation
-        let mut turn = [None; BLOCK];
+        let m = block.len();
+        let mut w = [[0.0; BLOCK]; 3];
         for (j, &id) in block.iter().enumerate() {
-            let w = ang_vel[id as usize];
-            let w2 = norm2(&w);
-            if w2 != 0.0 {
-                let wn = w2.sqrt();
-                turn[j] = Some((wn * dt, Vec3::new(w[0] / wn, w[1] / wn, w[2] / wn)));
+            for k in 0..3 {
+                w[k][j] = ang_vel[id as usize][k];
             }
         }
-        for (j, &id) in block.iter().enumerate() {
-            let q0 = &mut ori[id as usize - base];
-            if let Some((angle, axis)) = &turn[j] {
-                *q0 = Quat::from_angle_axis(*angle, axis).mul(q0);
+        // w2 = 0: no rotation (the axis and angle computed for it are not used)
+        let mut w2 = [0.0; BLOCK];
+        let (mut angle, mut axis) = ([0.0; BLOCK], [[0.0; BLOCK]; 3]);
+        for j in 0..BLOCK {
+            w2[j] = w[0][j] * w[0][j] + (w[1][j] * w[1][j] + w[2][j] * w[2][j]);
+            let wn = w2[j].sqrt();
+            angle[j] = wn * dt;
+            for k in 0..3 {
+                axis[k][j] = w[k][j] / wn;
             }
-            q0.normalize();
+        }
+        let mut q = [[0.0; BLOCK]; 4];
+        for (j, &id) in block.iter().enumerate() {
+            let mut q0 = ori[id as usize - base];
+            if w2[j] != 0.0 {
+                let ax = Vec3::new(axis[0][j], axis[1][j], axis[2][j]);
+                q0 = Quat::from_angle_axis(angle[j], &ax).mul(&q0);
+            }
+            (q[0][j], q[1][j], q[2][j], q[3][j]) = (q0.x, q0.y, q0.z, q0.w);
+        }
+        // Quat::normalize: divide by sqrt(squaredNorm) when it is positive
+        for j in 0..BLOCK {
+            let z = (q[0][j] * q[0][j] + q[1][j] * q[1][j]) + (q[2][j] * q[2][j] + q[3][j] * q[3][j]);
+            let n = z.sqrt();
+            for c in q.iter_mut() {
+                c[j] = if z > 0.0 { c[j] / n } else { c[j] };
+            }
+        }
+        for (j, &id) in block.iter().enumerate().take(m) {
+            let o = &mut ori[id as usize - base];
+            (o.x, o.y, o.z, o.w) = (q[0][j], q[1][j], q[2][j], q[3][j]);
         }
     }
 }

@@ -604,6 +604,39 @@ impl Scene {
                     Event::Erase(k) => self.interactions.list[k as usize].reset(),
                 }
             }
+        } else if let (Some(ss), Some(cs), false) =
+            (il.sphere_sphere, il.cundall_strack, self.track_energy)
+        {
+            // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
+            // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
+            let n = self.interactions.list.len();
+            for k in 0..n {
+                const AHEAD: usize = 24;
+                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
+                    self.interactions.prefetch(k + AHEAD);
+                }
+                let ev = pre_slot(
+                    &ss,
+                    &cs,
+                    &self.bodies,
+                    self.cell.as_ref(),
+                    self.dt,
+                    &self.idle_skip,
+                    k as u32,
+                    &mut self.interactions.scan[k],
+                    &mut self.interactions.list[k],
+                );
+                match ev {
+                    None => {}
+                    Some(Event::Visit(_)) => {
+                        self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?
+                    }
+                    Some(Event::Load(id1, id2, l)) => {
+                        law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
+                    }
+                    Some(Event::Erase(_)) => self.interactions.list[k].reset(),
+                }
+            }
         } else {
             let n = self.interactions.list.len();
             for k in 0..n {
