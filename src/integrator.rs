@@ -465,7 +465,10 @@ fn plain_run_impl(
         }
         r
     };
-    let (f, m) = (get(&forces.force[ids.clone()]), get(&forces.torque[ids.clone()]));
+    let (f, m) = (
+        get(&forces.force[ids.clone()]),
+        get(&forces.torque[ids.clone()]),
+    );
     let mut vel = get(&bodies.vel[ids.clone()]);
     let pos = get(&bodies.pos[ids.clone()]);
     let mut w = get(&bodies.ang_vel[ids.clone()]);
@@ -581,11 +584,9 @@ fn rotate_spherical_par(pool: &rayon::ThreadPool, bodies: &mut Bodies, ids: &[u3
 }
 
 /// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
-/// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`. Done in
-/// two passes over blocks of bodies (square root and divisions; sin/cos, product and
-/// normalisation) so the long, independent latency chains of neighbouring bodies overlap; every
-/// body sees exactly the operations of the one-pass form, so the bits are the same. `ori` holds
-/// the orientations of the bodies from id `base` on.
+/// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`
+/// (`rotate_spherical_impl`), compiled for AVX2 when the CPU has it. `ori` holds the orientations
+/// of the bodies from id `base` on.
 fn rotate_spherical(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
@@ -644,7 +645,8 @@ fn rotate_spherical_impl(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &
         }
         // Quat::normalize: divide by sqrt(squaredNorm) when it is positive
         for j in 0..BLOCK {
-            let z = (q[0][j] * q[0][j] + q[1][j] * q[1][j]) + (q[2][j] * q[2][j] + q[3][j] * q[3][j]);
+            let z =
+                (q[0][j] * q[0][j] + q[1][j] * q[1][j]) + (q[2][j] * q[2][j] + q[3][j] * q[3][j]);
             let n = z.sqrt();
             for c in q.iter_mut() {
                 c[j] = if z > 0.0 { c[j] / n } else { c[j] };
@@ -772,5 +774,110 @@ mod tests {
         assert!((bodies.pos[0][0] - 0.2).abs() < 1e-15);
         assert!((bodies.ori[0].z - (2.0 * half).sin()).abs() < 1e-15);
         assert_eq!((bodies.pos[2], bodies.ori[2]), before[2]);
+    }
+
+    /// Bodies with forces, torques and velocities of every sign, damped and undamped.
+    fn varied(n: usize) -> (Bodies, Forces) {
+        let mut bodies = Bodies::default();
+        let mut forces = Forces::default();
+        forces.reset(n, 0);
+        for i in 0..n {
+            let t = i as f64 + 1.0;
+            let mut b = ball(0.3 * t, (-1.0f64).powi(i as i32) * 0.7 * t);
+            b.vel = Vec3::new(0.1 * t.sin(), -0.2 * t.cos(), 0.05 * t);
+            b.mass = 0.5 + 0.1 * t;
+            b.inertia = Vec3::new(0.003, 0.004, 0.005) * t;
+            b.is_damped = i % 3 != 0;
+            bodies.push(b);
+            forces.force[i] = Vec3::new((1.3 * t).sin(), -(0.7 * t).cos(), 0.2 * t - 1.0);
+            forces.torque[i] = Vec3::new(0.01 * t.cos(), 0.02 * (2.0 * t).sin(), -0.003 * t);
+        }
+        (bodies, forces)
+    }
+
+    /// The array path for runs of plain bodies (`plain_run`) gives each body exactly the bits of
+    /// the one-body loop: ten bodies integrated together equal each integrated alone (a run of
+    /// one takes the scalar path), with damping, gravity inside and outside the damping, and a
+    /// periodic cell whose velocity gradient brings in the homothetic terms.
+    #[test]
+    fn runs_of_plain_bodies_give_the_one_body_bits() {
+        let mut cell = Cell::new(Mat3::identity() * 2.0).unwrap();
+        cell.vel_grad = Mat3::new(0.1, 0.02, 0.0, -0.03, 0.05, 0.01, 0.0, 0.04, -0.2);
+        for (damp_gravity, periodic) in [(true, false), (false, false), (true, true), (false, true)]
+        {
+            let newton = Newton {
+                gravity: Vec3::new(0.0, -9.81, 1.5),
+                damp_gravity,
+                prev_vel_grad: Mat3::new(0.05, 0.0, 0.01, 0.0, -0.02, 0.0, 0.03, 0.0, 0.01),
+                ..Default::default()
+            };
+            let (mut all, mut f_all) = varied(10);
+            let mut c = cell.clone();
+            newton
+                .clone()
+                .step(&mut all, &mut f_all, periodic.then_some(&mut c), 1e-3, None)
+                .unwrap();
+            let (reference, f_ref) = varied(10);
+            for id in 0..10 {
+                let mut one = Bodies::default();
+                let mut f_one = Forces::default();
+                f_one.reset(1, 0);
+                one.push(ball(0.0, 0.0));
+                for (dst, src) in [
+                    (&mut one.pos, &reference.pos),
+                    (&mut one.vel, &reference.vel),
+                ] {
+                    dst[0] = src[id];
+                }
+                one.ang_vel[0] = reference.ang_vel[id];
+                one.mass[0] = reference.mass[id];
+                one.inertia[0] = reference.inertia[id];
+                one.is_damped[0] = reference.is_damped[id];
+                f_one.force[0] = f_ref.force[id];
+                f_one.torque[0] = f_ref.torque[id];
+                let mut c = cell.clone();
+                newton
+                    .clone()
+                    .step(&mut one, &mut f_one, periodic.then_some(&mut c), 1e-3, None)
+                    .unwrap();
+                let same = |a: &Vec3, b: &Vec3| (0..3).all(|k| a[k].to_bits() == b[k].to_bits());
+                assert!(
+                    same(&one.pos[0], &all.pos[id]),
+                    "pos {id} {damp_gravity} {periodic}"
+                );
+                assert!(
+                    same(&one.vel[0], &all.vel[id]),
+                    "vel {id} {damp_gravity} {periodic}"
+                );
+                assert!(same(&one.ang_vel[0], &all.ang_vel[id]), "angVel {id}");
+                assert_eq!(one.ori[0], all.ori[id], "ori {id}");
+            }
+        }
+    }
+
+    /// A non-finite force in the middle of a run: the bodies before it complete, the failing one
+    /// updated, the later ones untouched, and the error names it, as YADE's loop stops there.
+    #[test]
+    fn a_failure_inside_a_run_keeps_the_single_loop_semantics() {
+        let (mut bodies, mut forces) = varied(10);
+        let before = bodies.clone();
+        forces.force[6][2] = f64::INFINITY;
+        let e = Newton::default()
+            .step(&mut bodies, &mut forces, None, 1e-3, None)
+            .unwrap_err();
+        assert_eq!(
+            e,
+            NewtonError::NonFinite {
+                id: 6,
+                what: "force"
+            }
+        );
+        for id in 0..7 {
+            assert_ne!(bodies.pos[id], before.pos[id], "body {id} integrated");
+        }
+        for id in 7..10 {
+            assert_eq!(bodies.pos[id], before.pos[id], "body {id} untouched");
+            assert_eq!(bodies.vel[id], before.vel[id], "body {id} untouched");
+        }
     }
 }
