@@ -419,32 +419,21 @@ fn damp_run(damping: f64, dt: f64, v: &F, a: &mut F, on: &[bool; RUN], len: usiz
     }
 }
 
-/// The velocity, position and angular-velocity part of `NewtonIntegrator::action` for `len`
-/// (at most `RUN`) consecutive plain bodies (`Newton::is_plain`), component by component over
-/// arrays so that the divisions and matrix products run four wide. Each body gets exactly the
-/// scalar loop's operations (IEEE arithmetic is exact per element, and no FMA is formed), so the
-/// bits are the same. Returns how many bodies were integrated: `len`, or up to and including the
-/// first body whose position or velocity came out non-finite (the later ones untouched, as YADE's
-/// loop stops there).
-fn plain_run(c: &Lanes, bodies: &mut Bodies, forces: &Forces, id0: usize, len: usize) -> usize {
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { plain_run_avx2(c, bodies, forces, id0, len) };
-    }
-    plain_run_impl(c, bodies, forces, id0, len)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn plain_run_avx2(
-    c: &Lanes,
-    bodies: &mut Bodies,
-    forces: &Forces,
-    id0: usize,
-    len: usize,
-) -> usize {
-    plain_run_impl(c, bodies, forces, id0, len)
+avx2_dispatch! {
+    /// The velocity, position and angular-velocity part of `NewtonIntegrator::action` for `len`
+    /// (at most `RUN`) consecutive plain bodies (`Newton::is_plain`), component by component over
+    /// arrays so that the divisions and matrix products run four wide. Each body gets exactly the
+    /// scalar loop's operations (IEEE arithmetic is exact per element, and no FMA is formed), so the
+    /// bits are the same. Returns how many bodies were integrated: `len`, or up to and including the
+    /// first body whose position or velocity came out non-finite (the later ones untouched, as YADE's
+    /// loop stops there).
+    fn plain_run / plain_run_avx2 => plain_run_impl(
+        c: &Lanes,
+        bodies: &mut Bodies,
+        forces: &Forces,
+        id0: usize,
+        len: usize,
+    ) -> usize
 }
 
 #[inline(always)]
@@ -583,29 +572,18 @@ fn rotate_spherical_par(pool: &rayon::ThreadPool, bodies: &mut Bodies, ids: &[u3
     });
 }
 
-/// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
-/// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`
-/// (`rotate_spherical_impl`), compiled for AVX2 when the CPU has it. `ori` holds the orientations
-/// of the bodies from id `base` on.
-fn rotate_spherical(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { rotate_spherical_avx2(ori, ang_vel, base, ids, dt) };
-    }
-    rotate_spherical_impl(ori, ang_vel, base, ids, dt)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn rotate_spherical_avx2(
-    ori: &mut [Quat],
-    ang_vel: &[Vec3],
-    base: usize,
-    ids: &[u32],
-    dt: f64,
-) {
-    rotate_spherical_impl(ori, ang_vel, base, ids, dt)
+avx2_dispatch! {
+    /// The orientation half of `NewtonIntegrator::leapfrogSphericalRotate` for the listed bodies:
+    /// `ori = AngleAxis(|w| dt, w/|w|) * ori` (skipped when `w = 0`), then `ori.normalize()`
+    /// (`rotate_spherical_impl`), compiled for AVX2 when the CPU has it. `ori` holds the orientations
+    /// of the bodies from id `base` on.
+    fn rotate_spherical / rotate_spherical_avx2 => rotate_spherical_impl(
+        ori: &mut [Quat],
+        ang_vel: &[Vec3],
+        base: usize,
+        ids: &[u32],
+        dt: f64,
+    )
 }
 
 /// `rotate_spherical` in three passes per block, the first and last over arrays (component by
