@@ -295,11 +295,20 @@ pub struct Scene {
     /// parallel and their forces added in container order afterwards, so every thread count gives
     /// YADE's single-thread bits.
     pub threads: usize,
+    /// The threaded pre-pass and Newton's parallel orientation pass run only on containers of at
+    /// least this many slots (default `PAR_MIN_SLOTS`); below it the pool wake-ups cost more than
+    /// the parallel parts save, so the serial code runs (the same bits either way).
+    pub par_min_slots: usize,
     pub pool: Pool,
     /// Lets the interaction loop skip the distance checks of idle pairs that provably stay apart
     /// (same decisions, see `idle_skip`).
     pub idle_skip: IdleSkip,
 }
+
+/// Default `Scene::par_min_slots`. Measured with 2 threads against 1 (2-core VM, session 5): the
+/// study's r05 G medium (~5,700 slots) 0.93x and r03 N small (~12,700 slots) 0.98x with the
+/// pre-pass, the 8,000-sphere bench scene (77,800 slots) 1.40x.
+pub const PAR_MIN_SLOTS: usize = 16384;
 
 /// The thread pool of the YADE-order path, built on first use for `Scene::threads`.
 #[derive(Clone, Debug, Default)]
@@ -321,6 +330,7 @@ impl Default for Scene {
             track_energy: false,
             energy: Energy::default(),
             threads: 1,
+            par_min_slots: PAR_MIN_SLOTS,
             pool: Pool::default(),
             idle_skip: IdleSkip::default(),
         }
@@ -426,7 +436,13 @@ impl Scene {
             Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
             Engine::Newton(n) => {
                 self.forces.sync();
-                let pool = self.pool_for_threads();
+                // the orientation pass goes parallel on the scenes large enough for the pre-pass
+                // (on smaller ones one pool wake-up costs more than it saves)
+                let pool = if self.interactions.list.len() >= self.par_min_slots {
+                    self.pool_for_threads()
+                } else {
+                    None
+                };
                 n.step(
                     &mut self.bodies,
                     &mut self.forces,
@@ -873,7 +889,7 @@ impl Scene {
         let (Some(ss), Some(cs)) = (il.sphere_sphere.as_ref(), il.cundall_strack.as_ref()) else {
             return None;
         };
-        if self.track_energy {
+        if self.track_energy || self.interactions.list.len() < self.par_min_slots {
             return None;
         }
         let pool = self.pool_for_threads()?;

@@ -773,6 +773,15 @@ impl Sim {
 }
 
 /// The thread count `compat run -jN` passes in `RYADE_THREADS` (1 when unset or not a count >= 1).
+/// `RYADE_PAR_MIN_SLOTS`: overrides `Scene::par_min_slots` (tests force the threaded pre-pass on
+/// small scenes with 0).
+fn env_par_min_slots() -> usize {
+    std::env::var("RYADE_PAR_MIN_SLOTS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .unwrap_or(ryade::scene::PAR_MIN_SLOTS)
+}
+
 fn env_threads() -> usize {
     std::env::var("RYADE_THREADS")
         .ok()
@@ -788,6 +797,7 @@ impl Sim {
         Sim {
             scene: Scene {
                 threads: env_threads(),
+                par_min_slots: env_par_min_slots(),
                 ..Scene::default()
             },
             saved: HashMap::new(),
@@ -814,6 +824,7 @@ impl Sim {
     fn reset(&mut self) {
         self.scene = Scene {
             threads: self.scene.threads,
+            par_min_slots: self.scene.par_min_slots,
             ..Scene::default()
         };
         self.cursor = None;
