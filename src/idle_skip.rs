@@ -128,11 +128,9 @@ mod tests {
 
     fn entry() -> ScanEntry {
         ScanEntry {
-            id1: 0,
             id2: 1,
-            cell_dist: [0; 3],
             idle: true,
-            deadline: f64::NEG_INFINITY,
+            ..ScanEntry::default()
         }
     }
 

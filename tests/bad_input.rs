@@ -1,27 +1,17 @@
 //! Bad input must stop a run with a message that names the body, the step and the likely cause, and
 //! keep everything recorded before the failure.
+mod common;
+
 use ryade::integrator::Newton;
 use ryade::io::scene_json;
-use ryade::material::FrictMat;
 use ryade::math::Vec3;
-use ryade::scene::{Engine, Scene};
+use ryade::scene::Scene;
 use ryade::utils;
 use std::process::Command;
 
 /// Three spheres resting on each other under gravity, with the given dt.
 fn column(dt: f64) -> Scene {
-    let mut s = Scene {
-        dt,
-        ..Default::default()
-    };
-    s.materials.push(FrictMat {
-        id: 0,
-        young: 1e7,
-        poisson: 0.3,
-        density: 2600.0,
-        friction_angle: 0.5,
-        ..Default::default()
-    });
+    let mut s = common::scene_with_material(dt, 0.5);
     for k in 0..3 {
         s.bodies.push(utils::sphere(
             Vec3::new(0.0, 0.0, 0.0199 * k as f64),
@@ -31,15 +21,7 @@ fn column(dt: f64) -> Scene {
             k == 0,
         ));
     }
-    s.engines = vec![
-        Engine::ForceResetter,
-        Engine::Collider(Box::default()),
-        Engine::InteractionLoop(Box::default()),
-        Engine::Newton(Box::new(Newton {
-            gravity: Vec3::new(0.0, 0.0, -9.81),
-            ..Default::default()
-        })),
-    ];
+    s.engines = common::engines(Vec3::new(0.0, 0.0, -9.81), Newton::default().damping);
     s
 }
 

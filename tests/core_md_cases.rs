@@ -3,44 +3,14 @@
 //! exercises the builders (mass from `pow`, facet inscribed centre) that the golden scene import
 //! bypasses.
 #![allow(clippy::excessive_precision)]
-use ryade::collider::{Collider, ColliderParams};
-use ryade::integrator::Newton;
-use ryade::material::FrictMat;
+mod common;
+
 use ryade::math::Vec3;
-use ryade::scene::{Engine, Scene};
 use ryade::utils;
-
-fn engines(gravity: Vec3) -> Vec<Engine> {
-    vec![
-        Engine::ForceResetter,
-        Engine::Collider(Box::new(Collider::new(ColliderParams::default()))),
-        Engine::InteractionLoop(Box::default()),
-        Engine::Newton(Box::new(Newton {
-            damping: 0.0,
-            gravity,
-            ..Default::default()
-        })),
-    ]
-}
-
-fn mat() -> FrictMat {
-    FrictMat {
-        id: 0,
-        young: 1e7,
-        poisson: 0.3,
-        density: 2600.0,
-        friction_angle: 30f64.to_radians(),
-        ..Default::default()
-    }
-}
 
 #[test]
 fn case_a_head_on_matches_yade() {
-    let mut s = Scene {
-        dt: 1e-5,
-        ..Default::default()
-    };
-    s.materials.push(mat());
+    let mut s = common::scene_with_material(1e-5, 30f64.to_radians());
     let mut a = utils::sphere(Vec3::new(0.0, 0.0, 0.0), 0.01, 0, 2600.0, false);
     a.vel = Vec3::new(0.05, 0.0, 0.0);
     let mut b = utils::sphere(Vec3::new(0.0199, 0.0, 0.0), 0.01, 0, 2600.0, false);
@@ -51,7 +21,7 @@ fn case_a_head_on_matches_yade() {
     );
     s.bodies.push(a);
     s.bodies.push(b);
-    s.engines = engines(Vec3::zeros());
+    s.engines = common::engines(Vec3::zeros(), 0.0);
     s.step().unwrap();
     assert_eq!(s.time, 1.0000000000000001e-05);
     assert_eq!(s.bodies.pos[0][0], 4.0817984052390713e-07);
@@ -83,11 +53,7 @@ fn case_a_head_on_matches_yade() {
 
 #[test]
 fn case_b_facet_sliding_matches_yade() {
-    let mut s = Scene {
-        dt: 1e-5,
-        ..Default::default()
-    };
-    s.materials.push(mat());
+    let mut s = common::scene_with_material(1e-5, 30f64.to_radians());
     let mut sp = utils::sphere(Vec3::new(0.0, -0.3, 0.01 - 8e-7), 0.01, 0, 2600.0, false);
     sp.vel = Vec3::new(0.5, 0.0, 0.0);
     s.bodies.push(sp);
@@ -105,7 +71,7 @@ fn case_b_facet_sliding_matches_yade() {
         "facet body at the inscribed circle centre"
     );
     s.bodies.push(f);
-    s.engines = engines(Vec3::new(0.0, 0.0, -9.81));
+    s.engines = common::engines(Vec3::new(0.0, 0.0, -9.81), 0.0);
     s.step().unwrap();
     let p = s.bodies.pos[0];
     assert_eq!(

@@ -5,41 +5,20 @@
 //! speed (no gravity, no damping), then, in a second run, is teleported into contact the way a
 //! Python script writing `state.pos` would; at every step the contact must exist exactly when
 //! YADE's check `(r1 + r2)² - |d|² >= 0` on the positions the loop saw says so.
-use ryade::collider::{Collider, ColliderParams};
-use ryade::integrator::Newton;
-use ryade::material::FrictMat;
+mod common;
+
 use ryade::math::{norm2, Vec3};
-use ryade::scene::{Engine, Scene};
+use ryade::scene::Scene;
 use ryade::utils;
 
 fn scene(gap: f64, speed: f64) -> Scene {
-    let mut s = Scene {
-        dt: 1e-5,
-        ..Default::default()
-    };
-    s.materials.push(FrictMat {
-        id: 0,
-        young: 1e7,
-        poisson: 0.3,
-        density: 2600.0,
-        friction_angle: 0.5,
-        ..Default::default()
-    });
+    let mut s = common::scene_with_material(1e-5, 0.5);
     s.bodies
         .push(utils::sphere(Vec3::zeros(), 0.01, 0, 2600.0, false));
     let mut b = utils::sphere(Vec3::new(0.02 + gap, 0.0, 0.0), 0.01, 0, 2600.0, false);
     b.vel = Vec3::new(-speed, 0.0, 0.0);
     s.bodies.push(b);
-    s.engines = vec![
-        Engine::ForceResetter,
-        Engine::Collider(Box::new(Collider::new(ColliderParams::default()))),
-        Engine::InteractionLoop(Box::default()),
-        Engine::Newton(Box::new(Newton {
-            damping: 0.0,
-            gravity: Vec3::zeros(),
-            ..Default::default()
-        })),
-    ];
+    s.engines = common::engines(Vec3::zeros(), 0.0);
     s
 }
 
