@@ -139,7 +139,7 @@ impl Newton {
         clumps.clear();
         let mut failed = None;
         let n = bodies.len();
-        let lane_ctx = Lanes {
+        let run_ctx = RunCtx {
             dt,
             damping: self.damping,
             gravity: g,
@@ -157,22 +157,14 @@ impl Newton {
                 .take_while(|&j| self.is_plain(bodies, j))
                 .count();
             if run >= 4 {
-                let done = plain_run(&lane_ctx, bodies, forces, id, run);
+                let done = plain_run(&run_ctx, bodies, forces, id, run);
                 for j in id..id + done {
                     spherical.push(j as u32);
                     self.save_maxima_displacement(bodies, j);
                 }
                 if done < run {
                     let j = id + done - 1;
-                    let f = forces.force[j];
-                    failed = Some(NewtonError::NonFinite {
-                        id: j,
-                        what: if f.iter().all(|x| x.is_finite()) {
-                            "position/velocity"
-                        } else {
-                            "force"
-                        },
-                    });
+                    failed = Some(non_finite(j, &forces.force[j]));
                     break;
                 }
                 id += run;
@@ -304,17 +296,8 @@ impl Newton {
             if is_clump {
                 clumps.push(id as u32);
             }
-            if !(bodies.pos[id].iter().all(|x| x.is_finite())
-                && bodies.vel[id].iter().all(|x| x.is_finite()))
-            {
-                failed = Some(NewtonError::NonFinite {
-                    id,
-                    what: if f.iter().all(|x| x.is_finite()) {
-                        "position/velocity"
-                    } else {
-                        "force"
-                    },
-                });
+            if !moved_finite(bodies, id) {
+                failed = Some(non_finite(id, &f));
                 break;
             }
         }
@@ -381,12 +364,31 @@ impl Newton {
     }
 }
 
+/// Whether body `id`'s new position and velocity are finite (YADE stops the step at the first
+/// body where they are not).
+#[inline(always)]
+fn moved_finite(bodies: &Bodies, id: usize) -> bool {
+    bodies.pos[id].iter().all(|x| x.is_finite()) && bodies.vel[id].iter().all(|x| x.is_finite())
+}
+
+/// The error for body `id` whose motion came out non-finite, blaming the force `f` if it is.
+fn non_finite(id: usize, f: &Vec3) -> NewtonError {
+    NewtonError::NonFinite {
+        id,
+        what: if f.iter().all(|x| x.is_finite()) {
+            "position/velocity"
+        } else {
+            "force"
+        },
+    }
+}
+
 /// Most bodies per `plain_run` call.
 const RUN: usize = 64;
 type F = [f64; RUN];
 
 /// What `plain_run` needs of the step (the scalar loop's locals).
-struct Lanes {
+struct RunCtx {
     dt: f64,
     damping: f64,
     gravity: Vec3,
@@ -428,7 +430,7 @@ avx2_dispatch! {
     /// first body whose position or velocity came out non-finite (the later ones untouched, as YADE's
     /// loop stops there).
     fn plain_run / plain_run_avx2 => plain_run_impl(
-        c: &Lanes,
+        c: &RunCtx,
         bodies: &mut Bodies,
         forces: &Forces,
         id0: usize,
@@ -438,7 +440,7 @@ avx2_dispatch! {
 
 #[inline(always)]
 fn plain_run_impl(
-    c: &Lanes,
+    c: &RunCtx,
     bodies: &mut Bodies,
     forces: &Forces,
     id0: usize,
@@ -538,9 +540,7 @@ fn plain_run_impl(
         bodies.vel[id] = Vec3::new(vel[0][j], vel[1][j], vel[2][j]);
         bodies.ang_vel[id] = Vec3::new(w[0][j], w[1][j], w[2][j]);
         bodies.pos[id] = Vec3::new(new_pos[0][j], new_pos[1][j], new_pos[2][j]);
-        if !(bodies.pos[id].iter().all(|x| x.is_finite())
-            && bodies.vel[id].iter().all(|x| x.is_finite()))
-        {
+        if !moved_finite(bodies, id) {
             return j + 1;
         }
     }
@@ -594,7 +594,6 @@ avx2_dispatch! {
 fn rotate_spherical_impl(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &[u32], dt: f64) {
     const BLOCK: usize = 64;
     for block in ids.chunks(BLOCK) {
-        let m = block.len();
         let mut w = [[0.0; BLOCK]; 3];
         for (j, &id) in block.iter().enumerate() {
             for k in 0..3 {
@@ -630,7 +629,7 @@ fn rotate_spherical_impl(ori: &mut [Quat], ang_vel: &[Vec3], base: usize, ids: &
                 c[j] = if z > 0.0 { c[j] / n } else { c[j] };
             }
         }
-        for (j, &id) in block.iter().enumerate().take(m) {
+        for (j, &id) in block.iter().enumerate() {
             let o = &mut ori[id as usize - base];
             (o.x, o.y, o.z, o.w) = (q[0][j], q[1][j], q[2][j], q[3][j]);
         }

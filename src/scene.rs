@@ -610,15 +610,7 @@ impl Scene {
         }
         if let Some(runs) = self.pre_pass(il) {
             for ev in runs.iter().flatten() {
-                match *ev {
-                    Event::Visit(k) => {
-                        self.visit(il, k as usize, &ctx0, &mut energy, &mut geom_entries)?
-                    }
-                    Event::Load(id1, id2, l) => {
-                        law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
-                    }
-                    Event::Erase(k) => self.interactions.list[k as usize].reset(),
-                }
+                self.event(il, *ev, &ctx0, &mut energy, &mut geom_entries)?;
             }
         } else if let (Some(ss), Some(cs), false) =
             (il.sphere_sphere, il.cundall_strack, self.track_energy)
@@ -642,15 +634,8 @@ impl Scene {
                     &mut self.interactions.scan[k],
                     &mut self.interactions.list[k],
                 );
-                match ev {
-                    None => {}
-                    Some(Event::Visit(_)) => {
-                        self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?
-                    }
-                    Some(Event::Load(id1, id2, l)) => {
-                        law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
-                    }
-                    Some(Event::Erase(_)) => self.interactions.list[k].reset(),
+                if let Some(ev) = ev {
+                    self.event(il, ev, &ctx0, &mut energy, &mut geom_entries)?;
                 }
             }
         } else {
@@ -669,6 +654,27 @@ impl Scene {
             self.energy.shear_dissip += energy.shear_dissip;
             self.energy.bending_dissip += energy.bending_dissip;
             self.energy.twist_dissip += energy.twist_dissip;
+        }
+        Ok(())
+    }
+
+    /// What `pre_slot` left for the container-order walk: visit the slot, add the steady
+    /// contact's load, or erase it.
+    #[inline(always)]
+    fn event(
+        &mut self,
+        il: &mut InteractionLoop,
+        ev: Event,
+        ctx0: &GeomCtx,
+        energy: &mut LawEnergy,
+        geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
+    ) -> Result<(), String> {
+        match ev {
+            Event::Visit(k) => self.visit(il, k as usize, ctx0, energy, geom_entries)?,
+            Event::Load(id1, id2, l) => {
+                law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
+            }
+            Event::Erase(k) => self.interactions.list[k as usize].reset(),
         }
         Ok(())
     }
