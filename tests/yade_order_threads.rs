@@ -54,26 +54,14 @@ fn dense_packing_has_the_same_bits_for_any_thread_count() {
                 .flat_map(|x| x.iter().map(|c| c.to_bits()))
                 .collect()
         };
-        assert!(
-            bits(&s.bodies.pos) == bits(&one.bodies.pos),
-            "{} threads: pos",
-            t
-        );
-        assert!(
-            bits(&s.bodies.vel) == bits(&one.bodies.vel),
-            "{} threads: vel",
-            t
-        );
-        assert!(
-            bits(&s.bodies.ang_vel) == bits(&one.bodies.ang_vel),
-            "{} threads: angVel",
-            t
-        );
-        assert!(
-            bits(&s.forces.force) == bits(&one.forces.force),
-            "{} threads: force",
-            t
-        );
+        for (what, a, b) in [
+            ("pos", &s.bodies.pos, &one.bodies.pos),
+            ("vel", &s.bodies.vel, &one.bodies.vel),
+            ("angVel", &s.bodies.ang_vel, &one.bodies.ang_vel),
+            ("force", &s.forces.force, &one.forces.force),
+        ] {
+            assert!(bits(a) == bits(b), "{} threads: {}", t, what);
+        }
         for (a, b) in s.interactions.list.iter().zip(&one.interactions.list) {
             assert_eq!((a.id1, a.id2), (b.id1, b.id2));
             assert_eq!(a.phys.map(|p| p.shear_force), b.phys.map(|p| p.shear_force));
