@@ -427,17 +427,16 @@ pub fn make_clump(
 pub fn force_torque_from_members(
     c: &Clump,
     bodies: &Bodies,
-    force: &[Vec3],
-    torque: &[Vec3],
+    forces: &crate::forces::Forces,
     cpos: &Vec3,
 ) -> (Vec3, Vec3) {
     let mut f = Vec3::zeros();
     let mut t = Vec3::zeros();
     for m in &c.members {
         let id = m.id as usize;
-        let fi = force[id];
+        let fi = *forces.force(id);
         f += fi;
-        t += torque[id] + cross(&(bodies.pos[id] - cpos), &fi);
+        t += forces.torque(id) + cross(&(bodies.pos[id] - cpos), &fi);
     }
     (f, t)
 }

@@ -164,7 +164,7 @@ impl Newton {
                 }
                 if done < run {
                     let j = id + done - 1;
-                    failed = Some(non_finite(j, &forces.force[j]));
+                    failed = Some(non_finite(j, forces.force(j)));
                     break;
                 }
                 id += run;
@@ -183,18 +183,13 @@ impl Newton {
                 continue;
             }
             if let (true, Shape::Clump(c)) = (is_clump, &bodies.shape[id]) {
-                let (cf, ct) = crate::clump::force_torque_from_members(
-                    c,
-                    bodies,
-                    &forces.force,
-                    &forces.torque,
-                    &bodies.pos[id],
-                );
-                forces.torque[id] += ct;
-                forces.force[id] += cf;
+                let (cf, ct) =
+                    crate::clump::force_torque_from_members(c, bodies, forces, &bodies.pos[id]);
+                *forces.torque_mut(id) += ct;
+                *forces.force_mut(id) += cf;
             }
-            let f = forces.force[id];
-            let mut m = forces.torque[id];
+            let f = *forces.force(id);
+            let mut m = *forces.torque(id);
             let blocked = bodies.blocked[id];
             let use_aspherical =
                 self.exact_aspherical_rot && bodies.aspherical[id] && (blocked & DOF_ROT) == 0;
@@ -456,10 +451,13 @@ fn plain_run_impl(
         }
         r
     };
-    let (f, m) = (
-        get(&forces.force[ids.clone()]),
-        get(&forces.torque[ids.clone()]),
-    );
+    let (mut f, mut m) = ([[0.0; RUN]; 3], [[0.0; RUN]; 3]);
+    for (j, w) in forces.ft[ids.clone()].iter().enumerate() {
+        for k in 0..3 {
+            f[k][j] = w.f[k];
+            m[k][j] = w.t[k];
+        }
+    }
     let mut vel = get(&bodies.vel[ids.clone()]);
     let pos = get(&bodies.pos[ids.clone()]);
     let mut w = get(&bodies.ang_vel[ids.clone()]);
@@ -766,8 +764,8 @@ mod tests {
             b.inertia = Vec3::new(0.003, 0.004, 0.005) * t;
             b.is_damped = i % 3 != 0;
             bodies.push(b);
-            forces.force[i] = Vec3::new((1.3 * t).sin(), -(0.7 * t).cos(), 0.2 * t - 1.0);
-            forces.torque[i] = Vec3::new(0.01 * t.cos(), 0.02 * (2.0 * t).sin(), -0.003 * t);
+            *forces.force_mut(i) = Vec3::new((1.3 * t).sin(), -(0.7 * t).cos(), 0.2 * t - 1.0);
+            *forces.torque_mut(i) = Vec3::new(0.01 * t.cos(), 0.02 * (2.0 * t).sin(), -0.003 * t);
         }
         (bodies, forces)
     }
@@ -810,8 +808,7 @@ mod tests {
                 one.mass[0] = reference.mass[id];
                 one.inertia[0] = reference.inertia[id];
                 one.is_damped[0] = reference.is_damped[id];
-                f_one.force[0] = f_ref.force[id];
-                f_one.torque[0] = f_ref.torque[id];
+                f_one.ft[0] = f_ref.ft[id];
                 let mut c = cell.clone();
                 newton
                     .clone()
@@ -838,7 +835,7 @@ mod tests {
     fn a_failure_inside_a_run_keeps_the_single_loop_semantics() {
         let (mut bodies, mut forces) = varied(10);
         let before = bodies.clone();
-        forces.force[6][2] = f64::INFINITY;
+        forces.force_mut(6)[2] = f64::INFINITY;
         let e = Newton::default()
             .step(&mut bodies, &mut forces, None, 1e-3, None)
             .unwrap_err();

@@ -112,7 +112,7 @@ impl ServoPid {
         if self.iter_prev_start < 0 || iter - self.iter_prev_start >= self.iter_period {
             let mut f = Vec3::zeros();
             for &id in &self.ids {
-                if let Some(fi) = forces.force.get(id) {
+                if let Some(fi) = forces.ft.get(id).map(|w| &w.f) {
                     f += fi;
                 }
             }
@@ -158,8 +158,8 @@ mod tests {
         bodies.vel[0] = Vec3::new(5.0, 5.0, 5.0);
         let mut forces = Forces::default();
         forces.resize(2);
-        forces.force[0] = Vec3::new(1.0, 2.0, -30.0);
-        forces.force[1] = Vec3::new(0.0, 0.0, -20.0);
+        *forces.force_mut(0) = Vec3::new(1.0, 2.0, -30.0);
+        *forces.force_mut(1) = Vec3::new(0.0, 0.0, -20.0);
         let mut s = ServoPid {
             ids: vec![0, 1],
             axis: Vec3::new(0.0, 0.0, 2.0),
@@ -179,7 +179,7 @@ mod tests {
         assert_eq!(bodies.vel[0], Vec3::new(0.0, 0.0, 1.0));
         assert_eq!(bodies.ang_vel[0], Vec3::zeros());
         // next step: no update (iterPeriod 2), the velocity is held
-        forces.force[1] = Vec3::zeros();
+        *forces.force_mut(1) = Vec3::zeros();
         s.action(&mut bodies, &forces, 11);
         assert_eq!(s.error_cur, 10.0);
         assert_eq!(bodies.vel[1], Vec3::new(0.0, 0.0, 1.0));
@@ -197,7 +197,7 @@ mod tests {
         let mut bodies = two_bodies();
         let mut forces = Forces::default();
         forces.resize(2);
-        forces.force[0] = Vec3::new(0.0, 0.0, 7.0);
+        *forces.force_mut(0) = Vec3::new(0.0, 0.0, 7.0);
         let mut s = ServoPid {
             ids: vec![0],
             axis: Vec3::new(0.0, 0.0, 1.0),

@@ -43,12 +43,12 @@ pub fn unbalanced_force(scene: &Scene, use_max_force: bool) -> f64 {
         if b.is_clump_member(id) || !b.is_dynamic(id) {
             continue;
         }
-        let mut f = norm(&(scene.forces.force[id] + g * b.mass[id]));
+        let mut f = norm(&(scene.forces.force(id) + g * b.mass[id]));
         if let (Shape::Clump(c), true) = (&b.shape[id], f == 0.0) {
             // a clump read before Newton summed its members (Shop::unbalancedForce does the same)
-            let mut cf = scene.forces.force[id];
+            let mut cf = *scene.forces.force(id);
             for m in &c.members {
-                cf += scene.forces.force[m.id as usize];
+                cf += scene.forces.force(m.id as usize);
             }
             f = norm(&(cf + g * b.mass[id]));
         }

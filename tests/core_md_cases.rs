@@ -26,7 +26,7 @@ fn case_a_head_on_matches_yade() {
     assert_eq!(s.time, 1.0000000000000001e-05);
     assert_eq!(s.bodies.pos[0][0], 4.0817984052390713e-07);
     assert_eq!(s.bodies.vel[0][0], 0.040817984052390711);
-    assert_eq!(s.forces.force[0][0], -9.9999999999999396);
+    assert_eq!(s.forces.force(0)[0], -9.9999999999999396);
     let it = &s.interactions.list[0];
     assert_eq!(it.geom.unwrap().pen, 9.9999999999999395e-05);
     assert_eq!(
@@ -39,7 +39,7 @@ fn case_a_head_on_matches_yade() {
     assert_eq!(s.bodies.pos[0][0], 1.110261955188515e-06);
     assert_eq!(s.bodies.pos[1][0], 0.019898889738044816);
     assert_eq!(s.bodies.vel[0][0], 0.0035108336354190053);
-    assert_eq!(s.forces.force[1][0], 10.215030723766464);
+    assert_eq!(s.forces.force(1)[0], 10.215030723766464);
     for _ in 5..300 {
         s.step().unwrap();
     }
@@ -83,10 +83,11 @@ fn case_b_facet_sliding_matches_yade() {
         )
     );
     assert_eq!(s.bodies.ang_vel[0][1], 0.014136072878622757);
-    assert_eq!(s.forces.force[0][0], -0.061584028713594967);
-    assert_eq!(s.forces.force[0][2], 0.1066666666667271);
+    assert_eq!(s.forces.force(0)[0], -0.061584028713594967);
+    assert_eq!(s.forces.force(0)[2], 0.1066666666667271);
     assert_eq!(
-        s.forces.torque[1][1], 0.0012316559406604138,
+        s.forces.torque(1)[1],
+        0.0012316559406604138,
         "facet torque with the 2R arm quirk"
     );
     let it = &s.interactions.list[0];
@@ -105,7 +106,7 @@ fn case_b_facet_sliding_matches_yade() {
         (2.4991517977821258e-05, 0.0099991999762933676)
     );
     assert_eq!(s.bodies.vel[0][2], -7.8860693334227967e-07);
-    assert_eq!(s.forces.torque[0][1], 0.00061582783122570523);
+    assert_eq!(s.forces.torque(0)[1], 0.00061582783122570523);
     for _ in 5..4000 {
         s.step().unwrap();
     }

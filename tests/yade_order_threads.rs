@@ -58,10 +58,22 @@ fn dense_packing_has_the_same_bits_for_any_thread_count() {
             ("pos", &s.bodies.pos, &one.bodies.pos),
             ("vel", &s.bodies.vel, &one.bodies.vel),
             ("angVel", &s.bodies.ang_vel, &one.bodies.ang_vel),
-            ("force", &s.forces.force, &one.forces.force),
         ] {
             assert!(bits(a) == bits(b), "{} threads: {}", t, what);
         }
+        let wrench_bits = |s: &ryade::scene::Scene| -> Vec<u64> {
+            let ft = s
+                .forces
+                .ft
+                .iter()
+                .flat_map(|w| w.f.iter().chain(w.t.iter()));
+            ft.map(|c| c.to_bits()).collect()
+        };
+        assert!(
+            wrench_bits(&s) == wrench_bits(&one),
+            "{} threads: force/torque",
+            t
+        );
         for (a, b) in s.interactions.list.iter().zip(&one.interactions.list) {
             assert_eq!((a.id1, a.id2), (b.id1, b.id2));
             assert_eq!(a.phys.map(|p| p.shear_force), b.phys.map(|p| p.shear_force));

@@ -1358,9 +1358,9 @@ impl Sim {
         Ok(self
             .scene
             .forces
-            .force
+            .ft
             .get(id)
-            .map(v3)
+            .map(|w| v3(&w.f))
             .unwrap_or((0.0, 0.0, 0.0)))
     }
     fn torque(&self, id: usize) -> PyResult<V3> {
@@ -1368,9 +1368,9 @@ impl Sim {
         Ok(self
             .scene
             .forces
-            .torque
+            .ft
             .get(id)
-            .map(v3)
+            .map(|w| v3(&w.t))
             .unwrap_or((0.0, 0.0, 0.0)))
     }
     fn add_force(&mut self, id: usize, f: V3) -> PyResult<()> {

@@ -788,8 +788,8 @@ impl FastSim {
             b.vel[id] = Vec3::from(self.vel[k]);
             b.ang_vel[id] = Vec3::from(self.ang_vel[k]);
             b.ori[id] = self.ori[k];
-            scene.forces.force[id] = Vec3::from(self.force[k]);
-            scene.forces.torque[id] = Vec3::from(self.torque[k]);
+            *scene.forces.force_mut(id) = Vec3::from(self.force[k]);
+            *scene.forces.torque_mut(id) = Vec3::from(self.torque[k]);
         }
         scene.iter = self.iter;
         scene.time = self.time;

@@ -258,24 +258,9 @@ pub fn body_values(scene: &Scene, id: usize) -> [f64; 19] {
     push3(&mut v, &b.ang_vel[id]);
     let q = b.ori[id];
     v.extend_from_slice(&[q.w, q.x, q.y, q.z]);
-    push3(
-        &mut v,
-        &scene
-            .forces
-            .force
-            .get(id)
-            .copied()
-            .unwrap_or_else(Vec3::zeros),
-    );
-    push3(
-        &mut v,
-        &scene
-            .forces
-            .torque
-            .get(id)
-            .copied()
-            .unwrap_or_else(Vec3::zeros),
-    );
+    let w = scene.forces.ft.get(id).copied().unwrap_or_default();
+    push3(&mut v, &w.f);
+    push3(&mut v, &w.t);
     v.try_into().unwrap()
 }
 
