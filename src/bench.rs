@@ -266,16 +266,74 @@ pub fn load_script_scene(p: &Path) -> Result<ScriptScene> {
 
 /// Run a script scene once in YADE or in ryade's YADE-order path and time its phase.
 pub fn run_script(root: &Path, sc: &ScriptScene, v: Variant) -> Result<Sample> {
+    with_temp_dir(|dir| run_script_in(root, sc, v, dir, None))
+}
+
+fn with_temp_dir<T>(f: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
     static RUN: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let k = RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("ryade_bench_{}_{}", std::process::id(), k));
     std::fs::create_dir_all(&dir)?;
-    let res = run_script_in(root, sc, v, &dir);
+    let res = f(&dir);
     let _ = std::fs::remove_dir_all(&dir);
     res
 }
 
-fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Result<Sample> {
+/// The wrapper that runs a script with `O.timingEnabled` and writes the engines' timings.
+pub const TIMED_RUN: &str = "yade_ref/bench/timed_run.py";
+
+/// One engine's timing in a profiled script run (`yade_ref/bench/timed_run.py`): YADE's
+/// `Engine.execTime` (ns) and `execCount`, summed over every step of the final engine list.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct EngineProfile {
+    pub engine: String,
+    pub count: u64,
+    pub ns: u64,
+}
+
+/// A profiled script run of one engine.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Profile {
+    pub variant: String,
+    /// Steps the engines ran (the most runs of any engine).
+    pub steps: u64,
+    pub engines: Vec<EngineProfile>,
+    #[serde(skip)]
+    pub history: Option<String>,
+}
+
+/// Run a script scene once more in `v` with `O.timingEnabled = True` (through `TIMED_RUN`) and read
+/// the per-engine timings.
+pub fn profile_script(root: &Path, sc: &ScriptScene, v: Variant) -> Result<Profile> {
+    with_temp_dir(|dir| {
+        let json = dir.join("timings.json");
+        let s = run_script_in(root, sc, v, dir, Some(&json))?;
+        #[derive(serde::Deserialize)]
+        struct Timings {
+            engines: Vec<EngineProfile>,
+        }
+        let t: Timings = serde_json::from_str(
+            &std::fs::read_to_string(&json)
+                .with_context(|| format!("{} wrote no {}", TIMED_RUN, json.display()))?,
+        )
+        .with_context(|| format!("reading {}", json.display()))?;
+        Ok(Profile {
+            variant: v.name(),
+            steps: t.engines.iter().map(|e| e.count).max().unwrap_or(0),
+            engines: t.engines,
+            history: s.history,
+        })
+    })
+}
+
+/// `timings`: run the script through `TIMED_RUN`, which writes the engines' timings there.
+fn run_script_in(
+    root: &Path,
+    sc: &ScriptScene,
+    v: Variant,
+    dir: &Path,
+    timings: Option<&Path>,
+) -> Result<Sample> {
     let mut cmd = match v {
         Variant::Yade => {
             let mut c = Command::new("yade");
@@ -289,6 +347,9 @@ fn run_script_in(root: &Path, sc: &ScriptScene, v: Variant, dir: &Path) -> Resul
         }
         Variant::Fast(_) => bail!("the fast path cannot run script scenes"),
     };
+    if let Some(t) = timings {
+        cmd.arg(root.join(TIMED_RUN)).arg(t);
+    }
     let out = cmd
         .current_dir(root)
         .arg(root.join(&sc.script))
@@ -369,6 +430,9 @@ pub struct BenchReport {
     pub variants: Vec<VariantReport>,
     /// Named ratios between ryade variants over the repetitions (e.g. fast 2t / fast 1t).
     pub ratios: Vec<(String, Stats)>,
+    /// Script scenes: one more run of YADE and of the one-thread YADE-order path with
+    /// `O.timingEnabled` (per-engine breakdown; not part of the timed repetitions).
+    pub profiles: Vec<Profile>,
     /// `/proc/loadavg` before and after (the machine may be shared).
     pub load_before: String,
     pub load_after: String,
@@ -466,6 +530,14 @@ pub fn bench(
             memory: mem[k],
         })
         .collect();
+    let mut profiles = Vec::new();
+    if let Some(sc) = &script {
+        for v in [Variant::Yade, Variant::YadeOrder(1)] {
+            if variants.contains(&v) {
+                profiles.push(profile_script(root, sc, v)?);
+            }
+        }
+    }
     let mut ratios = Vec::new();
     let find = |v: Variant| variants.iter().position(|x| *x == v);
     if let (Some(a), Some(b)) = (find(Variant::Fast(2)), find(Variant::Fast(1))) {
@@ -480,7 +552,11 @@ pub fn bench(
     Ok(BenchReport {
         scene: scene.display().to_string(),
         histories_identical: script.as_ref().map(|_| {
-            let h: Vec<&Option<String>> = samples.iter().map(|s: &Sample| &s.history).collect();
+            let h: Vec<&Option<String>> = samples
+                .iter()
+                .map(|s: &Sample| &s.history)
+                .chain(profiles.iter().map(|p| &p.history))
+                .collect();
             h.iter().all(|x| x.is_some() && *x == h[0])
         }),
         script: script.map(|s| format!("{}, timed phase '{}'", s.label, s.phase)),
@@ -489,9 +565,60 @@ pub fn bench(
         samples,
         variants: reports,
         ratios,
+        profiles,
         load_before,
         load_after: loadavg(),
     })
+}
+
+/// The per-engine table of a script scene's profiled runs: µs per step in each engine, and the
+/// first profile (YADE) over the others.
+fn format_profiles(ps: &[Profile]) -> String {
+    let Some(first) = ps.first() else {
+        return String::new();
+    };
+    let per_step = |p: &Profile, ns: u64| ns as f64 / 1e3 / p.steps.max(1) as f64;
+    let mut out = format!(
+        "  per engine, µs per step (one more run each with O.timingEnabled, all steps of the final engine list;\n  ratio = first column / second):\n  {:28}",
+        "engine"
+    );
+    for p in ps {
+        out += &format!(" {:>18}", p.variant);
+    }
+    if ps.len() > 1 {
+        out += &format!(" {:>14}", "ratio");
+    }
+    out += "\n";
+    let total = |p: &Profile| p.engines.iter().map(|e| e.ns).sum::<u64>();
+    let rows = first.engines.len();
+    for k in 0..=rows {
+        let name = if k < rows {
+            first.engines[k].engine.clone()
+        } else {
+            "TOTAL".to_string()
+        };
+        let vals: Vec<Option<f64>> = ps
+            .iter()
+            .map(|p| match k < rows {
+                true => p.engines.get(k).map(|e| per_step(p, e.ns)),
+                false => Some(per_step(p, total(p))),
+            })
+            .collect();
+        out += &format!("  {:28}", name);
+        for v in &vals {
+            out += &match v {
+                Some(x) => format!(" {:>18.1}", x),
+                None => format!(" {:>18}", "-"),
+            };
+        }
+        if let (Some(Some(a)), Some(Some(b))) = (vals.first(), vals.get(1)) {
+            if *b > 0.0 {
+                out += &format!(" {:>14.2}", a / b);
+            }
+        }
+        out += "\n";
+    }
+    out
 }
 
 /// The report as text lines.
@@ -567,6 +694,7 @@ pub fn format_report(r: &BenchReport) -> String {
             }
         );
     }
+    out += &format_profiles(&r.profiles);
     for (name, s) in &r.ratios {
         out += &format!("  {:30} {}\n", name, q(s));
     }
@@ -602,6 +730,41 @@ mod tests {
             n += 1;
         }
         assert_eq!(n, 2, "scenes (b) and (c)");
+    }
+
+    /// The per-engine table divides each engine's ns by the steps of its run, adds a TOTAL row, and
+    /// gives the first run over the second; an engine missing from the second run shows as "-".
+    #[test]
+    fn profile_table_is_per_step_with_total_and_ratio() {
+        let e = |n: &str, count, ns| EngineProfile {
+            engine: n.into(),
+            count,
+            ns,
+        };
+        let yade = Profile {
+            variant: "YADE".into(),
+            steps: 10,
+            engines: vec![e("InteractionLoop", 10, 30_000), e("ctl", 9, 10_000)],
+            history: None,
+        };
+        let ryade = Profile {
+            variant: "ryade".into(),
+            steps: 20,
+            engines: vec![e("InteractionLoop", 20, 20_000)],
+            history: None,
+        };
+        let t = format_profiles(&[yade, ryade]);
+        let rows: Vec<Vec<&str>> = t
+            .lines()
+            .skip(3)
+            .map(|l| l.split_whitespace().collect())
+            .collect();
+        assert_eq!(rows[0], ["InteractionLoop", "3.0", "1.0", "3.00"], "{}", t);
+        assert_eq!(rows[1], ["ctl", "1.0", "-"], "{}", t);
+        assert_eq!(rows[2], ["TOTAL", "4.0", "1.0", "4.00"], "{}", t);
+        assert!(Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join(TIMED_RUN)
+            .is_file());
     }
 
     #[test]

@@ -303,7 +303,34 @@ pub struct Scene {
     /// Lets the interaction loop skip the distance checks of idle pairs that provably stay apart
     /// (same decisions, see `idle_skip`).
     pub idle_skip: IdleSkip,
+    /// `O.timingEnabled`: `run_engine` then adds each engine's wall time and run count to `timing`.
+    pub timing_enabled: bool,
+    /// Per engine slot (grown on demand; `Engine::External` slots are timed by their runner).
+    pub timing: Vec<EngineTiming>,
 }
+
+/// YADE's `TimingInfo` of one engine (core/Scene.cpp `Scene::moveToNextTimeStep`): nanoseconds of
+/// wall time and the number of runs, counted only for runs where the engine was activated (a
+/// collider or time stepper that does nothing this step is not counted). YADE charges the time
+/// between two activated engines to the second; here each engine's own run is timed, so the few
+/// nanoseconds of a skipped engine's activation test go nowhere.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct EngineTiming {
+    pub nsec: u64,
+    pub count: u64,
+    /// YADE's `timingDeltas` (named checkpoints inside the engine): (name, ns, count). Only
+    /// NewtonIntegrator has them, as in Debian's YADE build.
+    pub deltas: Vec<(&'static str, u64, u64)>,
+}
+
+/// `NewtonIntegrator`'s checkpoints in YADE (pkg/dem/NewtonIntegrator.cpp `action`). ryade keeps the
+/// largest velocity inside the body loop, so "sync max vel" only marks the place.
+const NEWTON_CHECKPOINTS: [&str; 4] = [
+    "forces sync",
+    "motion integration",
+    "sync max vel",
+    "terminate",
+];
 
 /// Default `Scene::par_min_slots`. Measured with 2 threads against 1 (2-core VM, session 5): the
 /// study's r05 G medium (~5,700 slots) 0.93x and r03 N small (~12,700 slots) 0.98x with the
@@ -333,6 +360,8 @@ impl Default for Scene {
             par_min_slots: PAR_MIN_SLOTS,
             pool: Pool::default(),
             idle_skip: IdleSkip::default(),
+            timing_enabled: false,
+            timing: Vec::new(),
         }
     }
 }
@@ -407,10 +436,15 @@ impl Scene {
 
     /// Run the built-in engine at position `k` (an `External` one is a no-op here).
     pub fn run_engine(&mut self, k: usize) -> Result<(), StepError> {
+        let t0 = self.timing_enabled.then(std::time::Instant::now);
         let iter = self.iter;
         let err = |msg: String| StepError::Engine { iter, msg };
         let newton_indicator = self.newton().map(|n| n.max_velocity_sq);
         let mut e = std::mem::replace(&mut self.engines[k], Engine::External(u32::MAX));
+        // whether the engine counts as run (YADE's `isActivated`)
+        let mut activated = true;
+        // NewtonIntegrator's checkpoint times while timing (see NEWTON_CHECKPOINTS)
+        let mut newton_marks: [Option<std::time::Instant>; 4] = [None; 4];
         let r = match &mut e {
             Engine::ForceResetter => {
                 self.forces.reset(self.bodies.len(), self.iter);
@@ -420,7 +454,9 @@ impl Scene {
                 Ok(())
             }
             Engine::Collider(c) => {
-                if c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty) {
+                activated =
+                    c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty);
+                if activated {
                     c.action(ColliderCtx {
                         bodies: &mut self.bodies,
                         interactions: &mut self.interactions,
@@ -435,7 +471,13 @@ impl Scene {
             }
             Engine::InteractionLoop(il) => self.interaction_loop(il).map_err(err),
             Engine::Newton(n) => {
+                if t0.is_some() {
+                    newton_marks[0] = Some(std::time::Instant::now());
+                }
                 self.forces.sync();
+                if t0.is_some() {
+                    newton_marks[1] = Some(std::time::Instant::now());
+                }
                 // the orientation pass goes parallel on the scenes large enough for the pre-pass
                 // (on smaller ones one pool wake-up costs more than it saves)
                 let pool = if self.interactions.list.len() >= self.par_min_slots {
@@ -443,17 +485,22 @@ impl Scene {
                 } else {
                     None
                 };
-                n.step(
+                let r = n.step(
                     &mut self.bodies,
                     &mut self.forces,
                     self.cell.as_mut(),
                     self.dt,
                     pool.as_deref(),
-                )
-                .map_err(|e| self.newton_error(e))
+                );
+                if t0.is_some() {
+                    newton_marks[2] = Some(std::time::Instant::now());
+                    newton_marks[3] = newton_marks[2];
+                }
+                r.map_err(|e| self.newton_error(e))
             }
             Engine::TimeStepper(ts) => {
-                if ts.is_activated(self.iter) {
+                activated = ts.is_activated(self.iter);
+                if activated {
                     let pwave = crate::utils::pwave_time_step(self).unwrap_or(1.0);
                     if let Some(dt) = ts.compute(&self.bodies, &self.interactions, pwave) {
                         self.dt = dt;
@@ -469,9 +516,38 @@ impl Scene {
                 s.action(&mut self.bodies, &self.forces, self.iter);
                 Ok(())
             }
-            Engine::External(_) => Ok(()),
+            Engine::External(_) => {
+                activated = false;
+                Ok(())
+            }
         };
         self.engines[k] = e;
+        if let (Some(t0), true) = (t0, activated) {
+            let end = std::time::Instant::now();
+            if self.timing.len() <= k {
+                self.timing
+                    .resize(self.engines.len().max(k + 1), EngineTiming::default());
+            }
+            let t = &mut self.timing[k];
+            t.nsec += (end - t0).as_nanos() as u64;
+            t.count += 1;
+            if let Some(start) = newton_marks[0] {
+                if t.deltas.is_empty() {
+                    t.deltas = NEWTON_CHECKPOINTS.iter().map(|&n| (n, 0, 0)).collect();
+                }
+                let mut prev = start;
+                for (d, mark) in t
+                    .deltas
+                    .iter_mut()
+                    .zip(newton_marks[1..].iter().chain([&Some(end)]))
+                {
+                    let m = mark.unwrap_or(end);
+                    d.1 += (m - prev).as_nanos() as u64;
+                    d.2 += 1;
+                    prev = m;
+                }
+            }
+        }
         r
     }
 

@@ -825,6 +825,7 @@ impl Sim {
         self.scene = Scene {
             threads: self.scene.threads,
             par_min_slots: self.scene.par_min_slots,
+            timing_enabled: self.scene.timing_enabled,
             ..Scene::default()
         };
         self.cursor = None;
@@ -1093,20 +1094,63 @@ impl Sim {
 
     // ---- engines ----
     /// Replace the engine list (JSON array of scene-file engine objects; Python engines are
-    /// `{"class": "External", "id": k}`).
-    fn set_engines(&mut self, json: &str) -> PyResult<()> {
+    /// `{"class": "External", "id": k}`). `reuse[k]`, when given, is the slot in the current list of
+    /// the same engine object: that engine keeps its state (a collider its sorted bounds and
+    /// stride, Newton its maxima, a servo its integral), as the object does in YADE.
+    #[pyo3(signature = (json, reuse=None))]
+    fn set_engines(&mut self, json: &str, reuse: Option<Vec<Option<usize>>>) -> PyResult<()> {
         let v: Value = serde_json::from_str(json).map_err(err)?;
         let arr = v
             .as_array()
             .ok_or_else(|| PyValueError::new_err("engines must be a list"))?;
-        let engines: Vec<Engine> = arr
+        let mut engines: Vec<Engine> = arr
             .iter()
             .map(scene_json::engine)
             .collect::<Result<_, _>>()
             .map_err(err)?;
+        let mut old = std::mem::take(&mut self.scene.engines);
+        for (k, j) in reuse.unwrap_or_default().into_iter().enumerate() {
+            if let (Some(j), true) = (j, k < engines.len()) {
+                if j < old.len() && old[j].class_name() == engines[k].class_name() {
+                    engines[k] = std::mem::replace(&mut old[j], Engine::External(u32::MAX));
+                }
+            }
+        }
         self.scene.engine_dead = vec![false; engines.len()];
         self.scene.engines = engines;
+        // the Python side has harvested the old list's timings into its engine objects
+        self.scene.timing.clear();
         Ok(())
+    }
+    /// `O.timingEnabled` (YADE's `TimingInfo::enabled`, kept across `O.reset()` as YADE's static is).
+    #[getter]
+    fn timing_enabled(&self) -> bool {
+        self.scene.timing_enabled
+    }
+    #[setter]
+    fn set_timing_enabled(&mut self, on: bool) {
+        self.scene.timing_enabled = on;
+    }
+    /// (nanoseconds, runs) of engine slot `k` since the engine list was set or the slot reset.
+    fn engine_timing(&self, k: usize) -> (u64, u64) {
+        self.scene
+            .timing
+            .get(k)
+            .map_or((0, 0), |t| (t.nsec, t.count))
+    }
+    /// YADE's `timingDeltas` of engine slot `k`: (checkpoint, ns, count).
+    fn engine_timing_deltas(&self, k: usize) -> Vec<(String, u64, u64)> {
+        self.scene.timing.get(k).map_or(Vec::new(), |t| {
+            t.deltas
+                .iter()
+                .map(|&(n, ns, c)| (n.to_string(), ns, c))
+                .collect()
+        })
+    }
+    fn engine_timing_reset(&mut self, k: usize) {
+        if let Some(t) = self.scene.timing.get_mut(k) {
+            *t = Default::default();
+        }
     }
     fn set_engine_dead(&mut self, idx: usize, dead: bool) -> PyResult<()> {
         if idx >= self.scene.engines.len() {

@@ -818,6 +818,11 @@ class EnergyTracker(object):
 
 # ---------------------------------------------------------------- Omega
 
+def d_is_rust(spec):
+    """Whether an engine spec runs in the Rust core (Python engines are `External`)."""
+    return spec.get('class') != 'External'
+
+
 class Omega(_ryade.OmegaBase):
     """`O`: the simulation. `Omega()` returns the same object, as in YADE. `O.iter` and `O.time` are
     read by the Rust base class (`_ryade.OmegaBase`, controllers read them every step)."""
@@ -848,7 +853,6 @@ class Omega(_ryade.OmegaBase):
         self._background = None
         self.stopAtIter = 0
         self.stopAtTime = 0.0
-        self.timingEnabled = False
         self.dynDt = False
         # ryade only: O.run(n, True) without Python engines runs on the fast path (issue 6; same physics,
         # free summation order, so agreement with YADE is statistical) with this many threads
@@ -904,6 +908,16 @@ class Omega(_ryade.OmegaBase):
             self._sim.set_cell(None)
 
     @property
+    def timingEnabled(self):
+        """YADE's `O.timingEnabled`: engines then collect `execTime` (ns) and `execCount` (see
+        `yade.timing.stats()`); kept across `O.reset()`, as YADE's flag is."""
+        return self._sim.timing_enabled
+
+    @timingEnabled.setter
+    def timingEnabled(self, on):
+        self._sim.timing_enabled = bool(on)
+
+    @property
     def trackEnergy(self):
         return self._sim.track_energy
 
@@ -927,19 +941,31 @@ class Omega(_ryade.OmegaBase):
             return
         self._apply_engines(lst)
 
+    def _harvest_timing(self):
+        """Before the Rust engine list goes: each engine object keeps the time it collected there."""
+        for e in self._engines:
+            e._timing_detach()
+
     def _apply_engines(self, lst):
-        specs, external = [], []
+        self._harvest_timing()
+        # an engine object already in the list keeps its Rust state (YADE keeps the object)
+        old = {id(e): j for j, e in enumerate(self._engines)}
+        specs, external, reuse = [], [], []
         for e in lst:
             d = e._json()
             if d.get('class') == 'External':
                 d['id'] = len(external)
                 external.append(e)
+            j = old.pop(id(e), None) if d_is_rust(d) else None
+            reuse.append(j)
             specs.append(d)
-        self._sim.set_engines(json.dumps(specs))
+        self._sim.set_engines(json.dumps(specs), reuse)
         self._external = external
         self._engines = lst
         for k, e in enumerate(lst):
             e._bind(self, k)
+            if d_is_rust(specs[k]):
+                e._timing_attach(self._sim, k)
             if e._values.get('dead'):
                 self._sim.set_engine_dead(k, True)
             for f in getattr(e, '_functors', lambda: [])():
@@ -963,13 +989,19 @@ class Omega(_ryade.OmegaBase):
             lst, self._pending_engines = self._pending_engines, None
             self._apply_engines(lst)
         sim = self._sim
+        timed = sim.timing_enabled  # read once per step, as YADE does
         while True:
             ext = sim.advance()
             if ext is None:
                 break
             e = self._external[ext]
             if e._is_activated(self):
-                e._action(self)
+                if timed:
+                    t0 = _time.perf_counter_ns()
+                    e._action(self)
+                    e._timing_add(_time.perf_counter_ns() - t0)
+                else:
+                    e._action(self)
 
     def step(self):
         self._one_step()
@@ -1020,6 +1052,7 @@ class Omega(_ryade.OmegaBase):
         return self._background is not None
 
     def reset(self):
+        self._harvest_timing()
         self._sim.reset()
         self.bodies = BodyContainer(self)
         self.materials = MaterialContainer(self)
@@ -1066,4 +1099,4 @@ _OMEGA_ATTRS = {'addScene', 'bexSyncCount', 'childClassesNonrecursive', 'dynDt',
                 'filename', 'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
                 'miscParams', 'numSubSteps', 'plugins', 'realtime', 'reload', 'resetAllScenes', 'resetCurrentScene',
                 'resetThisScene', 'runEngine', 'sceneToString', 'speed', 'stringToScene', 'subD', 'subStep', 'subStepping',
-                'switchScene', 'switchToScene', 'tmpFilename', 'tmpToFile', 'tmpToString', 'thisScene', 'timingEnabled'}
+                'switchScene', 'switchToScene', 'tmpFilename', 'tmpToFile', 'tmpToString', 'thisScene'}

@@ -282,9 +282,75 @@ class Engine(Serializable):
     def _json(self):
         raise NotImplementedError
 
+    # ---- YADE's TimingInfo (`O.timingEnabled`): execTime in ns, execCount. An engine run by the Rust
+    # core reads its slot there (`_tslot`) on top of what it collected in earlier engine lists
+    # (`_exec`); a Python engine is timed by the step loop into `_exec`.
+    def _timing_read(self):
+        """(ns, runs, [[checkpoint, ns, runs], ...]) collected so far."""
+        ns, n, deltas = self.__dict__.get('_exec', (0, 0, ()))
+        deltas = [list(d) for d in deltas]
+        slot = self.__dict__.get('_tslot')
+        if slot is not None:
+            dns, dn = slot[0].engine_timing(slot[1])
+            ns, n = ns + dns, n + dn
+            for k, (name, dt, c) in enumerate(slot[0].engine_timing_deltas(slot[1])):
+                if k < len(deltas):
+                    deltas[k][1] += dt
+                    deltas[k][2] += c
+                else:
+                    deltas.append([name, dt, c])
+        return ns, n, deltas
+
+    def _timing_write(self, which, v):
+        """Set execTime (0), execCount (1) or, with v None, zero the checkpoints (2)."""
+        cur = list(self._timing_read())
+        if which == 2:
+            cur[2] = [[d[0], 0, 0] for d in cur[2]]
+        else:
+            cur[which] = int(v)
+        slot = self.__dict__.get('_tslot')
+        if slot is not None:
+            slot[0].engine_timing_reset(slot[1])
+        object.__setattr__(self, '_exec', tuple(cur))
+
+    def _timing_attach(self, sim, k):
+        object.__setattr__(self, '_tslot', (sim, k))
+
+    def _timing_detach(self):
+        object.__setattr__(self, '_exec', self._timing_read())
+        object.__setattr__(self, '_tslot', None)
+
+    def _timing_add(self, ns):
+        t, n, deltas = self.__dict__.get('_exec', (0, 0, ()))
+        object.__setattr__(self, '_exec', (t + ns, n + 1, deltas))
+
+    execTime = property(lambda self: self._timing_read()[0], lambda self, v: self._timing_write(0, v),
+                        doc='Nanoseconds spent in this engine while O.timingEnabled (YADE TimingInfo.nsec)')
+    execCount = property(lambda self: self._timing_read()[1], lambda self, v: self._timing_write(1, v),
+                         doc='Runs of this engine while O.timingEnabled (YADE TimingInfo.nExec)')
+
+    @property
+    def timingDeltas(self):
+        """YADE's checkpoints inside an engine; Debian's build has them for NewtonIntegrator only."""
+        return None
+
 
 class GlobalEngine(Engine):
     pass
+
+
+class TimingDeltas(object):
+    """`Engine.timingDeltas` (YADE's TimingDeltas): `data` is [(checkpoint, ns, runs), ...]."""
+
+    def __init__(self, engine):
+        object.__setattr__(self, '_engine', engine)
+
+    @property
+    def data(self):
+        return [tuple(d) for d in self._engine._timing_read()[2]]
+
+    def reset(self):
+        self._engine._timing_write(2, None)
 
 
 class ForceResetter(GlobalEngine):
@@ -379,6 +445,10 @@ class NewtonIntegrator(GlobalEngine):
     _attrs = {'damping': 0.2, 'gravity': (0.0, 0.0, 0.0), 'dampGravity': True, 'exactAsphericalRot': True,
               'kinSplit': False, 'mask': -1, 'warnNoForceReset': True, 'densityScaling': False}
     _live = ('damping', 'gravity', 'dampGravity')
+
+    @property
+    def timingDeltas(self):
+        return TimingDeltas(self)
 
     def _convert(self, k, v):
         if k == 'gravity':
