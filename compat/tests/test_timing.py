@@ -5,21 +5,14 @@ collider only when activated, a PyRunner every 7th step), `timing.reset()`, coun
 object across a new `O.engines` list, and `O.timingEnabled = False`. The expected lines are what YADE
 2023.02a printed for it (`yade -n -x`); when `yade` is installed the test runs it live as well.
 (The engine-list bug these counts uncovered has its own file: test_engines_reassigned.py.)"""
-import os
-import shutil
-import subprocess
-import sys
-
 import pytest
+
+from _scripts import needs_compat, needs_yade, tagged_lines
 
 from yade import O, timing, utils, FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, \
     PyRunner, Bo1_Sphere_Aabb, Ig2_Sphere_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys, \
     Law2_ScGeom_FrictPhys_CundallStrack
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-COMPAT = os.environ.get('COMPAT', os.path.join(ROOT, 'target', 'release', 'compat'))
-SCRIPTS = os.path.join(HERE, 'data', 'scripts')
 
 # yade -n -x data/scripts/timing_yade_ref.py (YADE 2023.02a, Debian)
 YADE_TIMING = [
@@ -32,25 +25,14 @@ YADE_TIMING = [
 ]
 
 
-def _lines(cmd, tag):
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=300,
-                       env=dict(os.environ, RYADE_PYTHON=sys.executable, OMP_NUM_THREADS='1'))
-    assert p.returncode == 0, p.stderr
-    return [ln for ln in p.stdout.splitlines() if len(ln) > 1 and ln[0] in tag and ln[1] == ' ']
-
-
-needs_compat = pytest.mark.skipif(not os.path.exists(COMPAT), reason='build the compat binary first (cargo build --release)')
-needs_yade = pytest.mark.skipif(not shutil.which('yade'), reason='YADE not installed (CI installs it)')
-
-
 @needs_compat
 def test_counts_match_what_yade_printed():
-    assert _lines([COMPAT, 'run', os.path.join(SCRIPTS, 'timing_yade_ref.py')], 'ABCDEF') == YADE_TIMING
+    assert tagged_lines('ryade', 'timing_yade_ref.py') == YADE_TIMING
 
 
 @needs_yade
 def test_yade_still_prints_the_recorded_counts():
-    assert _lines(['yade', '-n', '-x', os.path.join(SCRIPTS, 'timing_yade_ref.py')], 'ABCDEF') == YADE_TIMING
+    assert tagged_lines('yade', 'timing_yade_ref.py') == YADE_TIMING
 
 
 def _small_scene(pyrunner=True):
