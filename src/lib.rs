@@ -59,4 +59,5 @@ pub mod scene;
 pub mod shape;
 pub mod stdsort;
 pub mod timestepper;
+pub mod timing;
 pub mod utils;

@@ -306,31 +306,8 @@ pub struct Scene {
     /// `O.timingEnabled`: `run_engine` then adds each engine's wall time and run count to `timing`.
     pub timing_enabled: bool,
     /// Per engine slot (grown on demand; `Engine::External` slots are timed by their runner).
-    pub timing: Vec<EngineTiming>,
+    pub timing: Vec<crate::timing::EngineTiming>,
 }
-
-/// YADE's `TimingInfo` of one engine (core/Scene.cpp `Scene::moveToNextTimeStep`): nanoseconds of
-/// wall time and the number of runs, counted only for runs where the engine was activated (a
-/// collider or time stepper that does nothing this step is not counted). YADE charges the time
-/// between two activated engines to the second; here each engine's own run is timed, so the few
-/// nanoseconds of a skipped engine's activation test go nowhere.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct EngineTiming {
-    pub nsec: u64,
-    pub count: u64,
-    /// YADE's `timingDeltas` (named checkpoints inside the engine): (name, ns, count). Only
-    /// NewtonIntegrator has them, as in Debian's YADE build.
-    pub deltas: Vec<(&'static str, u64, u64)>,
-}
-
-/// `NewtonIntegrator`'s checkpoints in YADE (pkg/dem/NewtonIntegrator.cpp `action`). ryade keeps the
-/// largest velocity inside the body loop, so "sync max vel" only marks the place.
-const NEWTON_CHECKPOINTS: [&str; 4] = [
-    "forces sync",
-    "motion integration",
-    "sync max vel",
-    "terminate",
-];
 
 /// Default `Scene::par_min_slots`. Measured with 2 threads against 1 (2-core VM, session 5): the
 /// study's r05 G medium (~5,700 slots) 0.93x and r03 N small (~12,700 slots) 0.98x with the
@@ -443,8 +420,8 @@ impl Scene {
         let mut e = std::mem::replace(&mut self.engines[k], Engine::External(u32::MAX));
         // whether the engine counts as run (YADE's `isActivated`)
         let mut activated = true;
-        // NewtonIntegrator's checkpoint times while timing (see NEWTON_CHECKPOINTS)
-        let mut newton_marks: [Option<std::time::Instant>; 4] = [None; 4];
+        // NewtonIntegrator's checkpoint times while timing (`timing::NEWTON_CHECKPOINTS`)
+        let mut newton_marks: crate::timing::Marks = Default::default();
         let r = match &mut e {
             Engine::ForceResetter => {
                 self.forces.reset(self.bodies.len(), self.iter);
@@ -523,30 +500,8 @@ impl Scene {
         };
         self.engines[k] = e;
         if let (Some(t0), true) = (t0, activated) {
-            let end = std::time::Instant::now();
-            if self.timing.len() <= k {
-                self.timing
-                    .resize(self.engines.len().max(k + 1), EngineTiming::default());
-            }
-            let t = &mut self.timing[k];
-            t.nsec += (end - t0).as_nanos() as u64;
-            t.count += 1;
-            if let Some(start) = newton_marks[0] {
-                if t.deltas.is_empty() {
-                    t.deltas = NEWTON_CHECKPOINTS.iter().map(|&n| (n, 0, 0)).collect();
-                }
-                let mut prev = start;
-                for (d, mark) in t
-                    .deltas
-                    .iter_mut()
-                    .zip(newton_marks[1..].iter().chain([&Some(end)]))
-                {
-                    let m = mark.unwrap_or(end);
-                    d.1 += (m - prev).as_nanos() as u64;
-                    d.2 += 1;
-                    prev = m;
-                }
-            }
+            let n = self.engines.len();
+            crate::timing::record(&mut self.timing, k, n, t0, &newton_marks);
         }
         r
     }
