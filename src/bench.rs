@@ -599,9 +599,12 @@ fn format_profiles(ps: &[Profile]) -> String {
         };
         let vals: Vec<Option<f64>> = ps
             .iter()
-            .map(|p| match k < rows {
-                true => p.engines.get(k).map(|e| per_step(p, e.ns)),
-                false => Some(per_step(p, total(p))),
+            .map(|p| {
+                if k < rows {
+                    p.engines.get(k).map(|e| per_step(p, e.ns))
+                } else {
+                    Some(per_step(p, total(p)))
+                }
             })
             .collect();
         out += &format!("  {:28}", name);

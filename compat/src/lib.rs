@@ -1109,11 +1109,12 @@ impl Sim {
             .collect::<Result<_, _>>()
             .map_err(err)?;
         let mut old = std::mem::take(&mut self.scene.engines);
-        for (k, j) in reuse.unwrap_or_default().into_iter().enumerate() {
-            if let (Some(j), true) = (j, k < engines.len()) {
-                if j < old.len() && old[j].class_name() == engines[k].class_name() {
-                    engines[k] = std::mem::replace(&mut old[j], Engine::External(u32::MAX));
+        for (e, j) in engines.iter_mut().zip(reuse.unwrap_or_default()) {
+            match j.and_then(|j| old.get_mut(j)) {
+                Some(o) if o.class_name() == e.class_name() => {
+                    *e = std::mem::replace(o, Engine::External(u32::MAX))
                 }
+                _ => {}
             }
         }
         self.scene.engine_dead = vec![false; engines.len()];

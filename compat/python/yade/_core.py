@@ -818,11 +818,6 @@ class EnergyTracker(object):
 
 # ---------------------------------------------------------------- Omega
 
-def d_is_rust(spec):
-    """Whether an engine spec runs in the Rust core (Python engines are `External`)."""
-    return spec.get('class') != 'External'
-
-
 class Omega(_ryade.OmegaBase):
     """`O`: the simulation. `Omega()` returns the same object, as in YADE. `O.iter` and `O.time` are
     read by the Rust base class (`_ryade.OmegaBase`, controllers read them every step)."""
@@ -953,18 +948,19 @@ class Omega(_ryade.OmegaBase):
         specs, external, reuse = [], [], []
         for e in lst:
             d = e._json()
-            if d.get('class') == 'External':
+            if d.get('class') == 'External':  # a Python engine: run (and timed) by _one_step
                 d['id'] = len(external)
                 external.append(e)
-            j = old.pop(id(e), None) if d_is_rust(d) else None
-            reuse.append(j)
+                reuse.append(None)
+            else:
+                reuse.append(old.pop(id(e), None))
             specs.append(d)
         self._sim.set_engines(json.dumps(specs), reuse)
         self._external = external
         self._engines = lst
         for k, e in enumerate(lst):
             e._bind(self, k)
-            if d_is_rust(specs[k]):
+            if specs[k].get('class') != 'External':
                 e._timing_attach(self._sim, k)
             if e._values.get('dead'):
                 self._sim.set_engine_dead(k, True)

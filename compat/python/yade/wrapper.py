@@ -301,17 +301,16 @@ class Engine(Serializable):
                     deltas.append([name, dt, c])
         return ns, n, deltas
 
-    def _timing_write(self, which, v):
-        """Set execTime (0), execCount (1) or, with v None, zero the checkpoints (2)."""
-        cur = list(self._timing_read())
-        if which == 2:
-            cur[2] = [[d[0], 0, 0] for d in cur[2]]
-        else:
-            cur[which] = int(v)
+    def _timing_write(self, ns=None, n=None, zero_deltas=False):
+        """Set execTime (`ns`) and/or execCount (`n`), or zero the checkpoints; the Rust slot's share
+        moves into `_exec` first, so the rest is kept."""
+        cur_ns, cur_n, deltas = self._timing_read()
+        if zero_deltas:
+            deltas = [[d[0], 0, 0] for d in deltas]
         slot = self.__dict__.get('_tslot')
         if slot is not None:
             slot[0].engine_timing_reset(slot[1])
-        object.__setattr__(self, '_exec', tuple(cur))
+        object.__setattr__(self, '_exec', (cur_ns if ns is None else int(ns), cur_n if n is None else int(n), deltas))
 
     def _timing_attach(self, sim, k):
         object.__setattr__(self, '_tslot', (sim, k))
@@ -324,9 +323,9 @@ class Engine(Serializable):
         t, n, deltas = self.__dict__.get('_exec', (0, 0, ()))
         object.__setattr__(self, '_exec', (t + ns, n + 1, deltas))
 
-    execTime = property(lambda self: self._timing_read()[0], lambda self, v: self._timing_write(0, v),
+    execTime = property(lambda self: self._timing_read()[0], lambda self, v: self._timing_write(ns=v),
                         doc='Nanoseconds spent in this engine while O.timingEnabled (YADE TimingInfo.nsec)')
-    execCount = property(lambda self: self._timing_read()[1], lambda self, v: self._timing_write(1, v),
+    execCount = property(lambda self: self._timing_read()[1], lambda self, v: self._timing_write(n=v),
                          doc='Runs of this engine while O.timingEnabled (YADE TimingInfo.nExec)')
 
     @property
@@ -350,7 +349,7 @@ class TimingDeltas(object):
         return [tuple(d) for d in self._engine._timing_read()[2]]
 
     def reset(self):
-        self._engine._timing_write(2, None)
+        self._engine._timing_write(zero_deltas=True)
 
 
 class ForceResetter(GlobalEngine):
