@@ -16,13 +16,24 @@
 //! `1 + 1e-9` on each step's bound cover floating-point rounding (relative 1e-16 per operation)
 //! many times over. Whatever the bound cannot follow resets all deadlines, so every idle pair is
 //! checked again: a change in the number of bodies, in the periodic cell's `hSize`, or in the
-//! detection factor, or a non-finite position.
+//! detection factor, a body that stops or starts being a sphere, a changed `GridConnection`, or a
+//! non-finite position.
+//!
+//! Potential sphere-`GridConnection` pairs (`Ig2_Sphere_GridConnection_ScGridCoGeom`) are skipped
+//! the same way: a point's distance to a segment shrinks by at most the point's displacement plus
+//! the larger of the two ends' (every point of the segment is a convex combination of its ends), so
+//! the same `travel` bounds it. That functor can also make a potential pair real without any
+//! distance check, by taking over the contact of a neighbouring connection; it does so only when
+//! the sphere has a real interaction with that neighbour. `grid_real` marks every body seen in a
+//! real interaction with a connection during the current and the previous loop (and by
+//! `createInteraction`): a real interaction is visited by every loop, so a sphere with a real
+//! connection contact now is marked, and its potential connection pairs are never skipped.
 
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::interaction::ScanEntry;
 use crate::math::{norm2, Mat3, Vec3};
-use crate::shape::Shape;
+use crate::shape::{GridConnection, Shape};
 
 /// The snapshot and the accumulated bound (see the module doc); owned by the scene, used only by
 /// the interaction loop.
@@ -33,6 +44,11 @@ pub struct IdleSkip {
     radius: Vec<f64>,
     hsize: Option<Mat3>,
     factor: f64,
+    /// Every `GridConnection` body and its shape at the snapshot (a change resets).
+    conns: Vec<(u32, GridConnection)>,
+    /// Per body: bit 1 set when seen in a real interaction with a connection during the current
+    /// loop, bit 0 during the previous one (see the module doc); empty until the first mark.
+    grid_real: Vec<u8>,
     /// Upper bound on how much any pair's gap has shrunk since the last reset.
     pub travel: f64,
 }
@@ -58,27 +74,42 @@ impl IdleSkip {
         let n = bodies.len();
         let mut reset = n != self.pos.len() || hsize != self.hsize || factor != self.factor;
         if !reset {
-            let (mut d2max, mut drmax, mut nan) = (0.0f64, 0.0f64, false);
+            let (mut d2max, mut drmax, mut nan, mut kind) = (0.0f64, 0.0f64, false, false);
             for id in 0..n {
                 let p = bodies.pos[id];
                 let r = radius_of(&bodies.shape[id]);
                 let d2 = norm2(&(p - self.pos[id]));
                 let dr = (r - self.radius[id]).abs();
                 nan |= (d2 + dr).is_nan();
+                kind |= (r < 0.0) != (self.radius[id] < 0.0);
                 d2max = d2max.max(d2);
                 drmax = drmax.max(dr);
                 self.pos[id] = p;
                 self.radius[id] = r;
             }
-            let step = 2.0 * (d2max.sqrt() + factor.abs() * drmax) * (1.0 + 1e-9);
+            let conns_changed =
+                self.conns
+                    .iter()
+                    .any(|(id, c)| match &bodies.shape[*id as usize] {
+                        Shape::GridConnection(now) => **now != *c,
+                        _ => true,
+                    });
+            // a sphere-connection reach is r + R whatever the detection factor
+            let step = 2.0 * (d2max.sqrt() + factor.abs().max(1.0) * drmax) * (1.0 + 1e-9);
             self.travel += step;
-            reset = nan || !self.travel.is_finite();
+            reset = nan || kind || conns_changed || !self.travel.is_finite();
         }
         if reset {
             self.pos.clear();
             self.pos.extend_from_slice(&bodies.pos);
             self.radius.clear();
             self.radius.extend(bodies.shape.iter().map(radius_of));
+            self.conns.clear();
+            for (id, s) in bodies.shape.iter().enumerate() {
+                if let Shape::GridConnection(c) = s {
+                    self.conns.push((id as u32, (**c).clone()));
+                }
+            }
             self.hsize = hsize;
             self.factor = factor;
             self.travel = 0.0;
@@ -86,6 +117,35 @@ impl IdleSkip {
                 e.deadline = f64::NEG_INFINITY;
             }
         }
+        // the current loop's marks become the previous loop's
+        for m in self.grid_real.iter_mut() {
+            *m >>= 1;
+        }
+    }
+
+    /// Body `id` is in a real interaction with a `GridConnection` (or may be): its potential
+    /// connection pairs are not skipped during this loop and the next.
+    #[inline]
+    pub fn mark_grid_real(&mut self, id: u32) {
+        let id = id as usize;
+        if id >= self.grid_real.len() {
+            self.grid_real.resize(id + 1, 0);
+        }
+        self.grid_real[id] |= 2;
+    }
+
+    /// True when the idle sphere-connection pair of `e` (sphere `e.id1`) is still apart by the
+    /// bound and no take-over of a neighbour's contact is possible (see the module doc).
+    #[inline(always)]
+    pub fn skips_gridco(&self, e: &ScanEntry) -> bool {
+        self.travel < e.deadline && self.grid_real.get(e.id1 as usize).copied().unwrap_or(0) == 0
+    }
+
+    /// The radius of body `id` when it was a sphere at the snapshot.
+    #[inline(always)]
+    pub fn sphere_radius(&self, id: u32) -> Option<f64> {
+        let r = self.radius[id as usize];
+        (r >= 0.0).then_some(r)
     }
 
     /// Both radii when both bodies are spheres (from the snapshot, which equals the shapes during
@@ -205,5 +265,48 @@ mod tests {
             s.prepare(&b, None, f, &mut scan);
             assert!(!s.skips(&scan[0]));
         }
+    }
+
+    /// A mark blocks the sphere's connection pairs during the loop that set it and the next one;
+    /// a connection whose nodes or radius change, or a sphere that becomes another shape, ends
+    /// every skip.
+    #[test]
+    fn marks_last_two_loops_and_shape_changes_reset() {
+        let mut b = two_spheres(4.0);
+        let mut s = IdleSkip::default();
+        let mut scan = vec![ScanEntry {
+            idle: false,
+            idle_gc: true,
+            ..entry()
+        }];
+        s.prepare(&b, None, 1.0, &mut scan);
+        scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(s.skips_gridco(&scan[0]));
+        s.mark_grid_real(0);
+        assert!(!s.skips_gridco(&scan[0]), "marked during this loop");
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(!s.skips_gridco(&scan[0]), "marked during the previous loop");
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(s.skips_gridco(&scan[0]), "no mark for two loops");
+        // body 1 becomes a connection: kind change, reset
+        b.shape[1] = Shape::GridConnection(Box::new(GridConnection {
+            radius: 0.1,
+            node1: 0,
+            node2: 0,
+            periodic: false,
+            cell_dist: [0; 3],
+        }));
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(!s.skips_gridco(&scan[0]));
+        scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(s.skips_gridco(&scan[0]));
+        // a thicker connection: reset
+        if let Shape::GridConnection(c) = &mut b.shape[1] {
+            c.radius = 0.2;
+        }
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(!s.skips_gridco(&scan[0]));
     }
 }

@@ -148,13 +148,24 @@ fn key(a: u32, b: u32) -> u64 {
 /// period equal the copies here. Only the interaction loop turns such a pair real, and it clears
 /// `idle` when it does; new slots start with `idle` cleared. `deadline` is read only while `idle`
 /// is set: the pair is provably still apart while `IdleSkip::travel` stays below it.
+/// `idle_gc` is the same for a potential sphere-`GridConnection` pair (functor
+/// `SphereGridConnection`, `id1` the sphere); at most one of the two flags is set.
 #[derive(Clone, Copy, Debug)]
 pub struct ScanEntry {
     pub id1: u32,
     pub id2: u32,
     pub cell_dist: [i32; 3],
     pub idle: bool,
+    pub idle_gc: bool,
     pub deadline: f64,
+}
+
+impl ScanEntry {
+    /// Either kind of idle pair: the loop need not prefetch its interaction.
+    #[inline(always)]
+    pub fn is_idle(&self) -> bool {
+        self.idle | self.idle_gc
+    }
 }
 
 impl Default for ScanEntry {
@@ -164,6 +175,7 @@ impl Default for ScanEntry {
             id2: 0,
             cell_dist: [0; 3],
             idle: false,
+            idle_gc: false,
             deadline: f64::NEG_INFINITY,
         }
     }

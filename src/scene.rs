@@ -66,6 +66,13 @@ impl Default for InteractionLoop {
 }
 
 impl InteractionLoop {
+    /// Whether this loop keeps `Scene::idle_skip` up to date (it has a functor whose potential
+    /// pairs the skip covers); only such a loop may skip an idle pair.
+    #[inline(always)]
+    pub fn uses_idle_skip(&self) -> bool {
+        self.sphere_sphere.is_some() || self.sphere_gridco.is_some()
+    }
+
     /// No functor at all.
     pub fn empty() -> Self {
         InteractionLoop {
@@ -618,6 +625,9 @@ impl Scene {
         }
         self.physics(il, k, a, b)?;
         self.interactions.list[k].iter_made_real = self.iter;
+        // a contact made outside the loop may be taken over by a neighbouring connection pair
+        self.idle_skip.mark_grid_real(a as u32);
+        self.idle_skip.mark_grid_real(b as u32);
         Ok(k)
     }
 
@@ -631,11 +641,12 @@ impl Scene {
         };
         let mut energy = LawEnergy::default();
         let mut geom_entries = None;
-        if let Some(p) = &il.sphere_sphere {
+        if il.uses_idle_skip() {
             self.idle_skip.prepare(
                 &self.bodies,
                 self.cell.as_ref(),
-                p.interaction_detection_factor,
+                il.sphere_sphere
+                    .map_or(1.0, |p| p.interaction_detection_factor),
                 &mut self.interactions.scan,
             );
         }
@@ -651,7 +662,7 @@ impl Scene {
             let n = self.interactions.list.len();
             for k in 0..n {
                 const AHEAD: usize = 24;
-                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
+                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
                 }
                 let ev = pre_slot(
@@ -673,7 +684,7 @@ impl Scene {
             let n = self.interactions.list.len();
             for k in 0..n {
                 const AHEAD: usize = 24;
-                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].idle {
+                if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
                 }
                 self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?;
@@ -736,6 +747,19 @@ impl Scene {
                 }
             }
             sc.idle = false;
+        } else if sc.idle_gc {
+            // a potential sphere-connection pair still apart by the bound, whose sphere has no
+            // real connection contact to take over (see `idle_skip`)
+            debug_assert!({
+                let it = &self.interactions.list[k];
+                !it.is_real()
+                    && it.functor == GeomFunctor::SphereGridConnection
+                    && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
+            });
+            if il.uses_idle_skip() && self.idle_skip.skips_gridco(sc) {
+                return Ok(());
+            }
+            sc.idle_gc = false;
         }
         let (id1_raw, id2_raw) = {
             let it = &self.interactions.list[k];
@@ -799,6 +823,13 @@ impl Scene {
             },
             None => *ctx0,
         };
+        let touches_conn = functor == GeomFunctor::SphereGridConnection
+            || matches!(self.bodies.shape[id1], Shape::GridConnection(_))
+            || matches!(self.bodies.shape[id2], Shape::GridConnection(_));
+        if touches_conn && was_real {
+            self.idle_skip.mark_grid_real(id1 as u32);
+            self.idle_skip.mark_grid_real(id2 as u32);
+        }
         // fast path for the common sphere-sphere contact; every other functor goes through
         // `geometry`
         let created = match (functor, &self.bodies.shape[id1], &self.bodies.shape[id2]) {
@@ -843,10 +874,17 @@ impl Scene {
                     id2: id2 as u32,
                     cell_dist,
                     idle: true,
+                    idle_gc: false,
                     deadline: f64::NEG_INFINITY,
                 };
+            } else if functor == GeomFunctor::SphereGridConnection {
+                self.idle_gridco(k, id1 as u32, id2 as u32, cell_dist, &shift2);
             }
             return Ok(());
+        }
+        if touches_conn {
+            self.idle_skip.mark_grid_real(id1 as u32);
+            self.idle_skip.mark_grid_real(id2 as u32);
         }
         // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
         // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
@@ -893,6 +931,35 @@ impl Scene {
             self.interactions.list[k].reset();
         }
         Ok(())
+    }
+
+    /// A potential sphere-connection pair just checked and left potential: idle from now on, with
+    /// the deadline of its distance beyond contact (none when the sphere is no plain sphere).
+    fn idle_gridco(&mut self, k: usize, id1: u32, id2: u32, cell_dist: [i32; 3], shift2: &Vec3) {
+        let skip = &self.idle_skip;
+        let deadline = skip
+            .sphere_radius(id1)
+            .and_then(|r| {
+                geom::grid::sphere_gridco_reach(
+                    &self.bodies,
+                    self.cell.as_ref(),
+                    id1,
+                    id2,
+                    r,
+                    shift2,
+                )
+            })
+            .map_or(f64::NEG_INFINITY, |(p1, p2, reach)| {
+                skip.deadline(&p1, &p2, reach)
+            });
+        self.interactions.scan[k] = crate::interaction::ScanEntry {
+            id1,
+            id2,
+            cell_dist,
+            idle: false,
+            idle_gc: true,
+            deadline,
+        };
     }
 
     /// The thread pool for `threads` (built on first use, rebuilt when `threads` changes); None for
@@ -947,7 +1014,7 @@ impl Scene {
                     let mut events = Vec::with_capacity(its.len());
                     for j in 0..its.len() {
                         const AHEAD: usize = 24;
-                        if j + AHEAD < its.len() && !sc_run[j + AHEAD].idle {
+                        if j + AHEAD < its.len() && !sc_run[j + AHEAD].is_idle() {
                             crate::interaction::prefetch(&its[j + AHEAD]);
                         }
                         let k = (k0 + j) as u32;
@@ -1334,6 +1401,9 @@ fn pre_slot(
         } else {
             Some(Event::Visit(k))
         };
+    }
+    if sc.idle_gc {
+        return Some(Event::Visit(k));
     }
     if !(it.functor == GeomFunctor::SphereSphere && it.is_real() && it.ext.is_none()) {
         return Some(Event::Visit(k));

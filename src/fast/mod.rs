@@ -742,34 +742,48 @@ impl FastSim {
                     );
                 });
         }
-        // the queued forces, in chunk order (a few hundred: the chunk borders and periodic wraps)
-        for ch in &self.chunks {
-            for g in &ch.ghosts {
-                let j = g.j as usize;
-                self.force[j] = contact::add(self.force[j], g.f);
-                self.torque[j] = contact::add(self.torque[j], g.t);
-            }
-        }
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
-        // integration: bodies cut in equal blocks
-        let n = self.pos.len();
-        let block = n.div_ceil(self.threads).max(1);
+        // integration over each chunk's own bodies (the thread that summed their forces, whose
+        // cache holds them), after the queued forces on them, in chunk order (a few hundred: the
+        // chunk borders and periodic wraps): the same sums in the same order as adding every
+        // queue serially first
         let cfg = self.cfg;
-        let (inert, x_ref) = (&self.inert, &self.x_ref);
-        let md = self
-            .pos
-            .par_chunks_mut(block)
-            .zip(self.vel.par_chunks_mut(block))
-            .zip(self.ang_vel.par_chunks_mut(block))
-            .zip(self.ori.par_chunks_mut(block))
-            .zip(self.force.par_chunks(block))
-            .zip(self.torque.par_chunks(block))
-            .enumerate()
-            .map(|(bi, (((((x, v), w), q), f), t))| {
-                let k0 = bi * block;
-                let e = k0 + x.len();
-                integrate(&cfg, &inert[k0..e], f, t, x, v, w, q, &x_ref[k0..e])
+        let (inert, x_ref, chunks) = (&self.inert, &self.x_ref, &self.chunks);
+        let mut parts = Vec::with_capacity(chunks.len());
+        {
+            let mut x: &mut [V3] = &mut self.pos;
+            let mut v: &mut [V3] = &mut self.vel;
+            let mut w: &mut [V3] = &mut self.ang_vel;
+            let mut q: &mut [Quat] = &mut self.ori;
+            let mut f: &mut [V3] = &mut self.force;
+            let mut t: &mut [V3] = &mut self.torque;
+            for ch in chunks {
+                let m = ch.hi - ch.lo;
+                let (x0, x1) = std::mem::take(&mut x).split_at_mut(m);
+                let (v0, v1) = std::mem::take(&mut v).split_at_mut(m);
+                let (w0, w1) = std::mem::take(&mut w).split_at_mut(m);
+                let (q0, q1) = std::mem::take(&mut q).split_at_mut(m);
+                let (f0, f1) = std::mem::take(&mut f).split_at_mut(m);
+                let (t0, t1) = std::mem::take(&mut t).split_at_mut(m);
+                parts.push((ch.lo, x0, v0, w0, q0, f0, t0));
+                (x, v, w, q, f, t) = (x1, v1, w1, q1, f1, t1);
+            }
+        }
+        let md = parts
+            .into_par_iter()
+            .map(|(lo, x, v, w, q, f, t)| {
+                let hi = lo + x.len();
+                for ch in chunks {
+                    for g in &ch.ghosts {
+                        let j = g.j as usize;
+                        if (lo..hi).contains(&j) {
+                            f[j - lo] = contact::add(f[j - lo], g.f);
+                            t[j - lo] = contact::add(t[j - lo], g.t);
+                        }
+                    }
+                }
+                integrate(&cfg, &inert[lo..hi], f, t, x, v, w, q, &x_ref[lo..hi])
             })
             .reduce(|| 0.0, f64::max);
         self.max_disp2 = md;

@@ -89,6 +89,31 @@ pub fn segment(gc: &GridConnection, bodies: &Bodies, cell: Option<&Cell>) -> Vec
     }
 }
 
+/// The operands of `sphere_gridco`'s distance check for a new pair, for the idle skip
+/// (`crate::idle_skip`): the sphere's centre shifted by `shift2`, the point of connection `c`'s
+/// segment nearest to it, and the contact distance `r + R`. While the two points stay farther apart
+/// than the reach, a potential pair stays potential (unless it takes over a neighbour's contact,
+/// which the skip rules out separately). None when `c` is not a connection or has zero length.
+pub fn sphere_gridco_reach(
+    bodies: &Bodies,
+    cell: Option<&Cell>,
+    s: u32,
+    c: u32,
+    r: f64,
+    shift2: &Vec3,
+) -> Option<(Vec3, Vec3, f64)> {
+    let gc = conn(bodies, c).ok()?;
+    let segt = segment(gc, bodies, cell);
+    let len2 = norm2(&segt);
+    if len2 == 0.0 {
+        return None;
+    }
+    let p_n1 = bodies.pos[gc.node1 as usize];
+    let sphere_pos = bodies.pos[s as usize] - shift2;
+    let t = (dot(&(sphere_pos - p_n1), &segt) / len2).clamp(0.0, 1.0);
+    Some((sphere_pos, p_n1 + segt * t, r + gc.radius))
+}
+
 fn conn(bodies: &Bodies, id: u32) -> Result<&GridConnection, String> {
     match &bodies.shape[id as usize] {
         Shape::GridConnection(g) => Ok(g),
@@ -118,6 +143,48 @@ fn zero_tiny(v: &mut Vec3) {
             v[i] = 0.0;
         }
     }
+}
+
+/// The outcome of `sphere_gridco` for a new pair beyond contact distance, decided early: true when
+/// the full path would return false. Same operands as the full path's distance check (`rel_pos`
+/// clamped, the nearest point, its distance); beyond contact, a new pair becomes real only by
+/// taking over a real contact of a neighbouring connection at the nearer node, which needs the
+/// sphere to have a real interaction with one of them (looked up first here, instead of the
+/// `behind` test's square roots). False: no early decision, the full path runs.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn new_pair_stays_apart(
+    intrs: &Interactions,
+    bodies: &Bodies,
+    id1: u32,
+    id2: u32,
+    gc: &GridConnection,
+    rel_pos: f64,
+    segt: &Vec3,
+    sphere_pos: &Vec3,
+    radius: f64,
+) -> Result<bool, String> {
+    let fict_pos = bodies.pos[gc.node1 as usize] + segt * rel_pos.clamp(0.0, 1.0);
+    if norm(&(fict_pos - sphere_pos)) <= radius + gc.radius {
+        return Ok(false);
+    }
+    if rel_pos <= 0.0 || rel_pos >= 1.0 {
+        // outside: every branch of the full path returns false for a new pair
+        return Ok(true);
+    }
+    let node = if rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
+    let list = node_conns(bodies, node)?;
+    if list.len() > 1 {
+        for &nb in list {
+            if nb == id2 {
+                continue;
+            }
+            if intrs.find(id1, nb).is_some_and(|j| intrs.list[j].is_real()) {
+                return Ok(false);
+            }
+        }
+    }
+    Ok(true)
 }
 
 /// Where the sphere-connection functor writes: its own geometry, a fresh one (new contact) or the
@@ -175,6 +242,21 @@ pub fn sphere_gridco(
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
         return Ok(true);
+    }
+    if is_new
+        && new_pair_stays_apart(
+            intrs,
+            bodies,
+            id1,
+            id2,
+            gc,
+            rel_pos,
+            &segt,
+            &sphere_pos,
+            radius,
+        )?
+    {
+        return Ok(false);
     }
     x.is_duplicate = 0;
     x.true_int = -1;
