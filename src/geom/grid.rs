@@ -145,48 +145,6 @@ fn zero_tiny(v: &mut Vec3) {
     }
 }
 
-/// The outcome of `sphere_gridco` for a new pair beyond contact distance, decided early: true when
-/// the full path would return false. Same operands as the full path's distance check (`rel_pos`
-/// clamped, the nearest point, its distance); beyond contact, a new pair becomes real only by
-/// taking over a real contact of a neighbouring connection at the nearer node, which needs the
-/// sphere to have a real interaction with one of them (looked up first here, instead of the
-/// `behind` test's square roots). False: no early decision, the full path runs.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn new_pair_stays_apart(
-    intrs: &Interactions,
-    bodies: &Bodies,
-    id1: u32,
-    id2: u32,
-    gc: &GridConnection,
-    rel_pos: f64,
-    segt: &Vec3,
-    sphere_pos: &Vec3,
-    radius: f64,
-) -> Result<bool, String> {
-    let fict_pos = bodies.pos[gc.node1 as usize] + segt * rel_pos.clamp(0.0, 1.0);
-    if norm(&(fict_pos - sphere_pos)) <= radius + gc.radius {
-        return Ok(false);
-    }
-    if rel_pos <= 0.0 || rel_pos >= 1.0 {
-        // outside: every branch of the full path returns false for a new pair
-        return Ok(true);
-    }
-    let node = if rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
-    let list = node_conns(bodies, node)?;
-    if list.len() > 1 {
-        for &nb in list {
-            if nb == id2 {
-                continue;
-            }
-            if intrs.find(id1, nb).is_some_and(|j| intrs.list[j].is_real()) {
-                return Ok(false);
-            }
-        }
-    }
-    Ok(true)
-}
-
 /// Where the sphere-connection functor writes: its own geometry, a fresh one (new contact) or the
 /// geometry object of another interaction it took over.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -242,21 +200,6 @@ pub fn sphere_gridco(
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
         return Ok(true);
-    }
-    if is_new
-        && new_pair_stays_apart(
-            intrs,
-            bodies,
-            id1,
-            id2,
-            gc,
-            rel_pos,
-            &segt,
-            &sphere_pos,
-            radius,
-        )?
-    {
-        return Ok(false);
     }
     x.is_duplicate = 0;
     x.true_int = -1;
