@@ -123,15 +123,16 @@ impl IdleSkip {
         }
     }
 
-    /// Body `id` is in a real interaction with a `GridConnection` (or may be): its potential
-    /// connection pairs are not skipped during this loop and the next.
+    /// Bodies `a` and `b` are in a real interaction that involves a `GridConnection` (or may be):
+    /// their potential connection pairs are not skipped during this loop and the next.
     #[inline]
-    pub fn mark_grid_real(&mut self, id: u32) {
-        let id = id as usize;
-        if id >= self.grid_real.len() {
-            self.grid_real.resize(id + 1, 0);
+    pub fn mark_grid_real(&mut self, a: u32, b: u32) {
+        let hi = a.max(b) as usize;
+        if hi >= self.grid_real.len() {
+            self.grid_real.resize(hi + 1, 0);
         }
-        self.grid_real[id] |= 2;
+        self.grid_real[a as usize] |= 2;
+        self.grid_real[b as usize] |= 2;
     }
 
     /// True when the idle sphere-connection pair of `e` (sphere `e.id1`) is still apart by the
@@ -283,7 +284,7 @@ mod tests {
         scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(s.skips_gridco(&scan[0]));
-        s.mark_grid_real(0);
+        s.mark_grid_real(0, 1);
         assert!(!s.skips_gridco(&scan[0]), "marked during this loop");
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]), "marked during the previous loop");

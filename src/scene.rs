@@ -626,8 +626,9 @@ impl Scene {
         self.physics(il, k, a, b)?;
         self.interactions.list[k].iter_made_real = self.iter;
         // a contact made outside the loop may be taken over by a neighbouring connection pair
-        self.idle_skip.mark_grid_real(a as u32);
-        self.idle_skip.mark_grid_real(b as u32);
+        if self.touches_conn(functor, a, b) {
+            self.idle_skip.mark_grid_real(a as u32, b as u32);
+        }
         Ok(k)
     }
 
@@ -823,12 +824,9 @@ impl Scene {
             },
             None => *ctx0,
         };
-        let touches_conn = functor == GeomFunctor::SphereGridConnection
-            || matches!(self.bodies.shape[id1], Shape::GridConnection(_))
-            || matches!(self.bodies.shape[id2], Shape::GridConnection(_));
+        let touches_conn = self.touches_conn(functor, id1, id2);
         if touches_conn && was_real {
-            self.idle_skip.mark_grid_real(id1 as u32);
-            self.idle_skip.mark_grid_real(id2 as u32);
+            self.idle_skip.mark_grid_real(id1 as u32, id2 as u32);
         }
         // fast path for the common sphere-sphere contact; every other functor goes through
         // `geometry`
@@ -883,8 +881,7 @@ impl Scene {
             return Ok(());
         }
         if touches_conn {
-            self.idle_skip.mark_grid_real(id1 as u32);
-            self.idle_skip.mark_grid_real(id2 as u32);
+            self.idle_skip.mark_grid_real(id1 as u32, id2 as u32);
         }
         // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
         // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
@@ -931,6 +928,16 @@ impl Scene {
             self.interactions.list[k].reset();
         }
         Ok(())
+    }
+
+    /// Whether an interaction of `functor` between `id1` and `id2` involves a `GridConnection`: when
+    /// real, its bodies are marked for the idle skip (a neighbouring connection pair of the sphere
+    /// may take it over).
+    #[inline(always)]
+    fn touches_conn(&self, functor: GeomFunctor, id1: usize, id2: usize) -> bool {
+        functor == GeomFunctor::SphereGridConnection
+            || matches!(self.bodies.shape[id1], Shape::GridConnection(_))
+            || matches!(self.bodies.shape[id2], Shape::GridConnection(_))
     }
 
     /// A potential sphere-connection pair just checked and left potential: idle from now on, with
