@@ -56,7 +56,33 @@ SPECIMEN_PARAMS = ('ratio', 'case', 'size', 'seed', 'rib', 'nx', 'ny', 'young', 
 # write the same files as before the knobs existed. Only psd_fuzz changes the generation (it is a
 # SPECIMEN_PARAM; specimens written before it existed read as 0); the others act on the loading.
 KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'clump_size': 0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
-                 'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None}
+                 'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None,
+                 'grid_block': '', 'block_rotations': False, 'preset': None}
+
+
+# named presets (README "Preset paper200"): defaults for a group of options, chosen per ratio d/a where the
+# specimen preparation needs it; an option given on the command line overrides its preset value.
+PRESETS = {
+    'paper200': {
+        # loading: rolling resistance as the angularity proxy the paper names, crushed-aggregate friction
+        'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0},
+        # generation: compaction friction (lower = denser) and the porosity that sets the sphere count, so that
+        # N and G land at 25 +- 1 cm and 41-46 % porosity (measured, seed 1, in the README's preset table)
+        0.3: {'friction': 25.0, 'target_porosity': 0.415},
+        0.5: {'friction': 10.0, 'target_porosity': 0.42},
+        0.7: {'friction': 10.0, 'target_porosity': 0.437},
+    },
+}
+
+
+def preset_values(name, ratio):
+    """The option defaults of preset `name` for ratio d/a (the ratio's own entry, or the nearest one's)."""
+    p = PRESETS[name]
+    ratios = [k for k in p if k != 'all']
+    near = min(ratios, key=lambda k: abs(k - ratio))
+    v = dict(p['all'])
+    v.update(p[near])
+    return v
 
 
 def params_dict(a, leave_out=()):
@@ -133,6 +159,19 @@ def parse_args(argv):
                     help='generation: replace every sphere by a clump of K overlapping spheres of the same total volume (0: spheres)')
     ap.add_argument('--load-friction', type=float, default=None,
                     help='loading: friction angle [deg] of the grain and rib materials from the rebuild on (default: the specimen\'s --friction)')
+    ap.add_argument('--grid-block', default='', metavar='DOFS',
+                    help="loading, diagnostic: blockedDOFs of every grid node (e.g. 'z', 'xyz', 'XYZ'): what if the grid could not move")
+    ap.add_argument('--block-rotations', action='store_true',
+                    help='loading: block the rotations of every sphere (XYZ added to blockedDOFs; the limit of infinite rolling resistance)')
+    ap.add_argument('--preset', choices=sorted(PRESETS), default=None,
+                    help='named defaults for a group of options (README "Preset paper200"); explicit options override them')
+    first, _ = ap.parse_known_args(argv)
+    if first.preset:
+        ratio = first.ratio
+        if first.import_specimen:
+            with open(first.import_specimen) as f:
+                ratio = json.load(f)['params']['ratio']
+        ap.set_defaults(**preset_values(first.preset, ratio))
     a = ap.parse_args(argv)
     if a.import_specimen:  # the specimen fixes the geometry and the materials
         with open(a.import_specimen) as f:
@@ -672,6 +711,20 @@ class Study:
             s.blockedDOFs = bd['blockedDOFs']
         roles = spec['roles']
         self.spheres, self.top, self.gridNodes = roles['spheres'], roles['top'], roles['gridNodes']
+        if a.block_rotations:  # knob: spheres that cannot rotate (F's 'xy' stays)
+            for i in self.spheres:
+                st = O.bodies[i].state
+                st.blockedDOFs = st.blockedDOFs + 'XYZ'
+                st.angVel = Vector3(0, 0, 0)
+        if a.grid_block:  # diagnostic knob: grid nodes held along the given DOFs (their velocity there zeroed)
+            if not self.gridNodes:
+                raise RuntimeError('--grid-block: the specimen has no grid nodes (case %s)' % a.case)
+            for i in self.gridNodes:
+                st = O.bodies[i].state
+                st.blockedDOFs = a.grid_block
+                v, w = st.vel, st.angVel
+                st.vel = Vector3(*[0.0 if c in a.grid_block else v[k] for k, c in enumerate('xyz')])
+                st.angVel = Vector3(*[0.0 if c in a.grid_block else w[k] for k, c in enumerate('XYZ')])
         if a.grid_kn_scale != 1 or a.grid_kr_scale != 1:  # knob: geogrid bond stiffness (as calibration connect())
             n = 0
             for bd in spec['bodies']:
