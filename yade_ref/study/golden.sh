@@ -6,6 +6,8 @@
 # Each writes OUTROOT/<spec>/{history.csv,profile.csv,steps.csv,specimen.json,summary.json,yade.log}.
 # Everything except summary.json (wall/cpu times) and yade.log is deterministic: YADE with one thread
 # and the same seed is bit-identical run to run. CPU cost per run: r07 ~15 s, r05 ~25 s, r03 ~3.5 min.
+# STUDY_EXTRA adds study.py options to every run, e.g. the preset goldens (golden/study_paper200):
+#   STUDY_EXTRA="--preset paper200" yade_ref/study/golden.sh -j 2 golden/study_paper200 r05_N_medium_s1 ...
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -27,7 +29,7 @@ one() {
     local d="$out/$spec"
     mkdir -p "$d"
     yade -n -x "$here/study.py" -- --ratio "$ratio" --case "$case" --size "$size" --seed "$seed" --out "$d" \
-        --export-specimen "$d/specimen.json" </dev/null 2>&1 | grep -a -v -e '^TCP python prompt' -e '^XMLRPC info' > "$d/yade.log"
+        --export-specimen "$d/specimen.json" ${STUDY_EXTRA:-} </dev/null 2>&1 | grep -a -v -e '^TCP python prompt' -e '^XMLRPC info' > "$d/yade.log"
     echo "== $spec: $(grep -a '^\[study\] cycle' "$d/yade.log" | tail -1)"
 }
 export -f one
