@@ -814,6 +814,7 @@ class Study:
                     pPeak=a.peak_kpa * 1e3, freq=a.freq, wave=a.wave, vApproach=-0.1, stopRut=a.stop_rut, pistonOff=self.pistonOff,
                     Z0=P.Z0, stepsEvery=a.steps_every, label='piston')
         O.engines = [pc if e is ctl else e for e in O.engines]
+        print('[study] --controller native: RyadePistonController (ryade engine) runs the law in place of the PyRunner', flush=True)
         return pc
 
     def native_collect(self, pc):
