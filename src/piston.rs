@@ -519,90 +519,80 @@ fn float_json(x: f64) -> serde_json::Value {
 }
 
 /// Inverse of `float_json`.
-fn json_float(key: &str, v: &serde_json::Value) -> Result<f64, String> {
-    match v {
-        serde_json::Value::String(s) if s == "inf" => Ok(f64::INFINITY),
-        serde_json::Value::String(s) if s == "-inf" => Ok(f64::NEG_INFINITY),
-        serde_json::Value::String(s) if s == "nan" => Ok(f64::NAN),
-        _ => v
-            .as_f64()
-            .ok_or_else(|| format!("RyadePistonController.{} must be a number, got {}", key, v)),
+fn json_float(v: &serde_json::Value) -> Option<f64> {
+    match v.as_str() {
+        Some("inf") => Some(f64::INFINITY),
+        Some("-inf") => Some(f64::NEG_INFINITY),
+        Some("nan") => Some(f64::NAN),
+        _ => v.as_f64(),
     }
 }
 
+/// `GET` and `GET_MUT` for the attributes of type `T`: Python name => field path.
+macro_rules! attr_table {
+    ($get:ident, $get_mut:ident, $t:ty; $($name:literal => $($field:ident).+),* $(,)?) => {
+        impl PistonController {
+            fn $get(&self, key: &str) -> Option<$t> {
+                Some(match key {
+                    $($name => self.$($field).+,)*
+                    _ => return None,
+                })
+            }
+            fn $get_mut(&mut self, key: &str) -> Option<&mut $t> {
+                Some(match key {
+                    $($name => &mut self.$($field).+,)*
+                    _ => return None,
+                })
+            }
+        }
+    };
+}
+
+attr_table!(float_attr, float_attr_mut, f64;
+    "area" => area, "alpha" => alpha, "Kp" => kp, "Ki" => ki, "vmax" => vmax, "dt" => dt, "pSeat" => p_seat,
+    "pPeak" => p_peak, "freq" => freq, "vApproach" => v_approach, "stopRut" => stop_rut, "zRef" => z_ref,
+    "pistonOff" => piston_off, "Z0" => z0, "pf" => pf, "I" => i_term, "peak" => stats.peak,
+    "peakRaw" => stats.peak_raw, "se" => stats.se, "seRaw" => stats.se_raw, "maxRut" => stats.max_rut, "p" => p,
+    "target" => target, "v" => v);
+attr_table!(int_attr, int_attr_mut, i64;
+    "iterPeriod" => periodic.iter_period, "nDo" => periodic.n_do, "firstIterRun" => periodic.first_iter_run,
+    "nDone" => periodic.n_done, "iterLast" => periodic.iter_last, "iterSeatEnd" => iter_seat_end,
+    "stepsEvery" => steps_every, "n" => stats.n);
+attr_table!(bool_attr, bool_attr_mut, bool;
+    "initRun" => periodic.init_run, "neumaierSum" => neumaier_sum, "stopped" => stopped);
+
 impl PistonController {
-    /// Set the attribute `key` (the Python name, `ATTRS`) from JSON.
+    /// Set the attribute `key` (the Python name, `ATTRS`, `target`, `v`) from JSON.
     pub fn set(&mut self, key: &str, v: &serde_json::Value) -> Result<(), String> {
-        let int = || {
-            v.as_i64().ok_or_else(|| {
-                format!(
-                    "RyadePistonController.{} must be an integer, got {}",
-                    key, v
-                )
-            })
-        };
-        let boolean = || {
-            v.as_bool()
-                .ok_or_else(|| format!("RyadePistonController.{} must be a bool, got {}", key, v))
-        };
-        let num = || json_float(key, v);
-        let text = || v.as_str().unwrap_or("");
-        match key {
-            "iterPeriod" => self.periodic.iter_period = int()?,
-            "nDo" => self.periodic.n_do = int()?,
-            "initRun" => self.periodic.init_run = boolean()?,
-            "firstIterRun" => self.periodic.first_iter_run = int()?,
-            "nDone" => self.periodic.n_done = int()?,
-            "iterLast" => self.periodic.iter_last = int()?,
-            "ids" => {
-                self.ids = v
-                    .as_array()
-                    .and_then(|a| a.iter().map(|x| x.as_u64().map(|i| i as usize)).collect())
-                    .ok_or_else(|| format!("RyadePistonController.ids must be a list of body ids, got {}", v))?
+        let bad = |what: &str| format!("RyadePistonController.{} must be {}, got {}", key, what, v);
+        if let Some(x) = self.float_attr_mut(key) {
+            *x = json_float(v).ok_or_else(|| bad("a number"))?;
+        } else if let Some(x) = self.int_attr_mut(key) {
+            *x = v.as_i64().ok_or_else(|| bad("an integer"))?;
+        } else if let Some(x) = self.bool_attr_mut(key) {
+            *x = v.as_bool().ok_or_else(|| bad("a bool"))?;
+        } else {
+            match key {
+                "ids" => {
+                    self.ids = v
+                        .as_array()
+                        .and_then(|a| a.iter().map(|x| x.as_u64().map(|i| i as usize)).collect())
+                        .ok_or_else(|| bad("a list of body ids"))?
+                }
+                "wave" => {
+                    self.wave = v
+                        .as_str()
+                        .and_then(Wave::parse)
+                        .ok_or_else(|| bad("'haversine' or 'triangle'"))?
+                }
+                "phase" => {
+                    self.phase = v
+                        .as_str()
+                        .and_then(Phase::parse)
+                        .ok_or_else(|| bad("'idle', 'approach', 'seat' or 'cycle'"))?
+                }
+                _ => return Err(format!("RyadePistonController has no attribute '{}'", key)),
             }
-            "area" => self.area = num()?,
-            "alpha" => self.alpha = num()?,
-            "Kp" => self.kp = num()?,
-            "Ki" => self.ki = num()?,
-            "vmax" => self.vmax = num()?,
-            "dt" => self.dt = num()?,
-            "pSeat" => self.p_seat = num()?,
-            "pPeak" => self.p_peak = num()?,
-            "freq" => self.freq = num()?,
-            "wave" => {
-                self.wave = Wave::parse(text()).ok_or_else(|| {
-                    format!("RyadePistonController.wave must be 'haversine' or 'triangle', got {}", v)
-                })?
-            }
-            "vApproach" => self.v_approach = num()?,
-            "iterSeatEnd" => self.iter_seat_end = int()?,
-            "phase" => {
-                self.phase = Phase::parse(text()).ok_or_else(|| {
-                    format!(
-                        "RyadePistonController.phase must be 'idle', 'approach', 'seat' or 'cycle', got {}",
-                        v
-                    )
-                })?
-            }
-            "stopRut" => self.stop_rut = num()?,
-            "zRef" => self.z_ref = num()?,
-            "pistonOff" => self.piston_off = num()?,
-            "Z0" => self.z0 = num()?,
-            "stepsEvery" => self.steps_every = int()?,
-            "neumaierSum" => self.neumaier_sum = boolean()?,
-            "pf" => self.pf = num()?,
-            "I" => self.i_term = num()?,
-            "n" => self.stats.n = int()?,
-            "peak" => self.stats.peak = num()?,
-            "peakRaw" => self.stats.peak_raw = num()?,
-            "se" => self.stats.se = num()?,
-            "seRaw" => self.stats.se_raw = num()?,
-            "maxRut" => self.stats.max_rut = num()?,
-            "stopped" => self.stopped = boolean()?,
-            "p" => self.p = num()?,
-            "target" => self.target = num()?,
-            "v" => self.v = num()?,
-            _ => return Err(format!("RyadePistonController has no attribute '{}'", key)),
         }
         Ok(())
     }
@@ -610,45 +600,19 @@ impl PistonController {
     /// The attribute `key` as JSON (non-finite floats as the strings of `float_json`).
     pub fn get(&self, key: &str) -> Result<serde_json::Value, String> {
         use serde_json::json;
+        if let Some(x) = self.float_attr(key) {
+            return Ok(float_json(x));
+        }
+        if let Some(x) = self.int_attr(key) {
+            return Ok(json!(x));
+        }
+        if let Some(x) = self.bool_attr(key) {
+            return Ok(json!(x));
+        }
         Ok(match key {
-            "iterPeriod" => json!(self.periodic.iter_period),
-            "nDo" => json!(self.periodic.n_do),
-            "initRun" => json!(self.periodic.init_run),
-            "firstIterRun" => json!(self.periodic.first_iter_run),
-            "nDone" => json!(self.periodic.n_done),
-            "iterLast" => json!(self.periodic.iter_last),
             "ids" => json!(self.ids),
-            "area" => float_json(self.area),
-            "alpha" => float_json(self.alpha),
-            "Kp" => float_json(self.kp),
-            "Ki" => float_json(self.ki),
-            "vmax" => float_json(self.vmax),
-            "dt" => float_json(self.dt),
-            "pSeat" => float_json(self.p_seat),
-            "pPeak" => float_json(self.p_peak),
-            "freq" => float_json(self.freq),
             "wave" => json!(self.wave.name()),
-            "vApproach" => float_json(self.v_approach),
-            "iterSeatEnd" => json!(self.iter_seat_end),
             "phase" => json!(self.phase.name()),
-            "stopRut" => float_json(self.stop_rut),
-            "zRef" => float_json(self.z_ref),
-            "pistonOff" => float_json(self.piston_off),
-            "Z0" => float_json(self.z0),
-            "stepsEvery" => json!(self.steps_every),
-            "neumaierSum" => json!(self.neumaier_sum),
-            "pf" => float_json(self.pf),
-            "I" => float_json(self.i_term),
-            "n" => json!(self.stats.n),
-            "peak" => float_json(self.stats.peak),
-            "peakRaw" => float_json(self.stats.peak_raw),
-            "se" => float_json(self.stats.se),
-            "seRaw" => float_json(self.stats.se_raw),
-            "maxRut" => float_json(self.stats.max_rut),
-            "stopped" => json!(self.stopped),
-            "p" => float_json(self.p),
-            "target" => float_json(self.target),
-            "v" => float_json(self.v),
             _ => return Err(format!("RyadePistonController has no attribute '{}'", key)),
         })
     }
