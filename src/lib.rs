@@ -54,6 +54,7 @@ pub mod material;
 pub mod math;
 pub mod pack;
 pub mod phys;
+pub mod piston;
 pub mod porosity;
 pub mod scene;
 pub mod shape;

@@ -238,6 +238,8 @@ pub enum Engine {
     TimeStepper(Box<crate::timestepper::GlobalStiffnessTimeStepper>),
     Translation(Box<crate::kinematic::TranslationEngine>),
     ServoPid(Box<crate::kinematic::ServoPid>),
+    /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
+    Piston(Box<crate::piston::PistonController>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -253,6 +255,7 @@ impl Engine {
             Engine::TimeStepper(_) => "GlobalStiffnessTimeStepper",
             Engine::Translation(_) => "TranslationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
+            Engine::Piston(_) => "RyadePistonController",
             Engine::External(_) => "External",
         }
     }
@@ -314,6 +317,10 @@ pub struct Scene {
     pub timing_enabled: bool,
     /// Per engine slot (grown on demand; `Engine::External` slots are timed by their runner).
     pub timing: Vec<crate::timing::EngineTiming>,
+    /// Set by an engine that ends the run after this step (`RyadePistonController`, as a `PyRunner`'s
+    /// `O.stopAtIter = O.iter + 1`); the run loop (compat's `run_steps`, `O.run`) stops after the
+    /// step and clears it.
+    pub stop_requested: bool,
 }
 
 /// Default `Scene::par_min_slots`. Measured with 2 threads against 1 (2-core VM, session 5): the
@@ -346,6 +353,7 @@ impl Default for Scene {
             idle_skip: IdleSkip::default(),
             timing_enabled: false,
             timing: Vec::new(),
+            stop_requested: false,
         }
     }
 }
@@ -499,6 +507,20 @@ impl Scene {
             Engine::ServoPid(s) => {
                 s.action(&mut self.bodies, &self.forces, self.iter);
                 Ok(())
+            }
+            Engine::Piston(pc) => {
+                activated = pc.periodic.is_activated(self.iter);
+                if activated {
+                    match pc.action(&mut self.bodies, &self.forces, self.iter) {
+                        Ok(stop) => {
+                            self.stop_requested |= stop;
+                            Ok(())
+                        }
+                        Err(m) => Err(err(m)),
+                    }
+                } else {
+                    Ok(())
+                }
             }
             Engine::External(_) => {
                 activated = false;

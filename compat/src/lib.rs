@@ -1237,6 +1237,8 @@ impl Sim {
                 "velocity" => s.velocity = num()?,
                 _ => return Err(unsupported("ServoPIDController")),
             },
+            // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
+            Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
             Engine::Collider(c) => match key {
                 "verletDist" => c.p.verlet_dist = num()?,
                 "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
@@ -1268,6 +1270,7 @@ impl Sim {
             (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
             (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
             (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
+            (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
             (Engine::ServoPid(s), k) => match k {
                 "ids" => serde_json::json!(s.ids),
                 "axis" => v3json(&s.axis),
@@ -1303,6 +1306,40 @@ impl Sim {
         Ok(v.to_string())
     }
 
+    /// `RyadePistonController.takeSteps()`: the `steps.csv` samples buffered by the piston engine at
+    /// slot `idx` since the last call, as (iter, phase, p_kPa, pf_kPa, target_kPa, z_m, v_mps).
+    #[allow(clippy::type_complexity)]
+    fn piston_take_rows(
+        &mut self,
+        idx: usize,
+    ) -> PyResult<Vec<(i64, &'static str, f64, f64, f64, f64, f64)>> {
+        match self.scene.engines.get_mut(idx) {
+            Some(Engine::Piston(pc)) => Ok(std::mem::take(&mut pc.rows)
+                .into_iter()
+                .map(|r| {
+                    (
+                        r.iter,
+                        r.phase.name(),
+                        r.p_kpa,
+                        r.pf_kpa,
+                        r.target_kpa,
+                        r.z,
+                        r.v,
+                    )
+                })
+                .collect()),
+            _ => Err(PyIndexError::new_err(format!(
+                "engine #{} is not a RyadePistonController",
+                idx
+            ))),
+        }
+    }
+    /// Whether an engine asked to end the run after the step just done (`RyadePistonController`);
+    /// the request is cleared. The Python run loop calls it after each step.
+    fn take_stop_request(&mut self) -> bool {
+        std::mem::take(&mut self.scene.stop_requested)
+    }
+
     // ---- stepping ----
     /// Run the current step until the next live Python engine, whose id is returned; None when the
     /// step is complete (iter and time then advanced).
@@ -1335,7 +1372,8 @@ impl Sim {
     fn in_step(&self) -> bool {
         self.cursor.is_some()
     }
-    /// Run `n` whole steps in Rust; fails if a live Python engine is in the list.
+    /// Run `n` whole steps in Rust (fewer when an engine asks to stop); fails if a live Python engine
+    /// is in the list.
     fn run_steps(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
         if self.cursor.is_some() {
             return Err(PyRuntimeError::new_err(
@@ -1343,9 +1381,15 @@ impl Sim {
             ));
         }
         let scene = &mut self.scene;
+        // an engine may end the run after a step (`RyadePistonController`: `O.stopAtIter = O.iter + 1`
+        // in a PyRunner); a request left from an earlier O.step() does not count
+        scene.stop_requested = false;
         py.allow_threads(|| {
             for _ in 0..n {
                 scene.step().map_err(|e| e.to_string())?;
+                if std::mem::take(&mut scene.stop_requested) {
+                    break;
+                }
             }
             Ok::<(), String>(())
         })

@@ -839,7 +839,11 @@ pub fn engine(e: &Value) -> Result<Engine> {
             iter_prev_start: fo(e, "iterPrevStart", -1.0)? as i64,
             ..Default::default()
         })),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController)", other),
+        // a ryade extension (not a YADE class): the study's piston law, src/piston.rs
+        "RyadePistonController" => Engine::Piston(Box::new(
+            crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController; ryade's own: RyadePistonController)", other),
     })
 }
 
@@ -1010,6 +1014,7 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
                 "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
                 "iterPrevStart": p.iter_prev_start}),
+            Engine::Piston(p) => p.to_json(),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner
             Engine::External(id) => json!({"class": "External", "id": id}),
         })

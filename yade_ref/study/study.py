@@ -104,8 +104,9 @@ def parse_args(argv):
     ap.add_argument('--size', choices=sorted(SIZES), default='tiny')
     ap.add_argument('--seed', type=int, default=1, help='makeCloud seed (>= 0); the upper cloud uses seed + 100000')
     ap.add_argument('--cycles', type=int, default=None, help='load cycles (default: tiny 5, small/medium/full 10)')
-    ap.add_argument('--controller', choices=['pi', 'servopid'], default='pi',
-                    help="pi: the study's filtered PI velocity law in a PyRunner (default); servopid: YADE's ServoPIDController on the raw force, same gains")
+    ap.add_argument('--controller', choices=['pi', 'servopid', 'native'], default='pi',
+                    help="pi: the study's filtered PI velocity law in a PyRunner (default); servopid: YADE's ServoPIDController on the raw force, same gains; "
+                    "native: the pi law run by ryade's RyadePistonController engine, no Python call per step (ryade only, same outputs; YADE runs the PyRunner law)")
     ap.add_argument('--out', default=None, help='output directory (default: study_out/r<ratio>_<case>_<size>_s<seed>)')
     ap.add_argument('--export-specimen', default=None, metavar='FILE', help='write the specimen after generation as JSON')
     ap.add_argument('--import-specimen', default=None, metavar='FILE', help='skip generation, rebuild this specimen and load it')
@@ -795,7 +796,7 @@ class Study:
             self.I += e * P.dt
             v = -(P.Kp * e + P.Ki * self.I)
             v = max(-a.vmax, min(a.vmax, v))
-            if a.controller == 'pi':
+            if a.controller != 'servopid':  # pi, or native run by this PyRunner (native_piston())
                 self.set_piston_vel(v)
             else:
                 servo.target = target * P.A
@@ -846,6 +847,37 @@ class Study:
         s['v'] += dt * f / s['m']
         O.bodies[s['id']].state.vel = Vector3(0, 0, s['v'])
 
+    def native_piston(self):
+        """--controller native: the PyRunner of the loading is replaced by ryade's RyadePistonController
+        engine at its place in O.engines, which does what tick() does in the phases approach, seat and
+        cycle (src/piston.rs), without a Python call per step. None where the PyRunner law runs instead:
+        under YADE (no such class), or with --subgrade-k (tick_subgrade needs the PyRunner every step)."""
+        a, P = self.a, self.P
+        if a.controller != 'native':
+            return None
+        import yade
+        Native = getattr(yade, 'RyadePistonController', None)  # a ryade extension: only ryade's yade has it
+        if Native is None:
+            print('[study] --controller native: YADE has no RyadePistonController (a ryade extension); the PyRunner runs the law, as --controller pi', flush=True)
+            return None
+        if self.sub is not None:
+            print('[study] --controller native: --subgrade-k needs the PyRunner every step; the PyRunner runs the law, as --controller pi', flush=True)
+            return None
+        # it runs when the PyRunner would have (PeriodicEngine's rule: a fresh one skips its first step)
+        pc = Native(iterPeriod=ctl.iterPeriod, nDone=ctl.nDone, iterLast=ctl.iterLast, ids=self.piston, area=P.A, alpha=P.alpha, Kp=P.Kp, Ki=P.Ki, vmax=a.vmax, dt=P.dt, pSeat=a.seat_kpa * 1e3,
+                    pPeak=a.peak_kpa * 1e3, freq=a.freq, wave=a.wave, vApproach=-0.1, stopRut=a.stop_rut, pistonOff=self.pistonOff,
+                    Z0=P.Z0, stepsEvery=a.steps_every, label='piston')
+        O.engines = [pc if e is ctl else e for e in O.engines]
+        print('[study] --controller native: RyadePistonController (ryade engine) runs the law in place of the PyRunner', flush=True)
+        return pc
+
+    def native_collect(self, pc):
+        """--controller native, after a run: the steps.csv samples, the phase, the stop and the cycle's
+        statistics (self.cyc) as tick() leaves them."""
+        self.steps += pc.takeSteps()
+        self.phase, self.stopped, self.pf, self.I = pc.phase, pc.stopped, pc.pf, pc.I
+        return {'n': pc.n, 'peak': pc.peak, 'peakRaw': pc.peakRaw, 'se': pc.se, 'seRaw': pc.seRaw, 'maxRut': pc.maxRut}
+
     def load(self):
         a, P = self.a, self.P
         if a.subgrade_k > 0:
@@ -858,25 +890,36 @@ class Study:
         self.pistonOff = zb - O.bodies[self.piston[0]].state.pos[2]
         if a.controller == 'servopid':
             servo.ids = self.piston
+        pc = self.native_piston()
         self.pf, self.I = 0.0, 0.0
         self.iterSeatEnd = 10**12
         self.steps = []
         self.stopped = False
         # approach at 0.1 m/s until the raw pressure reaches the seating pressure
         self.phase = 'approach'
+        if pc:
+            pc.phase = 'approach'
         cap = int(math.ceil((zb - P.Z0) / 0.1 / P.dt))
         self.timed('approach', lambda: run_until_stopped(cap))
+        if pc:
+            self.native_collect(pc)
         if self.phase != 'idle':
             raise RuntimeError('piston approach: no contact within %d steps' % cap)
         # seating: PI on the seating pressure for one period
         self.iterSeatEnd = O.iter + P.stepsPerCycle
         self.phase = 'seat'
+        if pc:
+            pc.iterSeatEnd, pc.phase = self.iterSeatEnd, 'seat'
         if a.controller == 'servopid':
             self.set_piston_vel(0.0)
             servo.target = a.seat_kpa * 1e3 * P.A
             servo.dead = False
         self.timed('seating', lambda: O.run(P.stepsPerCycle, True))
+        if pc:
+            self.native_collect(pc)
         self.zRef = self.piston_bottom()
+        if pc:
+            pc.zRef = self.zRef
         ref = {i: O.bodies[i].state.pos for i in self.spheres}
         self.rows = [self.history_row(0, {'n': 0})]
         t0, c0 = time.time(), time.process_time()
@@ -884,7 +927,12 @@ class Study:
         for k in range(1, a.cycles + 1):
             self.cyc = {'n': 0, 'peak': -1e300, 'peakRaw': -1e300, 'se': 0.0, 'seRaw': 0.0, 'maxRut': -1e300}
             self.phase = 'cycle'
+            if pc:
+                pc.resetCycle()
+                pc.phase = 'cycle'
             run_until_stopped(P.stepsPerCycle)
+            if pc:
+                self.cyc = self.native_collect(pc)
             self.rows.append(self.history_row(k, self.cyc))
             r = self.rows[-1]
             print('[study] cycle %3d rut %7.2f mm peak %6.1f kPa rms %6.1f kPa porosity %.4f' % (
@@ -893,6 +941,8 @@ class Study:
                 print('[study] rut above %.3f m: stopped in cycle %d' % (a.stop_rut, k), flush=True)
                 break
         self.phase = 'idle'
+        if pc:
+            pc.phase = 'idle'
         self.timings.append(('cycles', O.iter - it0, time.time() - t0, time.process_time() - c0))
         print('[study] %-12s %7d steps %8.2f s wall %8.2f s cpu' % ('cycles', O.iter - it0, time.time() - t0, time.process_time() - c0), flush=True)
         self.profile = self.displacement_profile(ref)

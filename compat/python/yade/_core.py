@@ -843,6 +843,7 @@ class Omega(_ryade.OmegaBase):
         self.tags = {}
         self._engines = []
         self._external = []
+        self._native_stop = False
         self._pending_engines = None
         self._paused = False
         self._background = None
@@ -958,6 +959,8 @@ class Omega(_ryade.OmegaBase):
         self._sim.set_engines(json.dumps(specs), reuse)
         self._external = external
         self._engines = lst
+        # an engine of the Rust core may end a run after a step (ryade's RyadePistonController)
+        self._native_stop = any(d.get('class') == 'RyadePistonController' for d in specs)
         for k, e in enumerate(lst):
             e._bind(self, k)
             if specs[k].get('class') != 'External':
@@ -1012,12 +1015,14 @@ class Omega(_ryade.OmegaBase):
             if self.ryadeFastPath:
                 self._sim.run_steps_fast(n, self.ryadeFastThreads)
             else:
-                self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust
+                self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust (a Rust engine may end it early)
             self.stopAtIter = -1
             return
         if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
             raise RuntimeError('O.run() without a step count and nothing that can stop it (no PyRunner, no '
                                'O.stopAtIter): it would never return; give O.run(nSteps, True)')
+        if self._native_stop:
+            self._sim.take_stop_request()  # one left by an earlier O.step() does not count
         while not self._paused:
             if self.stopAtIter > 0 and self.iter >= self.stopAtIter:
                 self.stopAtIter = -1
@@ -1025,6 +1030,9 @@ class Omega(_ryade.OmegaBase):
             if self.stopAtTime > 0 and self.time >= self.stopAtTime:
                 break
             self._one_step()
+            if self._native_stop and self._sim.take_stop_request():  # as a PyRunner's O.stopAtIter = O.iter + 1
+                self.stopAtIter = -1
+                break
 
     def run(self, nSteps=-1, wait=False):
         if wait:
@@ -1053,6 +1061,7 @@ class Omega(_ryade.OmegaBase):
         self.bodies = BodyContainer(self)
         self.materials = MaterialContainer(self)
         self._engines, self._external, self._pending_engines = [], [], None
+        self._native_stop = False
         self.tags = {}
 
     def resetTime(self):

@@ -591,6 +591,101 @@ class ServoPIDController(TranslationEngine):
     _state = ('iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPrevStart', 'velocity')
 
 
+def _float_json(v):
+    """A float for the Rust core's JSON: non-finite values as the strings 'inf', '-inf', 'nan'."""
+    v = float(v)
+    if v != v:
+        return 'nan'
+    if v in (float('inf'), float('-inf')):
+        return 'inf' if v > 0 else '-inf'
+    return v
+
+
+class RyadePistonController(PartialEngine):
+    """**A ryade extension, not a YADE class** (YADE stops a script that uses it with a NameError naming
+    it): the geogrid study's piston law (yade_ref/study/study.py `Study.tick` in the phases approach,
+    seat and cycle) run in the Rust core every step (`src/piston.rs`), with the same bits as the
+    script's PyRunner. Put it where the PyRunner was (after NewtonIntegrator). Pressures in Pa.
+
+    It runs by PeriodicEngine's rule with `iterPeriod` (default 1), `nDo`, `initRun`, `firstIterRun`,
+    `nDone`, `iterLast`, as the PyRunner it replaces (a fresh one skips its first step): the study hands
+    the PyRunner's `nDone` and `iterLast` over. Parameters: `ids` (piston bodies; forces summed in this order, the first one's z and vz stand for
+    the piston), `area`, `alpha` (filter), `Kp`, `Ki`, `vmax`, `dt`, `pSeat`, `pPeak`, `freq`, `wave`
+    ('haversine' or 'triangle'), `vApproach`, `iterSeatEnd`, `phase` ('idle', 'approach', 'seat',
+    'cycle'), `stopRut`, `zRef`, `pistonOff`, `Z0`, `stepsEvery`, `neumaierSum` (sum the forces as this
+    Python's builtin `sum` does; set from the interpreter). State: `pf`, `I`; per-cycle statistics
+    `n`, `peak`, `peakRaw`, `se`, `seRaw`, `maxRut` (`resetCycle()`), `stopped`; the last step's `p`,
+    `target`, `v`. The approach stops the run at p >= pSeat, a cycle once the rut passes `stopRut`
+    (as `O.stopAtIter = O.iter + 1` from a PyRunner). `takeSteps()` returns and clears the steps.csv
+    samples `[iter, phase, p_kPa, pf_kPa, target_kPa, pistonBottom - Z0, v]`."""
+    _attrs = {'iterPeriod': 1, 'nDo': -1, 'initRun': False, 'firstIterRun': 0, 'nDone': 0, 'iterLast': 0,
+              'area': 1.0, 'alpha': 1.0, 'Kp': 0.0, 'Ki': 0.0, 'vmax': 1.0, 'dt': 0.0, 'pSeat': 0.0, 'pPeak': 0.0,
+              'freq': 0.0, 'wave': 'haversine', 'vApproach': -0.1, 'iterSeatEnd': 10**12, 'phase': 'idle',
+              'stopRut': float('inf'), 'zRef': 0.0, 'pistonOff': 0.0, 'Z0': 0.0, 'stepsEvery': 0,
+              'neumaierSum': sys.version_info >= (3, 12), 'pf': 0.0, 'I': 0.0, 'n': 0, 'peak': -1e300,
+              'peakRaw': -1e300, 'se': 0.0, 'seRaw': 0.0, 'maxRut': -1e300, 'stopped': False, 'p': 0.0,
+              'target': 0.0, 'v': 0.0}
+    _live = ('ids',) + tuple(_attrs)
+    _ints = ('iterPeriod', 'nDo', 'firstIterRun', 'nDone', 'iterLast', 'iterSeatEnd', 'stepsEvery', 'n')
+    _bools = ('initRun', 'neumaierSum', 'stopped')
+    _choices = {'wave': ('haversine', 'triangle'), 'phase': ('idle', 'approach', 'seat', 'cycle')}
+    #: study.py load()'s per-cycle accumulators at the start of a cycle
+    _CYCLE_START = (('n', 0), ('peak', -1e300), ('peakRaw', -1e300), ('se', 0.0), ('seRaw', 0.0), ('maxRut', -1e300))
+
+    def _convert(self, k, v):
+        if k in self._ints:
+            return int(v)
+        if k in self._bools:
+            return bool(v)
+        if k in self._choices:
+            if v not in self._choices[k]:
+                raise ValueError('RyadePistonController.%s must be one of %s, got %r' % (k, ', '.join(self._choices[k]), v))
+            return v
+        if k in RyadePistonController._attrs:
+            return float(v)
+        return PartialEngine._convert(self, k, v)
+
+    def _encode(self, k):
+        v = self._values[k]
+        if k in RyadePistonController._attrs and not (k in self._ints or k in self._bools or k in self._choices):
+            return _float_json(v)
+        return v
+
+    def _changed(self, k):
+        if self._owner is not None and k in self._live:
+            omega, index = self._owner
+            omega._sim.engine_set(index, k, json.dumps(self._encode(k)))
+            return
+        PartialEngine._changed(self, k)
+
+    def _read(self, k):
+        if self._owner is None or k not in self._live:
+            return self._values[k]
+        omega, index = self._owner
+        v = json.loads(omega._sim.engine_get(index, k))
+        return float(v) if isinstance(v, str) and k not in self._choices else v
+
+    def _json(self):
+        d = {'class': 'RyadePistonController', 'ids': list(self._values['ids'])}
+        for k in RyadePistonController._attrs:
+            d[k] = self._encode(k)
+        return d
+
+    def takeSteps(self):
+        """The steps.csv samples since the last call (and clears them): lists
+        [iter, phase, p_kPa, pf_kPa, target_kPa, pistonBottom - Z0, v]."""
+        if self._owner is None:
+            return []
+        omega, index = self._owner
+        return [list(r) for r in omega._sim.piston_take_rows(index)]
+
+    def resetCycle(self):
+        """The per-cycle statistics back to their start values (study.py load(): n 0, peak, peakRaw and
+        maxRut -1e300, se and seRaw 0)."""
+        for k, v in self._CYCLE_START:
+            setattr(self, k, v)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -737,6 +832,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, ServoPIDController,
+    RyadePistonController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
@@ -744,6 +840,9 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
     ElastMat, FrictMat]}
 
+
+#: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
+RYADE_EXTENSIONS = ('RyadePistonController',)
 
 _ALL = {}
 
