@@ -66,6 +66,10 @@ enum Cmd {
         /// to see the diff fail)
         #[arg(long, allow_hyphen_values = true)]
         ryade_arg: Vec<String>,
+        /// rXX: a study.py preset for both engines (e.g. paper200: 200 cycles, rolling resistance;
+        /// yade_ref/study/README.md); YADE's runs of it at medium size are in golden/study_paper200
+        #[arg(long)]
+        preset: Option<String>,
     },
     /// The study: every ratio x case (x seed) in ryade, histories, the paper's figures and a summary.
     Study {
@@ -97,6 +101,10 @@ enum Cmd {
         /// Extra study.py argument for every run (repeatable; e.g. --arg=--controller=servopid)
         #[arg(long, allow_hyphen_values = true)]
         arg: Vec<String>,
+        /// A study.py preset (paper200: 200 cycles, rolling resistance, the paper's specimen;
+        /// yade_ref/study/README.md "Preset paper200")
+        #[arg(long)]
+        preset: Option<String>,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
     #[command(trailing_var_arg = true)]
@@ -351,9 +359,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
             yade_from,
             band_k,
             ryade_arg,
+            preset,
         } => {
             if target.starts_with('r') && target.len() == 3 {
                 use ryade::harness::{study, study_run};
+                let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &[])?;
                 let o = study_run::DiffOptions {
                     ratio: study::parse_scenario(&target)?,
                     cases: study::parse_cases(&case)?,
@@ -363,10 +373,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     size,
                     seeds,
                     first_seed,
-                    cycles,
+                    cycles: cycles.or(preset_cycles),
                     jobs: jobs.unwrap_or_else(cores),
                     yade_from,
                     band_k,
+                    extra,
                     ryade_extra: ryade_arg,
                     quiet: false,
                 };
@@ -504,8 +515,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             with_yade,
             arg,
+            preset,
         } => {
             use ryade::harness::{study, study_run};
+            let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &arg)?;
             let ratios: Vec<u8> = if ratios.eq_ignore_ascii_case("all") {
                 study::RATIOS.to_vec()
             } else {
@@ -524,10 +537,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 cases: study::parse_cases(&cases)?,
                 seeds,
                 first_seed,
-                cycles,
+                cycles: cycles.or(preset_cycles),
                 jobs: jobs.unwrap_or_else(cores),
                 with_yade,
-                extra: arg,
+                extra,
                 quiet: false,
             };
             let r = study_run::study_sweep(&study_run::repo_root(), &o)?;

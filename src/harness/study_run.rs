@@ -58,6 +58,35 @@ fn study_script(root: &Path) -> Result<PathBuf> {
     Ok(p)
 }
 
+/// study.py's named presets (`PRESETS` there) and the cycles each runs by default. study.py holds
+/// their values; this list lets `compat study|diff --preset` refuse an unknown name before any run.
+pub const PRESETS: &[(&str, u32)] = &[("paper200", 200)];
+
+/// The study.py arguments `compat study|diff` add in front of the user's: `--preset=NAME` and, unless
+/// the user chose a controller, `--controller=native` (ryade's engine for the study's PI law, byte-identical
+/// to the PyRunner; YADE runs the PyRunner for it). Returns them with the preset's default cycles.
+pub fn preset_args(preset: Option<&str>, user: &[String]) -> Result<(Vec<String>, Option<u32>)> {
+    let mut v = Vec::new();
+    let mut cycles = None;
+    if let Some(p) = preset {
+        let Some((_, c)) = PRESETS.iter().find(|(n, _)| *n == p) else {
+            let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
+            bail!(
+                "unknown preset '{}' (study.py has: {})",
+                p,
+                names.join(", ")
+            );
+        };
+        v.push(format!("--preset={}", p));
+        cycles = Some(*c);
+    }
+    if !user.iter().any(|a| a.starts_with("--controller")) {
+        v.push("--controller=native".to_string());
+    }
+    v.extend(user.iter().cloned());
+    Ok((v, cycles))
+}
+
 /// Cycles a size runs by default (study.py SIZES).
 pub fn default_cycles(size: &str) -> u32 {
     if size == "tiny" {
@@ -262,6 +291,8 @@ pub struct DiffOptions {
     /// Take YADE's runs from `<dir>/<case name>/` instead of running YADE.
     pub yade_from: Option<PathBuf>,
     pub band_k: f64,
+    /// Extra study.py arguments for both engines' runs (e.g. `--preset=paper200`).
+    pub extra: Vec<String>,
     /// Extra study.py arguments for the ryade runs only (e.g. a deliberate perturbation).
     pub ryade_extra: Vec<String>,
     pub quiet: bool,
@@ -323,7 +354,7 @@ pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
                     import: None,
                     export: true,
                     cycles: o.cycles,
-                    extra: vec![],
+                    extra: o.extra.clone(),
                 });
             }
             chain.push(Run {
@@ -333,7 +364,7 @@ pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
                 import: Some(yade_dir(s).join("specimen.json")),
                 export: false,
                 cycles: o.cycles,
-                extra: o.ryade_extra.clone(),
+                extra: o.extra.iter().chain(&o.ryade_extra).cloned().collect(),
             });
             chain
         })
@@ -910,4 +941,42 @@ fn summary_markdown(
     }
     s += "\nThe ratio is undefined (large or of either sign) where F and N rut alike: study.md warns that single seeds at small sizes scatter by 18-30 %, so read trends over seeds.\n";
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn preset_args_put_the_preset_and_native_controller_first() {
+        let (v, c) = preset_args(Some("paper200"), &["--damping=0.3".into()]).unwrap();
+        assert_eq!(
+            v,
+            ["--preset=paper200", "--controller=native", "--damping=0.3"]
+        );
+        assert_eq!(c, Some(200));
+        // a controller the user chose is kept, and no preset means no cycles
+        let (v, c) = preset_args(None, &["--controller=servopid".into()]).unwrap();
+        assert_eq!(v, ["--controller=servopid"]);
+        assert_eq!(c, None);
+        let e = preset_args(Some("paper300"), &[]).unwrap_err().to_string();
+        assert!(
+            e.contains("unknown preset 'paper300'") && e.contains("paper200"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn presets_listed_here_exist_in_study_py() {
+        let py = std::fs::read_to_string(repo_root().join("yade_ref/study/study.py")).unwrap();
+        for (name, cycles) in PRESETS {
+            let at = py
+                .find(&format!("'{}': {{", name))
+                .expect("preset missing in study.py");
+            assert!(
+                py[at..].contains(&format!("'cycles': {}", cycles)),
+                "{name}: cycles differ"
+            );
+        }
+    }
 }
