@@ -57,7 +57,7 @@ SPECIMEN_PARAMS = ('ratio', 'case', 'size', 'seed', 'rib', 'nx', 'ny', 'young', 
 # SPECIMEN_PARAM; specimens written before it existed read as 0); the others act on the loading.
 KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'clump_size': 0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
                  'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None,
-                 'grid_block': '', 'block_rotations': False, 'preset': None}
+                 'grid_block': '', 'block_rotations': False, 'preset': None, 'profile_cycle': 0}
 
 
 # named presets (README "Preset paper200"): defaults for a group of options, chosen per ratio d/a where the
@@ -66,7 +66,7 @@ PRESETS = {
     'paper200': {
         # loading: rolling resistance as the angularity proxy the paper names, crushed-aggregate friction
         # (steps.csv every 50 steps: 18 samples a cycle, 3,640 rows for 200 cycles)
-        'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0, 'steps_every': 50},
+        'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0, 'steps_every': 50, 'profile_cycle': 100},
         # generation: compaction friction (lower = denser) and the porosity that sets the sphere count, so that
         # N and G land at 25 +- 1 cm and 41-46 % porosity (measured, seed 1, in the README's preset table)
         0.3: {'friction': 25.0, 'target_porosity': 0.415},
@@ -143,6 +143,8 @@ def parse_args(argv):
     ap.add_argument('--vmax', type=float, default=1.0, help='piston speed limit [m/s]')
     ap.add_argument('--stop-rut', type=float, default=0.075, help='stop when the rut exceeds this [m] (0.3 x 0.25 m)')
     ap.add_argument('--steps-every', type=int, default=10, help='steps.csv sampling period [steps]')
+    ap.add_argument('--profile-cycle', type=int, default=0, metavar='K',
+                    help='also write profile_cK.csv: the displacement profile at the end of cycle K (0: only the final profile.csv)')
     # unmodelled-effect knobs (README "Unmodelled-effect knobs"); the defaults are the study's model
     ap.add_argument('--psd-fuzz', type=float, default=0.0,
                     help='generation: makeCloud rRelFuzz (radii uniform in r(1 +- fuzz), same mean radius, count from the mean volume)')
@@ -921,6 +923,7 @@ class Study:
         if pc:
             pc.zRef = self.zRef
         ref = {i: O.bodies[i].state.pos for i in self.spheres}
+        self.profileAt = None
         self.rows = [self.history_row(0, {'n': 0})]
         t0, c0 = time.time(), time.process_time()
         it0 = O.iter
@@ -937,6 +940,8 @@ class Study:
             r = self.rows[-1]
             print('[study] cycle %3d rut %7.2f mm peak %6.1f kPa rms %6.1f kPa porosity %.4f' % (
                 k, r['rut_mm'], r['peak_kPa'], r['tracking_rms_kPa'], r['porosity_box']), flush=True)
+            if k == a.profile_cycle:  # the paper's Fig 7 is the field at cycle 100
+                self.profileAt = self.displacement_profile(ref)
             if self.stopped:
                 print('[study] rut above %.3f m: stopped in cycle %d' % (a.stop_rut, k), flush=True)
                 break
@@ -1080,6 +1085,8 @@ if not args.generate_only:
     write_csv(os.path.join(args.out, 'steps.csv'), steps,
               ['iter', 'phase', 't_s', 'p_raw_kPa', 'p_filtered_kPa', 'p_target_kPa', 'piston_z_m', 'v_mps'], '%.10g')
     write_csv(os.path.join(args.out, 'profile.csv'), study.profile)
+    if study.profileAt is not None:
+        write_csv(os.path.join(args.out, 'profile_c%d.csv' % args.profile_cycle), study.profileAt)
 summary = {'params': params_dict(args),
            'derived': {'d': P.d, 'Lx': P.Lx, 'Ly': P.Ly, 'Lz': P.Lz, 'Z0': P.Z0, 'D': P.D, 'nSpheres': P.nSpheres, 'H0': P.H0,
                        'zGrid0': P.zGrid, 'dt': P.dt, 'stepsPerCycle': P.stepsPerCycle, 'mNode': P.mNode, 'Kp': P.Kp, 'Ki': P.Ki,
