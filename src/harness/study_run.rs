@@ -685,6 +685,7 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
     }
     let runs = run_chains(root, chains, o.jobs, o.quiet);
     // combined histories
+    let mut profiles = vec!["ratio,case,seed,cycle,file".to_string()];
     let hist_path = o.out.join("histories.csv");
     let mut w = csv::Writer::from_path(&hist_path)?;
     w.write_record([
@@ -737,7 +738,31 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
             ),
             h,
         );
-        let prof = run.out.join("profile.csv");
+        // paper Fig 7 of the whole study: the profile at --profile-cycle K where the run wrote one
+        let at = std::fs::read_dir(&run.out).ok().and_then(|d| {
+            d.filter_map(|e| e.ok()?.file_name().into_string().ok())
+                .filter_map(|n| {
+                    let k = n.strip_prefix("profile_c")?.strip_suffix(".csv")?;
+                    Some((k.parse::<u32>().ok()?, n))
+                })
+                .min()
+        });
+        let final_prof = run.out.join("profile.csv");
+        let (pc, pf) = match at {
+            Some((k, n)) => (k.to_string(), run.out.join(n)),
+            None => ("last".to_string(), final_prof.clone()),
+        };
+        if pf.is_file() && run.engine == Engine::Ryade {
+            profiles.push(format!(
+                "{:.1},{},{},{},{}",
+                run.spec.ratio_value(),
+                run.spec.case,
+                run.spec.seed,
+                pc,
+                pf.display()
+            ));
+        }
+        let prof = final_prof;
         if prof.is_file() {
             figures(&[
                 "profile",
@@ -748,6 +773,16 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
         }
     }
     w.flush()?;
+    if profiles.len() > 1 {
+        let idx = o.out.join("profiles.csv");
+        std::fs::write(&idx, profiles.join("\n") + "\n")
+            .with_context(|| format!("writing {}", idx.display()))?;
+        figures(&[
+            "profiles",
+            &idx.display().to_string(),
+            &o.out.join("fig_profiles.png").display().to_string(),
+        ]);
+    }
     // surface displacement ratio per ratio, engine and cycle, over seeds
     let mut sdr = Vec::new();
     for eng in ["ryade", "yade"] {
@@ -863,7 +898,7 @@ fn summary_markdown(
     } else {
         ""
     };
-    s += "). Histories: `histories.csv`; surface displacement ratio (seed-paper.txt Eq 1): `sdr.csv`; figures: `fig_rutting.png`, `fig_porosity.png`, `fig_sdr.png`, and `profile.png` per run (paper Fig 7).\n\n";
+    s += "). Histories: `histories.csv`; surface displacement ratio (seed-paper.txt Eq 1): `sdr.csv`; figures: `fig_rutting.png`, `fig_porosity.png` (seed mean and range), `fig_sdr.png`, `fig_profiles.png` (every run's profile at `--profile-cycle`, or its last, in one figure) and `profile.png` per run (paper Fig 7).\n\n";
     s += "## Rutting and porosity under the piston (last cycle run)\n\n";
     s += "| engine | ratio | case | seed | cycles | rut [mm] | porosity (cycle 0 -> last) | status |\n|---|---|---|---|---|---|---|---|\n";
     for (run, r) in runs {

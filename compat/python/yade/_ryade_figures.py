@@ -3,6 +3,7 @@
     python3 -m yade._ryade_figures diff DIFF.csv OUT.png          # compat diff rXX: YADE band vs ryade
     python3 -m yade._ryade_figures profile PROFILE.csv OUT.png TITLE   # paper Fig 7 for one run
     python3 -m yade._ryade_figures study HISTORIES.csv SDR.csv OUTDIR  # paper Figs 3-6
+    python3 -m yade._ryade_figures profiles INDEX.csv OUT.png      # paper Fig 7 for a whole study
     python3 -m yade._ryade_figures gap PLOT.csv OUT.png              # compat gap: one diagnosis
 """
 import csv
@@ -98,10 +99,20 @@ def study(hist_csv, sdr_csv, outdir):
             for c in 'NGF':
                 for eng, ls in (('ryade', '-'), ('yade', ':')):
                     runs = sorted({r['seed'] for r in rows if r['ratio'] == ra and r['case'] == c and r['engine'] == eng})
-                    for k, s in enumerate(runs):
-                        rr = [r for r in rows if r['ratio'] == ra and r['case'] == c and r['engine'] == eng and r['seed'] == s]
-                        ax.plot([int(r['cycle']) for r in rr], [_f(r[m]) for r in rr], ls, color=CASE_STYLE[c][0],
-                                label=('%s (%s)' % (CASE_STYLE[c][1], eng)) if k == 0 else None)
+                    per = {}
+                    for s in runs:
+                        for r in rows:
+                            if r['ratio'] == ra and r['case'] == c and r['engine'] == eng and r['seed'] == s:
+                                per.setdefault(int(r['cycle']), []).append(_f(r[m]))
+                    if len(runs) > 1:  # seed band (min-max) around the seed mean, over the cycles every seed ran
+                        cyc = [k for k in sorted(per) if len(per[k]) == len(runs)]
+                        ax.fill_between(cyc, [min(per[k]) for k in cyc], [max(per[k]) for k in cyc], color=CASE_STYLE[c][0],
+                                        alpha=0.18, lw=0)
+                        ax.plot(cyc, [sum(per[k]) / len(per[k]) for k in cyc], ls, color=CASE_STYLE[c][0],
+                                label='%s (%s, mean and range of %d seeds)' % (CASE_STYLE[c][1], eng, len(runs)))
+                    elif runs:
+                        cyc = sorted(per)
+                        ax.plot(cyc, [per[k][0] for k in cyc], ls, color=CASE_STYLE[c][0], label='%s (%s)' % (CASE_STYLE[c][1], eng))
             ax.set_title('d/a = %s' % ra)
             ax.set_xlabel('cycle')
             ax.set_ylabel(LABELS[m])
@@ -131,6 +142,9 @@ def study(hist_csv, sdr_csv, outdir):
     ax.set_ylim(-1.5, 2.5)
     ax.text(0.01, 0.01, 'axis clipped to [-1.5, 2.5]; values in sdr.csv', transform=ax.transAxes, fontsize=7,
             color='0.4')
+    last = max([int(r['cycle']) for r in sd] or [0])
+    if last >= 150:  # the paper reads the ratio over cycles 100-200
+        ax.set_xlim(100, last)
     ax.set_xlabel('cycle')
     ax.set_ylabel('surface displacement ratio (G-N)/(F-N)')
     ax.set_title('Surface displacement ratio (paper Eq 1, Fig 6)')
@@ -138,6 +152,36 @@ def study(hist_csv, sdr_csv, outdir):
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, 'fig_sdr.png'), dpi=110)
+
+
+def profiles(index_csv, png):
+    """Paper Fig 7 for a whole study: vertical displacement by depth under (solid) and beside (dashed) the
+    piston, one panel per ratio (rows) and case (columns), one line per seed. index_csv lists
+    ratio,case,seed,cycle,file."""
+    plt = _plt()
+    idx = _rows(index_csv)
+    ratios = sorted({r['ratio'] for r in idx}, key=float)
+    cases = [c for c in 'NGF' if any(r['case'] == c for r in idx)]
+    fig, axes = plt.subplots(len(ratios), len(cases), figsize=(3.6 * len(cases), 3.2 * len(ratios)), squeeze=False, sharex=True)
+    for i, ra in enumerate(ratios):
+        for j, c in enumerate(cases):
+            ax = axes[i][j]
+            for r in [r for r in idx if r['ratio'] == ra and r['case'] == c]:
+                pr = _rows(r['file'])
+                mid = [-(0.5 * (_f(p['depth_top_m']) + _f(p['depth_bot_m']))) for p in pr]
+                ax.plot([_f(p['uz_under_mm']) for p in pr], mid, '-', color=CASE_STYLE[c][0], lw=1.2)
+                ax.plot([_f(p['uz_outside_mm']) for p in pr], mid, '--', color=CASE_STYLE[c][0], lw=1.0)
+            cyc = sorted({r['cycle'] for r in idx if r['ratio'] == ra and r['case'] == c})
+            ax.axvline(0, color='0.6', lw=0.8)
+            ax.set_title('d/a = %s, %s, cycle %s' % (ra, CASE_STYLE[c][1], '/'.join(cyc)), fontsize=9)
+            ax.grid(alpha=0.3)
+            if j == 0:
+                ax.set_ylabel('depth [m]')
+            if i == len(ratios) - 1:
+                ax.set_xlabel('uz [mm] (solid: under, dashed: beside)')
+    fig.suptitle('Vertical displacement since the end of seating, by depth (paper Fig 7; one line per seed)')
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
 
 
 GAP_NAMES = {'rut_mm': 'rut [mm]', 'porosity': 'porosity under the piston', 'rebound_mm': 'resilient rebound [mm]',
@@ -178,10 +222,10 @@ def gap(plot_csv, png):
 
 
 def main(argv):
-    if not argv or argv[0] not in ('diff', 'profile', 'study', 'gap'):
+    if not argv or argv[0] not in ('diff', 'profile', 'profiles', 'study', 'gap'):
         sys.stderr.write(__doc__)
         return 2
-    {'diff': diff, 'profile': profile, 'study': study, 'gap': gap}[argv[0]](*argv[1:])
+    {'diff': diff, 'profile': profile, 'profiles': profiles, 'study': study, 'gap': gap}[argv[0]](*argv[1:])
     return 0
 
 
