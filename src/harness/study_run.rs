@@ -941,7 +941,8 @@ fn summary_markdown(
             _ => {}
         }
     }
-    s += "\n## Surface displacement ratio (G - N) / (F - N) per cycle\n\nWith several seeds: Eq 1 on the seed-mean ruts, then in brackets the mean +- sd of the per-seed ratios.\n\n";
+    s += &findings_markdown(o, hist, sdr);
+    s += "\n## Surface displacement ratio (G - N) / (F - N) per cycle\n\nWith several seeds: Eq 1 on the seed-mean ruts, then in brackets the mean +- sd of the per-seed ratios. Past cycle 20, every 10th cycle (all of them in `sdr.csv`).\n\n";
     if sdr.is_empty() {
         s += "Not available: it needs the N, G and F runs of one ratio and seed.\n";
     }
@@ -960,7 +961,7 @@ fn summary_markdown(
         s += &"---|".repeat(ratios.len());
         s += "\n";
         let maxc = pts.iter().map(|p| p.cycle).max().unwrap_or(0);
-        for c in 1..=maxc {
+        for c in (1..=maxc).filter(|c| *c <= 20 || c % 10 == 0 || *c == maxc) {
             s += &format!("| {} |", c);
             for r in &ratios {
                 match pts.iter().find(|p| p.ratio == *r && p.cycle == c) {
@@ -975,6 +976,114 @@ fn summary_markdown(
         }
     }
     s += "\nThe ratio is undefined (large or of either sign) where F and N rut alike: study.md warns that single seeds at small sizes scatter by 18-30 %, so read trends over seeds.\n";
+    s
+}
+
+/// Least-squares slope of y over x.
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// The paper's findings (seed-paper.txt section 3) checked on ryade's runs, per ratio: the N > G > F order of
+/// the seed-mean ruts at the last cycle every run reached, the ratio of Eq 1 on those means early
+/// (cycles 1-20) and late (cycles 100-200, or the second half of a shorter study) with its trend, and the
+/// paper's trend for that ratio: 0.7 near 1 early then degrading, 0.5 steady, 0.3 rising late.
+fn findings_markdown(o: &StudyOptions, hist: &Histories, sdr: &[SdrPoint]) -> String {
+    let mut s = String::from("\n## The paper's findings, checked (ryade runs, seed means)\n\n");
+    s += "| d/a | last common cycle | rut N / G / F [mm] (mean +- sd) | N > G > F | SDR cycles 1-20 | SDR late window: mean, first -> last (trend /100 cycles) | inside [0, 1] +- 1 sd | paper's trend | reproduced |\n|---|---|---|---|---|---|---|---|---|\n";
+    let mut any = false;
+    for &r in &o.ratios {
+        let seeds: Vec<u32> = (o.first_seed..o.first_seed + o.seeds).collect();
+        let runs: Vec<&Vec<HistoryRow>> = ['N', 'G', 'F']
+            .iter()
+            .flat_map(|&c| seeds.iter().map(move |&sd| (c, sd)))
+            .filter_map(|(c, sd)| hist.get(&("ryade", r, c, sd)))
+            .collect();
+        if runs.len() != 3 * seeds.len() {
+            continue;
+        }
+        any = true;
+        let last = runs.iter().map(|h| h.len() - 1).min().unwrap_or(0);
+        let stat = |c: char| {
+            let v: Vec<f64> = seeds
+                .iter()
+                .map(|&sd| hist[&("ryade", r, c, sd)][last].rut_mm)
+                .collect();
+            study::mean_sd(&v)
+        };
+        let (n, g, f) = (stat('N'), stat('G'), stat('F'));
+        let order = n.0 > g.0 && g.0 > f.0;
+        let pts: Vec<&SdrPoint> = sdr
+            .iter()
+            .filter(|p| p.engine == "ryade" && p.ratio == r && (p.cycle as usize) <= last)
+            .collect();
+        let val = |p: &SdrPoint| if seeds.len() > 1 { p.of_means } else { p.mean };
+        let early: Vec<f64> = pts
+            .iter()
+            .filter(|p| p.cycle <= 20)
+            .map(|p| val(p))
+            .collect();
+        let lo = if last >= 200 {
+            100
+        } else {
+            (last as u32).div_ceil(2)
+        };
+        let late: Vec<&&SdrPoint> = pts.iter().filter(|p| p.cycle >= lo).collect();
+        let ly: Vec<f64> = late.iter().map(|p| val(p)).collect();
+        let lx: Vec<f64> = late.iter().map(|p| p.cycle as f64).collect();
+        let (em, lm) = (study::mean_sd(&early).0, study::mean_sd(&ly).0);
+        let tr = if ly.len() > 2 {
+            100.0 * slope(&lx, &ly)
+        } else {
+            f64::NAN
+        };
+        let inside = late
+            .iter()
+            .filter(|p| {
+                let sd = if p.values.len() > 1 { p.sd } else { 0.0 };
+                val(p) >= -sd && val(p) <= 1.0 + sd
+            })
+            .count();
+        let (paper, ok) = match r {
+            7 => ("near 1 early, then degrading", em > 0.7 && tr < 0.0),
+            5 => (
+                "steady improvement",
+                lm > 0.0 && lm <= 1.0 && tr.abs() < 0.2,
+            ),
+            _ => ("rising late", tr > 0.0 && lm > 0.0),
+        };
+        s += &format!(
+            "| {} | {} | {:.2} +- {:.2} / {:.2} +- {:.2} / {:.2} +- {:.2} | {} | {:.2} | {:.2}, {:.2} -> {:.2} ({:+.2}), cycles {}-{} | {} of {} | {} | {} |\n",
+            r as f64 / 10.0,
+            last,
+            n.0,
+            n.1,
+            g.0,
+            g.1,
+            f.0,
+            f.1,
+            if order { "yes" } else { "no" },
+            em,
+            lm,
+            ly.first().copied().unwrap_or(f64::NAN),
+            ly.last().copied().unwrap_or(f64::NAN),
+            tr,
+            lo,
+            last,
+            inside,
+            ly.len(),
+            paper,
+            if ok && order { "yes" } else { "no" }
+        );
+    }
+    if !any {
+        return String::new();
+    }
+    s += "\n'reproduced' asks for the order N > G > F at the last cycle and the trend: 0.7 early mean > 0.7 with a falling late ratio; 0.5 a late mean in (0, 1] that moves less than 0.2 per 100 cycles; 0.3 a rising, positive late ratio.\n";
     s
 }
 
@@ -1013,5 +1122,78 @@ mod tests {
                 "{name}: cycles differ"
             );
         }
+    }
+
+    /// Synthetic seed histories with ruts a*k: N > G > F with a ratio of Eq 1 that is constant (0.5,
+    /// 'steady') must read 'yes' for d/a 0.5 and 'no' for 0.7 (no early ratio above 0.7, no fall).
+    #[test]
+    fn findings_read_the_order_and_the_trend() {
+        let row = |k: u32, rut: f64| HistoryRow {
+            cycle: k,
+            complete: 1,
+            steps: 0,
+            time_s: 0.0,
+            rut_mm: rut,
+            rut_max_mm: rut,
+            peak_kpa: 0.0,
+            peak_raw_kpa: 0.0,
+            tracking_rms_kpa: 0.0,
+            tracking_rms_raw_kpa: 0.0,
+            porosity_box: 0.4,
+            piston_z_m: 0.0,
+            grid_z_m: None,
+        };
+        let mut hist = Histories::new();
+        let mut sdr = Vec::new();
+        for r in [5u8, 7] {
+            for seed in 1..=2u32 {
+                let jitter = 1.0 + 0.01 * seed as f64;
+                for (c, a) in [('N', 0.3), ('G', 0.2), ('F', 0.1)] {
+                    hist.insert(
+                        ("ryade", r, c, seed),
+                        (0..=200).map(|k| row(k, a * jitter * k as f64)).collect(),
+                    );
+                }
+            }
+            for cycle in 1..=200 {
+                sdr.push(SdrPoint {
+                    ratio: r,
+                    engine: "ryade",
+                    cycle,
+                    seeds: vec![1, 2],
+                    values: vec![0.5, 0.5],
+                    mean: 0.5,
+                    sd: 0.0,
+                    of_means: 0.5,
+                });
+            }
+        }
+        let o = StudyOptions {
+            size: "full".into(),
+            ratios: vec![5, 7],
+            cases: vec!['N', 'G', 'F'],
+            seeds: 2,
+            first_seed: 1,
+            cycles: Some(200),
+            jobs: 1,
+            out: PathBuf::from("unused"),
+            with_yade: false,
+            extra: vec![],
+            quiet: true,
+        };
+        let md = findings_markdown(&o, &hist, &sdr);
+        let line = |d: &str| {
+            md.lines()
+                .find(|l| l.starts_with(&format!("| {} |", d)))
+                .unwrap()
+                .to_string()
+        };
+        assert!(line("0.5").ends_with("| yes | 0.50 | 0.50, 0.50 -> 0.50 (+0.00), cycles 100-200 | 101 of 101 | steady improvement | yes |"), "{}", line("0.5"));
+        assert!(
+            line("0.7").ends_with("| near 1 early, then degrading | no |"),
+            "{}",
+            line("0.7")
+        );
+        assert!((slope(&[0.0, 1.0, 2.0], &[1.0, 3.0, 5.0]) - 2.0).abs() < 1e-15);
     }
 }
