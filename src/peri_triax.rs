@@ -18,7 +18,7 @@
 //! hands it over); a scene file carries the effect each firing had in YADE (`HookEvent`), applied
 //! when the hook fires at the same iteration.
 
-use crate::math::{mat_mul, mat_vec_i, sign, Mat3, Vec3};
+use crate::math::{cxx_max, cxx_min, mat_mul, mat_vec_i, sign, Mat3, Vec3};
 use crate::scene::Scene;
 use crate::shape::Shape;
 use std::collections::VecDeque;
@@ -104,26 +104,6 @@ impl Default for PeriTriax {
             hook_events: VecDeque::new(),
             replay_hooks: false,
         }
-    }
-}
-
-/// `std::max` as YADE calls it: `a < b ? b : a` (keeps `a` when either is NaN).
-#[inline(always)]
-fn cmax(a: f64, b: f64) -> f64 {
-    if a < b {
-        b
-    } else {
-        a
-    }
-}
-
-/// `std::min`: `b < a ? b : a`.
-#[inline(always)]
-fn cmin(a: f64, b: f64) -> f64 {
-    if b < a {
-        b
-    } else {
-        a
     }
 }
 
@@ -244,7 +224,7 @@ impl PeriTriax {
                 for i in 0..3 {
                     let span = bd.max[i] - bd.min[i];
                     if span < cell_size[i] {
-                        self.max_body_span[i] = cmax(self.max_body_span[i], span);
+                        self.max_body_span[i] = cxx_max(self.max_body_span[i], span);
                     }
                 }
             }
@@ -263,7 +243,7 @@ impl PeriTriax {
         }
         let do_update = scene.iter % self.glob_update as i64 == 0;
         if do_update
-            || cmin(self.stiff[0], cmin(self.stiff[1], self.stiff[2])) <= 0.0
+            || cxx_min(self.stiff[0], cxx_min(self.stiff[1], self.stiff[2])) <= 0.0
             || self.dyn_cell
         {
             self.strain_stress_stiff_update(scene)?;
@@ -303,7 +283,7 @@ impl PeriTriax {
                 sr = sign(sr) * self.max_strain_rate[axis];
             }
             // never shrink below the periodic collider's minimum cell size
-            sr = cmax(sr, -(cell_size[axis] - 2.1 * self.max_body_span[axis]) / dt);
+            sr = cxx_max(sr, -(cell_size[axis] - 2.1 * self.max_body_span[axis]) / dt);
             cell.vel_grad[(axis, axis)] = sr;
             self.strain[axis] += sr * dt;
             if self.stress_controlled(axis) {

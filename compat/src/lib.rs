@@ -1097,11 +1097,7 @@ impl Sim {
                 )))
             }
         };
-        Ok([
-            [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-            [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-            [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
-        ])
+        Ok(rows3(&m))
     }
     /// Assign a cell matrix as YADE does: `velGrad` goes to nextVelGrad (NewtonIntegrator applies it
     /// after the interaction loop, `Cell::setVelGrad`), `nextVelGrad` directly, `trsf` with postLoad.
@@ -1149,14 +1145,7 @@ impl Sim {
         Ok(())
     }
     fn get_cell(&self) -> Option<[[f64; 3]; 3]> {
-        self.scene.cell.as_ref().map(|c| {
-            let h = c.hsize;
-            [
-                [h[(0, 0)], h[(0, 1)], h[(0, 2)]],
-                [h[(1, 0)], h[(1, 1)], h[(1, 2)]],
-                [h[(2, 0)], h[(2, 1)], h[(2, 2)]],
-            ]
-        })
+        self.scene.cell.as_ref().map(|c| rows3(&c.hsize))
     }
     fn cell_size(&self) -> Option<V3> {
         self.scene.cell.as_ref().map(|c| v3(&c.size()))
@@ -1828,11 +1817,7 @@ impl Sim {
     #[pyo3(signature = (volume=0.0))]
     fn get_stress(&self, volume: f64) -> PyResult<[[f64; 3]; 3]> {
         let m = ryade::peri_triax::get_stress(&self.scene, volume).map_err(err)?;
-        Ok([
-            [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-            [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-            [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
-        ])
+        Ok(rows3(&m))
     }
     fn aabb_extrema(&self) -> Option<(V3, V3)> {
         ryade::utils::aabb_extrema(&self.scene).map(|(a, b)| (v3(&a), v3(&b)))
@@ -1987,11 +1972,7 @@ fn peri_triax_get(p: &ryade::peri_triax::PeriTriax, k: &str) -> Option<Value> {
         "globUpdate" => serde_json::json!(p.glob_update),
         "doneHook" => serde_json::json!(p.done_hook),
         "maxBodySpan" => v3json(&p.max_body_span),
-        "stressTensor" => serde_json::json!([
-            [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-            [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-            [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
-        ]),
+        "stressTensor" => serde_json::json!(rows3(m)),
         "stress" => v3json(&p.stress),
         "strain" => v3json(&p.strain),
         "strainRate" => v3json(&p.strain_rate),
@@ -2060,4 +2041,13 @@ fn peri_triax_set(
         _ => return Err(None),
     }
     Ok(())
+}
+
+/// A 3x3 matrix as its rows (what Python's Matrix3 is built from).
+fn rows3(m: &ryade::math::Mat3) -> [[f64; 3]; 3] {
+    [
+        [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+        [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+        [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
+    ]
 }

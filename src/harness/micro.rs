@@ -129,35 +129,13 @@ pub fn diff_against_6d(
     intrs: &[golden::IntrRow],
     intrs6d: Option<&[golden::Intr6dRow]>,
 ) -> DiffReport {
-    let SceneFile {
-        mut scene,
-        steps,
-        name,
-    } = sf;
-    let mut rep = DiffReport {
-        scene: name,
-        steps,
-        ..Default::default()
-    };
-    let mut by_step_b: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
-    for r in bodies {
-        by_step_b.entry(r.step).or_default().push(r);
-    }
-    let mut by_step_i: HashMap<u64, Vec<&golden::IntrRow>> = HashMap::new();
-    for r in intrs {
-        by_step_i.entry(r.step).or_default().push(r);
-    }
-    let mut by_step_6: HashMap<u64, Vec<&golden::Intr6dRow>> = HashMap::new();
-    for r in intrs6d.unwrap_or(&[]) {
-        by_step_6.entry(r.step).or_default().push(r);
-    }
+    let (mut scene, steps, mut rep) = start(sf);
+    let by_step_b = by_step(bodies, |r| r.step);
+    let by_step_i = by_step(intrs, |r| r.step);
+    let by_step_6 = by_step(intrs6d.unwrap_or(&[]), |r| r.step);
     for step in 0..=steps {
-        if step > 0 {
-            if let Err(e) = scene.step() {
-                rep.error = Some(e.to_string());
-                rep.mismatches += 1;
-                break;
-            }
+        if !advance(&mut scene, step, &mut rep) {
+            break;
         }
         compare_step(
             &scene,
@@ -171,6 +149,39 @@ pub fn diff_against_6d(
         }
     }
     rep
+}
+
+/// The scene to run, its step count and an empty report named after it.
+fn start(sf: SceneFile) -> (Scene, u64, DiffReport) {
+    let SceneFile { scene, steps, name } = sf;
+    let rep = DiffReport {
+        scene: name,
+        steps,
+        ..Default::default()
+    };
+    (scene, steps, rep)
+}
+
+/// Run step `step` of the scene (nothing for step 0, the state before the first step); a failed step is
+/// a mismatch and the report's error. Returns whether the comparison goes on.
+fn advance(scene: &mut Scene, step: u64, rep: &mut DiffReport) -> bool {
+    if step > 0 {
+        if let Err(e) = scene.step() {
+            rep.error = Some(e.to_string());
+            rep.mismatches += 1;
+            return false;
+        }
+    }
+    true
+}
+
+/// Golden rows grouped by step.
+fn by_step<T>(rows: &[T], step: impl Fn(&T) -> u64) -> HashMap<u64, Vec<&T>> {
+    let mut m: HashMap<u64, Vec<&T>> = HashMap::new();
+    for r in rows {
+        m.entry(step(r)).or_default().push(r);
+    }
+    m
 }
 
 /// A digest scene: every step's three digests (bodies, interactions, cell and controllers), the full
@@ -189,32 +200,13 @@ pub fn diff_digest_scene(sf: SceneFile, scene_json: &Path, digest: &Path) -> Res
     } else {
         HashMap::new()
     };
-    let SceneFile {
-        mut scene,
-        steps,
-        name,
-    } = sf;
-    let mut rep = DiffReport {
-        scene: name,
-        steps,
-        ..Default::default()
-    };
-    let mut by_step_b: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
-    for r in &bodies {
-        by_step_b.entry(r.step).or_default().push(r);
-    }
-    let mut by_step_i: HashMap<u64, Vec<&golden::IntrRow>> = HashMap::new();
-    for r in &intrs {
-        by_step_i.entry(r.step).or_default().push(r);
-    }
+    let (mut scene, steps, mut rep) = start(sf);
+    let by_step_b = by_step(&bodies, |r| r.step);
+    let by_step_i = by_step(&intrs, |r| r.step);
     const GROUPS: [&str; 3] = ["bodies", "interactions", "cell and controller"];
     for step in 0..=steps {
-        if step > 0 {
-            if let Err(e) = scene.step() {
-                rep.error = Some(e.to_string());
-                rep.mismatches += 1;
-                break;
-            }
+        if !advance(&mut scene, step, &mut rep) {
+            break;
         }
         match digests.get(&step) {
             None => {
