@@ -3,7 +3,7 @@
 
 use crate::body::{Bodies, Bound};
 use crate::cell::Cell;
-use crate::math::{mat_vec, Vec3};
+use crate::math::{cxx_max, cxx_min, mat_vec, Vec3};
 use crate::shape::Shape;
 
 /// Which Bo1 functors the collider was given (YADE dispatches on the shape class; a shape without a
@@ -191,24 +191,4 @@ pub fn update_bounds(
         }
     }
     Ok(())
-}
-
-/// `std::max(a, b)`: `a < b ? b : a`.
-#[inline(always)]
-fn cxx_max(a: f64, b: f64) -> f64 {
-    if a < b {
-        b
-    } else {
-        a
-    }
-}
-
-/// `std::min(a, b)`: `b < a ? b : a`.
-#[inline(always)]
-fn cxx_min(a: f64, b: f64) -> f64 {
-    if b < a {
-        b
-    } else {
-        a
-    }
 }

@@ -10,6 +10,8 @@
 //! values and stop the fit before anything runs. Results are written to `calibration.json` after every
 //! model run (a crash loses nothing already computed), plots by a small matplotlib script.
 
+pub mod triaxial;
+
 use anyhow::{anyhow, bail, Context, Result};
 use serde_json::{json, Value};
 use std::fmt;
@@ -370,6 +372,28 @@ fn jstr(p: &Path) -> String {
     serde_json::to_string(&p.to_string_lossy()).unwrap()
 }
 
+/// The folder of the calibration scripts: `given`, else yade_ref/calibration of the working directory or
+/// of this checkout (the first that holds `probe`), canonicalized.
+fn scripts_dir(given: &Option<PathBuf>, probe: &str) -> Result<PathBuf> {
+    let dir = match given {
+        Some(s) => s.clone(),
+        None => [
+            PathBuf::from("yade_ref/calibration"),
+            crate::harness::env::repo_root().join("yade_ref/calibration"),
+        ]
+        .into_iter()
+        .find(|c| c.join(probe).is_file())
+        .ok_or_else(|| {
+            anyhow!(
+                "yade_ref/calibration/{} not found: run from the ryade checkout or pass --scripts DIR",
+                probe
+            )
+        })?,
+    };
+    dir.canonicalize()
+        .with_context(|| format!("scripts folder {}", dir.display()))
+}
+
 /// Runs the model scripts on the chosen engine, echoing their output (progress) and logging it.
 struct Runner {
     engine: Engine,
@@ -516,23 +540,7 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
         t.notes
             .push(format!("overhang tolerance {} mm (--tolerance-mm)", tol));
     }
-    let scripts = match &opts.scripts {
-        Some(s) => s.clone(),
-        None => {
-            let cands = [
-                PathBuf::from("yade_ref/calibration"),
-                crate::harness::env::repo_root().join("yade_ref/calibration"),
-            ];
-            cands
-                .iter()
-                .find(|c| c.join("tensile.py").is_file())
-                .cloned()
-                .ok_or_else(|| {
-                    anyhow!("yade_ref/calibration/tensile.py not found: run from the ryade checkout or pass --scripts DIR")
-                })?
-        }
-    };
-    let scripts = scripts.canonicalize()?;
+    let scripts = scripts_dir(&opts.scripts, "tensile.py")?;
     for s in ["tensile.py", "cantilever.py"] {
         if !scripts.join(s).is_file() {
             bail!("{} not found in {}", s, scripts.display());
@@ -949,11 +957,16 @@ pub fn calibrate(opts: &Options) -> Result<bool> {
 
 /// Runs the plotting script on the result file; returns the PNG names written next to it.
 pub fn plot(result: &Path) -> Result<Vec<String>> {
+    run_plot(PLOT_PY, result)
+}
+
+/// Runs a plotting script (Python source) with `arg`; returns the names it reports ("wrote NAME").
+fn run_plot(script: &str, arg: &Path) -> Result<Vec<String>> {
     let py = crate::harness::env::python();
     let o = Command::new(&py)
         .arg("-c")
-        .arg(PLOT_PY)
-        .arg(result)
+        .arg(script)
+        .arg(arg)
         .output()
         .with_context(|| format!("starting {:?}", py))?;
     if !o.status.success() {

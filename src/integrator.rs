@@ -108,6 +108,16 @@ impl Newton {
         dt: f64,
         pool: Option<&rayon::ThreadPool>,
     ) -> Result<(), NewtonError> {
+        let mut cell = cell;
+        if let Some(c) = cell.as_deref_mut() {
+            // a velGrad assigned by the user (`Cell::setVelGrad`) takes effect here, after the
+            // interaction loop (NewtonIntegrator::action)
+            if c.vel_grad_changed || c.next_vel_grad != Mat3::zeros() {
+                c.vel_grad = c.next_vel_grad;
+                c.vel_grad_changed = false;
+                c.next_vel_grad = Mat3::zeros();
+            }
+        }
         let periodic = cell.is_some();
         let (homo_deform, dvel_grad, dspin) = if let Some(c) = cell.as_deref() {
             // velGrad update and the homothetic terms (zero for a static cell, still evaluated

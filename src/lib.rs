@@ -53,6 +53,7 @@ pub mod law;
 pub mod material;
 pub mod math;
 pub mod pack;
+pub mod peri_triax;
 pub mod phys;
 pub mod piston;
 pub mod porosity;

@@ -83,6 +83,26 @@ pub fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
     Mat3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + (a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)]))
 }
 
+/// `std::max(a, b)` as YADE calls it: `a < b ? b : a` (keeps `a` when either is NaN).
+#[inline(always)]
+pub fn cxx_max(a: f64, b: f64) -> f64 {
+    if a < b {
+        b
+    } else {
+        a
+    }
+}
+
+/// `std::min(a, b)`: `b < a ? b : a`.
+#[inline(always)]
+pub fn cxx_min(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}
+
 /// YADE's `math::sign`: `(0 < x) - (x < 0)`; 0 for 0 and for NaN.
 #[inline(always)]
 pub fn sign(x: f64) -> f64 {

@@ -240,6 +240,7 @@ pub enum Engine {
     ServoPid(Box<crate::kinematic::ServoPid>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
+    PeriTriax(Box<crate::peri_triax::PeriTriax>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -256,6 +257,7 @@ impl Engine {
             Engine::Translation(_) => "TranslationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
             Engine::Piston(_) => "RyadePistonController",
+            Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
         }
     }
@@ -281,6 +283,8 @@ pub enum StepError {
 pub struct Energy {
     pub plast_dissip: f64,
     pub elast_potential: f64,
+    /// `velGradWork` (PeriTriaxController): absent until the controller first adds to it.
+    pub vel_grad_work: Option<f64>,
     pub shear_dissip: f64,
     pub bending_dissip: f64,
     pub twist_dissip: f64,
@@ -321,7 +325,14 @@ pub struct Scene {
     /// `O.stopAtIter = O.iter + 1`); the run loop (compat's `run_steps`, `O.run`) stops after the
     /// step and clears it.
     pub stop_requested: bool,
+    /// Engine slot whose PeriTriaxController asked for its (Python) doneHook during the current
+    /// step; the runner of `step_with` takes it (`DONE_HOOK | slot`).
+    pub done_hook_pending: Option<usize>,
 }
+
+/// Bit set in the id `Scene::step_with` passes to its hook for a pending doneHook (the rest of the
+/// id is the engine slot).
+pub const DONE_HOOK: u32 = 1 << 31;
 
 /// Default `Scene::par_min_slots`. Measured with 2 threads against 1 (2-core VM, session 5): the
 /// study's r05 G medium (~5,700 slots) 0.93x and r03 N small (~12,700 slots) 0.98x with the
@@ -354,6 +365,7 @@ impl Default for Scene {
             timing_enabled: false,
             timing: Vec::new(),
             stop_requested: false,
+            done_hook_pending: None,
         }
     }
 }
@@ -371,9 +383,21 @@ impl Scene {
     }
 
     /// `O.step()`: cell update, every engine in order, then `iter += 1` and `time += dt`. A scene with
-    /// `External` engines must be stepped with `step_with`.
+    /// `External` engines, or a PeriTriaxController whose doneHook has no recorded effect, must be
+    /// stepped with `step_with`.
     pub fn step(&mut self) -> Result<(), StepError> {
         self.step_with(&mut |id, s: &mut Scene| {
+            if id & DONE_HOOK != 0 {
+                let k = (id & !DONE_HOOK) as usize;
+                let hook = match s.engines.get(k) {
+                    Some(Engine::PeriTriax(p)) => p.done_hook.clone(),
+                    _ => String::new(),
+                };
+                return Err(format!(
+                    "PeriTriaxController.doneHook '{}' fired at iteration {}: a Python hook needs `compat run` (or its recorded effect in the scene file)",
+                    hook, s.iter
+                ));
+            }
             Err(format!(
                 "external engine {} has no runner (at iteration {})",
                 id, s.iter
@@ -381,7 +405,8 @@ impl Scene {
         })
     }
 
-    /// One step; `hook(id, scene)` runs each `Engine::External(id)` with full access to the scene.
+    /// One step; `hook(id, scene)` runs each `Engine::External(id)` with full access to the scene,
+    /// and each pending doneHook (`DONE_HOOK | slot`) right after its controller.
     pub fn step_with(
         &mut self,
         hook: &mut dyn FnMut(u32, &mut Scene) -> Result<(), String>,
@@ -395,6 +420,11 @@ impl Scene {
                     hook(id, self).map_err(|msg| StepError::Engine { iter, msg })?;
                 } else {
                     self.run_engine(k)?;
+                    if let Some(slot) = self.done_hook_pending.take() {
+                        let iter = self.iter;
+                        hook(DONE_HOOK | slot as u32, self)
+                            .map_err(|msg| StepError::Engine { iter, msg })?;
+                    }
                 }
             }
             k += 1;
@@ -522,6 +552,26 @@ impl Scene {
                     Ok(())
                 }
             }
+            Engine::PeriTriax(p) => match p.action(self) {
+                // recorded effects (scene files) are applied here; a Python hook runs after the
+                // engine (`step_with`), before the next one, as YADE runs it inside `action`
+                Ok(true) if p.replay_hooks => match p.replay_hook(self.iter) {
+                    Ok(dead) => {
+                        if dead {
+                            self.engine_dead.resize(self.engines.len(), false);
+                            self.engine_dead[k] = true;
+                        }
+                        Ok(())
+                    }
+                    Err(e) => Err(err(e)),
+                },
+                Ok(true) => {
+                    self.done_hook_pending = Some(k);
+                    Ok(())
+                }
+                Ok(false) => Ok(()),
+                Err(e) => Err(err(e)),
+            },
             Engine::External(_) => {
                 activated = false;
                 Ok(())

@@ -226,3 +226,84 @@ fn fit_logic_on_stand_in_scripts() {
     assert!(n <= 5, "{} evaluations", n);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `compat calibrate --triaxial --quick` on two variants: the script's outputs equal YADE's committed quick
+/// files byte for byte, the report has the table and the bearing-capacity section, and an unknown variant
+/// stops the run with the list of variants.
+#[test]
+fn triaxial_quick_matches_yade_and_reports() {
+    if !python_has("yade") {
+        eprintln!("skipped: the yade compat package is not importable");
+        return;
+    }
+    let out = tmp("triaxial");
+    let o = compat()
+        .args([
+            "calibrate",
+            "--triaxial",
+            "--quick",
+            "--no-plot",
+            "--variants",
+            "plain,roll0.5",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let gold = root().join("golden/calibration/triaxial_quick");
+    for f in [
+        "plain.curve.csv",
+        "plain.summary.json",
+        "roll0.5.curve.csv",
+        "roll0.5.summary.json",
+    ] {
+        assert_eq!(
+            std::fs::read(out.join("runs").join(f)).unwrap(),
+            std::fs::read(gold.join(f)).unwrap(),
+            "{} differs from YADE's",
+            f
+        );
+    }
+    let md = std::fs::read_to_string(out.join("triaxial.md")).unwrap();
+    assert!(
+        md.contains("| plain | 150 |") && md.contains("| roll0.5 | 150 |"),
+        "{}",
+        md
+    );
+    assert!(
+        md.contains("Bearing capacity") && md.contains("B = 0.3 m"),
+        "{}",
+        md
+    );
+    let csv = std::fs::read_to_string(out.join("triaxial.csv")).unwrap();
+    assert!(csv.starts_with("variant,step,eps_a"));
+    assert_eq!(
+        csv.lines().filter(|l| l.starts_with("roll0.5,")).count() + 1,
+        std::fs::read_to_string(gold.join("roll0.5.curve.csv"))
+            .unwrap()
+            .lines()
+            .count()
+    );
+
+    let o = compat()
+        .args([
+            "calibrate",
+            "--triaxial",
+            "--quick",
+            "--variants",
+            "sand",
+            "--out",
+        ])
+        .arg(out.join("bad"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout).to_string() + &String::from_utf8_lossy(&o.stderr);
+    assert!(
+        text.contains("unknown variant 'sand'") && text.contains("clump3"),
+        "{}",
+        text
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

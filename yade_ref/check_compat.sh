@@ -58,5 +58,12 @@ if "$COMPAT" run "$HERE/calibration/tensile.py" "out=\"$TMP/calib/tensile.csv\""
     cmp -s "$ROOT/golden/calibration/$f" "$TMP/calib/$f" && echo "OK       calibration $f" || { echo "DIFFERS  calibration $f"; bad=1; }
   done
 else echo "FAILED   calibration/tensile.py under compat run"; tail -n 15 "$TMP/calib.log"; bad=1; fi
+# the periodic triaxial element test (PeriTriaxController, rolling resistance, clumps), quick version
+mkdir -p "$TMP/triax"; n=$((n + 6))
+if "$COMPAT" run "$HERE/calibration/triaxial.py" -- --quick --variant plain,roll0.5,clump3 --out "$TMP/triax" >"$TMP/triax.log" 2>&1; then
+  for f in {plain,roll0.5,clump3}.{curve.csv,summary.json}; do
+    cmp -s "$ROOT/golden/calibration/triaxial_quick/$f" "$TMP/triax/$f" && echo "OK       calibration triaxial_quick/$f" || { echo "DIFFERS  calibration triaxial_quick/$f"; bad=1; }
+  done
+else echo "FAILED   calibration/triaxial.py --quick under compat run"; tail -n 15 "$TMP/triax.log"; bad=1; fi
 if [[ $bad -ne 0 ]]; then echo "check_compat: FAILED ($n golden files)"; exit 1; fi
 echo "check_compat: all $n golden files reproduced by compat run"

@@ -870,6 +870,9 @@ impl Sim {
         if self.scene.track_energy {
             m.insert("plastDissip".into(), self.scene.energy.plast_dissip);
             m.insert("elastPotential".into(), self.scene.energy.elast_potential);
+            if let Some(w) = self.scene.energy.vel_grad_work {
+                m.insert("velGradWork".into(), w);
+            }
         }
         m
     }
@@ -1058,24 +1061,91 @@ impl Sim {
     // ---- periodic cell ----
     /// Set the cell (rows of hSize) or None for an aperiodic scene.
     #[pyo3(signature = (hsize=None))]
+    /// `O.cell.hSize = h` (`Cell::setHSize`: trsf and velGrad kept, cached values refreshed), a new
+    /// cell for a scene that was not periodic, or no cell (`None`).
     fn set_cell(&mut self, hsize: Option<[[f64; 3]; 3]>) -> PyResult<()> {
-        self.scene.cell = match hsize {
-            None => None,
-            Some(h) => Some(
-                ryade::cell::Cell::new(ryade::math::Mat3::from_fn(|i, j| h[i][j])).map_err(err)?,
-            ),
+        let Some(h) = hsize else {
+            self.scene.cell = None;
+            return Ok(());
         };
+        let h = ryade::math::Mat3::from_fn(|i, j| h[i][j]);
+        match self.scene.cell.as_mut() {
+            Some(c) => {
+                c.hsize = h;
+                c.integrate_and_update(0.0).map_err(err)?;
+            }
+            None => self.scene.cell = Some(ryade::cell::Cell::new(h).map_err(err)?),
+        }
+        Ok(())
+    }
+    /// A matrix of the cell by YADE's attribute name: trsf, velGrad, nextVelGrad, prevVelGrad.
+    fn cell_matrix(&self, name: &str) -> PyResult<[[f64; 3]; 3]> {
+        let c = self
+            .scene
+            .cell
+            .as_ref()
+            .ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
+        let m = match name {
+            "trsf" => c.trsf,
+            "velGrad" => c.vel_grad,
+            "nextVelGrad" => c.next_vel_grad,
+            "prevVelGrad" => c.prev_vel_grad,
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "Cell has no matrix '{}' in ryade",
+                    name
+                )))
+            }
+        };
+        Ok(rows3(&m))
+    }
+    /// Assign a cell matrix as YADE does: `velGrad` goes to nextVelGrad (NewtonIntegrator applies it
+    /// after the interaction loop, `Cell::setVelGrad`), `nextVelGrad` directly, `trsf` with postLoad.
+    fn set_cell_matrix(&mut self, name: &str, m: [[f64; 3]; 3]) -> PyResult<()> {
+        let c = self
+            .scene
+            .cell
+            .as_mut()
+            .ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
+        let m = ryade::math::Mat3::from_fn(|i, j| m[i][j]);
+        match name {
+            "velGrad" => {
+                c.next_vel_grad = m;
+                c.vel_grad_changed = true;
+            }
+            "nextVelGrad" => c.next_vel_grad = m,
+            "trsf" => {
+                c.trsf = m;
+                c.integrate_and_update(0.0).map_err(err)?;
+            }
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "Cell.{} cannot be assigned in ryade",
+                    name
+                )))
+            }
+        }
+        Ok(())
+    }
+    /// `Cell.velGradChanged`.
+    fn cell_vel_grad_changed(&self) -> Option<bool> {
+        self.scene.cell.as_ref().map(|c| c.vel_grad_changed)
+    }
+    /// `Cell.homoDeform` (read / write).
+    fn cell_homo_deform(&self) -> Option<i32> {
+        self.scene.cell.as_ref().map(|c| c.homo_deform)
+    }
+    fn set_cell_homo_deform(&mut self, h: i32) -> PyResult<()> {
+        let c = self
+            .scene
+            .cell
+            .as_mut()
+            .ok_or_else(|| PyRuntimeError::new_err("the scene is not periodic"))?;
+        c.homo_deform = h;
         Ok(())
     }
     fn get_cell(&self) -> Option<[[f64; 3]; 3]> {
-        self.scene.cell.as_ref().map(|c| {
-            let h = c.hsize;
-            [
-                [h[(0, 0)], h[(0, 1)], h[(0, 2)]],
-                [h[(1, 0)], h[(1, 1)], h[(1, 2)]],
-                [h[(2, 0)], h[(2, 1)], h[(2, 2)]],
-            ]
-        })
+        self.scene.cell.as_ref().map(|c| rows3(&c.hsize))
     }
     fn cell_size(&self) -> Option<V3> {
         self.scene.cell.as_ref().map(|c| v3(&c.size()))
@@ -1239,6 +1309,10 @@ impl Sim {
             },
             // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
             Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
+            Engine::PeriTriax(p) => peri_triax_set(p, key, &v).map_err(|e| match e {
+                None => unsupported("PeriTriaxController"),
+                Some(e) => PyValueError::new_err(e),
+            })?,
             Engine::Collider(c) => match key {
                 "verletDist" => c.p.verlet_dist = num()?,
                 "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
@@ -1271,6 +1345,12 @@ impl Sim {
             (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
             (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
             (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
+            (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
+                PyKeyError::new_err(format!(
+                    "PeriTriaxController has no readable attribute '{}' in ryade",
+                    k
+                ))
+            })?,
             (Engine::ServoPid(s), k) => match k {
                 "ids" => serde_json::json!(s.ids),
                 "axis" => v3json(&s.axis),
@@ -1341,8 +1421,9 @@ impl Sim {
     }
 
     // ---- stepping ----
-    /// Run the current step until the next live Python engine, whose id is returned; None when the
-    /// step is complete (iter and time then advanced).
+    /// Run the current step until the next live Python engine, whose id is returned (with the
+    /// `DONE_HOOK` bit set: the engine slot of a PeriTriaxController whose doneHook Python must run
+    /// now); None when the step is complete (iter and time then advanced).
     fn advance(&mut self) -> PyResult<Option<u32>> {
         let mut k = match self.cursor {
             Some(k) => k,
@@ -1360,6 +1441,11 @@ impl Sim {
                 if let Err(e) = self.scene.run_engine(k) {
                     self.cursor = None;
                     return Err(err(e));
+                }
+                if let Some(slot) = self.scene.done_hook_pending.take() {
+                    // a PeriTriaxController's doneHook: Python runs it before the next engine
+                    self.cursor = Some(k + 1);
+                    return Ok(Some(ryade::scene::DONE_HOOK | slot as u32));
                 }
             }
             k += 1;
@@ -1771,6 +1857,12 @@ impl Sim {
     fn kinetic_energy(&self) -> f64 {
         ryade::utils::kinetic_energy(&self.scene)
     }
+    /// `utils.getStress(volume=0)` (Shop::getStress), rows of the 3x3 tensor.
+    #[pyo3(signature = (volume=0.0))]
+    fn get_stress(&self, volume: f64) -> PyResult<[[f64; 3]; 3]> {
+        let m = ryade::peri_triax::get_stress(&self.scene, volume).map_err(err)?;
+        Ok(rows3(&m))
+    }
     fn aabb_extrema(&self) -> Option<(V3, V3)> {
         ryade::utils::aabb_extrema(&self.scene).map(|(a, b)| (v3(&a), v3(&b)))
     }
@@ -1898,4 +1990,108 @@ fn _ryade(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 fn v3json(v: &ryade::math::Vec3) -> Value {
     serde_json::json!([v[0], v[1], v[2]])
+}
+
+/// NaN as JSON null (YADE's unset `mass` and `currUnbalanced`).
+fn num_json(x: f64) -> Value {
+    if x.is_nan() {
+        Value::Null
+    } else {
+        serde_json::json!(x)
+    }
+}
+
+/// Read a PeriTriaxController attribute (JSON), None for an unknown name.
+fn peri_triax_get(p: &ryade::peri_triax::PeriTriax, k: &str) -> Option<Value> {
+    let m = &p.stress_tensor;
+    Some(match k {
+        "dynCell" => serde_json::json!(p.dyn_cell),
+        "goal" => v3json(&p.goal),
+        "stressMask" => serde_json::json!(p.stress_mask),
+        "maxStrainRate" => v3json(&p.max_strain_rate),
+        "maxUnbalanced" => serde_json::json!(p.max_unbalanced),
+        "absStressTol" => serde_json::json!(p.abs_stress_tol),
+        "relStressTol" => serde_json::json!(p.rel_stress_tol),
+        "growDamping" => serde_json::json!(p.grow_damping),
+        "globUpdate" => serde_json::json!(p.glob_update),
+        "doneHook" => serde_json::json!(p.done_hook),
+        "maxBodySpan" => v3json(&p.max_body_span),
+        "stressTensor" => serde_json::json!(rows3(m)),
+        "stress" => v3json(&p.stress),
+        "strain" => v3json(&p.strain),
+        "strainRate" => v3json(&p.strain_rate),
+        "stiff" => v3json(&p.stiff),
+        "currUnbalanced" => num_json(p.curr_unbalanced),
+        "prevGrow" => v3json(&p.prev_grow),
+        "mass" => num_json(p.mass),
+        "externalWork" => serde_json::json!(p.external_work),
+        _ => return None,
+    })
+}
+
+/// Set a PeriTriaxController attribute from JSON (null = NaN). Err(None): unknown attribute.
+fn peri_triax_set(
+    p: &mut ryade::peri_triax::PeriTriax,
+    k: &str,
+    v: &Value,
+) -> Result<(), Option<String>> {
+    let num = || -> Result<f64, Option<String>> {
+        if v.is_null() {
+            return Ok(f64::NAN);
+        }
+        v.as_f64()
+            .ok_or_else(|| Some(format!("PeriTriaxController.{} must be a number", k)))
+    };
+    let v3 = || -> Result<Vec3, Option<String>> {
+        let a: V3 = serde_json::from_value(v.clone())
+            .map_err(|_| Some(format!("PeriTriaxController.{} must be 3 numbers", k)))?;
+        Ok(vec(a))
+    };
+    match k {
+        "dynCell" => {
+            p.dyn_cell = v
+                .as_bool()
+                .ok_or_else(|| Some("PeriTriaxController.dynCell must be a bool".to_string()))?
+        }
+        "goal" => p.goal = v3()?,
+        "stressMask" => p.stress_mask = num()? as i32,
+        "maxStrainRate" => p.max_strain_rate = v3()?,
+        "maxUnbalanced" => p.max_unbalanced = num()?,
+        "absStressTol" => p.abs_stress_tol = num()?,
+        "relStressTol" => p.rel_stress_tol = num()?,
+        "growDamping" => p.grow_damping = num()?,
+        "globUpdate" => p.glob_update = num()? as i32,
+        "doneHook" => {
+            p.done_hook = v
+                .as_str()
+                .ok_or_else(|| Some("PeriTriaxController.doneHook must be a string".to_string()))?
+                .to_string()
+        }
+        "maxBodySpan" => p.max_body_span = v3()?,
+        "stressTensor" => {
+            let r: [[f64; 3]; 3] = serde_json::from_value(v.clone()).map_err(|_| {
+                Some("PeriTriaxController.stressTensor must be a 3x3 matrix".to_string())
+            })?;
+            p.stress_tensor = ryade::math::Mat3::from_fn(|i, j| r[i][j]);
+        }
+        "stress" => p.stress = v3()?,
+        "strain" => p.strain = v3()?,
+        "strainRate" => p.strain_rate = v3()?,
+        "stiff" => p.stiff = v3()?,
+        "currUnbalanced" => p.curr_unbalanced = num()?,
+        "prevGrow" => p.prev_grow = v3()?,
+        "mass" => p.mass = num()?,
+        "externalWork" => p.external_work = num()?,
+        _ => return Err(None),
+    }
+    Ok(())
+}
+
+/// A 3x3 matrix as its rows (what Python's Matrix3 is built from).
+fn rows3(m: &ryade::math::Mat3) -> [[f64; 3]; 3] {
+    [
+        [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+        [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+        [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
+    ]
 }

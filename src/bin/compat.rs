@@ -152,15 +152,29 @@ enum Cmd {
     /// Fit the geogrid rib stiffness multipliers (kn_scale; kr_scale = ktw_scale) to datasheet targets
     /// with the ASTM D6637 tensile and D7748 cantilever model tests (calibration/README.md).
     Calibrate {
-        /// Targets file (e.g. calibration/tx190l.toml; empty strings are missing values)
-        targets: PathBuf,
+        /// Targets file (e.g. calibration/tx190l.toml; empty strings are missing values); not with --triaxial
+        targets: Option<PathBuf>,
+        /// The aggregate's element test instead: periodic drained triaxial runs of
+        /// yade_ref/calibration/triaxial.py (friction and dilatancy angles, bearing capacity; default out
+        /// out/calibrate/triaxial)
+        #[arg(long)]
+        triaxial: bool,
+        /// With --triaxial: comma-separated variants (plain, roll0.25, roll0.5, roll1, clump2, clump3, clump4)
+        #[arg(long)]
+        variants: Option<String>,
+        /// With --triaxial: variants run at the same time
+        #[arg(short = 'j', long, default_value_t = 1)]
+        jobs: usize,
+        /// With --triaxial: a further argument for triaxial.py (repeatable, e.g. --arg=--n=2000)
+        #[arg(long = "arg", allow_hyphen_values = true)]
+        script_args: Vec<String>,
         /// Engine that runs the model tests: ryade (`compat run`) or yade (`yade -n -x`)
         #[arg(long, default_value = "ryade", value_parser = ["ryade", "yade"])]
         engine: String,
         /// Output folder (calibration.json, model outputs, plots; default out/calibrate/<targets name>)
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Step 2 stops after one cantilever evaluation (smoke test)
+        /// Step 2 stops after one cantilever evaluation (smoke test); --triaxial: the small fast version
         #[arg(long)]
         quick: bool,
         /// Starting k of step 2 (default: beam scaling from the 817.6 mm overhang at k = 1)
@@ -307,6 +321,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
         }
         Cmd::Calibrate {
             targets,
+            triaxial,
+            variants,
+            jobs,
+            script_args,
             engine,
             out,
             quick,
@@ -316,6 +334,26 @@ fn run(cli: Cli) -> Result<ExitCode> {
             scripts,
             no_plot,
         } => {
+            if triaxial {
+                let ok = ryade::calibrate::triaxial::run(&ryade::calibrate::triaxial::Options {
+                    engine: engine.parse()?,
+                    out: out.unwrap_or_else(|| PathBuf::from("out/calibrate/triaxial")),
+                    quick,
+                    variants,
+                    jobs,
+                    scripts,
+                    args: script_args,
+                    plot: !no_plot,
+                })?;
+                return Ok(if ok {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::from(1)
+                });
+            }
+            let targets = targets.ok_or_else(|| {
+                anyhow::anyhow!("compat calibrate needs a TARGETS file (or --triaxial)")
+            })?;
             let out = out.unwrap_or_else(|| {
                 let stem = targets
                     .file_stem()

@@ -7,7 +7,7 @@ use super::{sphere_sphere, GeomCtx, GeomExt, GridCoGridCo, Kin, Pair, Rot6D, ScG
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::interaction::{Interactions, IntrExt};
-use crate::math::{cross, dot, mat_vec_i, norm, norm2, Vec3};
+use crate::math::{cross, cxx_max, cxx_min, dot, mat_vec_i, norm, norm2, Vec3};
 use crate::shape::{GridConnection, Shape};
 
 /// Parameters of `Ig2_Sphere_Sphere_ScGeom6D` and `Ig2_GridNode_GridNode_GridNodeGeom6D` (the latter
@@ -461,24 +461,4 @@ pub fn gridco_gridco(
     );
     ext.get_or_insert_with(Default::default).geom = Some(GeomExt::GridCoGridCo(x));
     true
-}
-
-/// `std::min(a, b)`: `b < a ? b : a`.
-#[inline(always)]
-fn cxx_min(a: f64, b: f64) -> f64 {
-    if b < a {
-        b
-    } else {
-        a
-    }
-}
-
-/// `std::max(a, b)`: `a < b ? b : a`.
-#[inline(always)]
-fn cxx_max(a: f64, b: f64) -> f64 {
-    if a < b {
-        b
-    } else {
-        a
-    }
 }

@@ -8,10 +8,11 @@ use anyhow::{Context, Result};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// Distance in units in the last place between two doubles (0 when bit-identical; NaN vs number
-/// counts as u64::MAX).
+/// Distance in units in the last place between two doubles (0 when bit-identical or both NaN; NaN
+/// vs number counts as u64::MAX).
 pub fn ulp_distance(a: f64, b: f64) -> u64 {
-    if a.to_bits() == b.to_bits() {
+    // NaN == NaN: the golden text ('nan') keeps neither the sign nor the payload of a NaN
+    if a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()) {
         return 0;
     }
     if a.is_nan() || b.is_nan() {
@@ -86,8 +87,21 @@ pub fn golden_path6d(scene_json: &Path) -> PathBuf {
     ))
 }
 
+/// The per-step digest file of a digest scene (FORMAT.md, "Digest scenes"), if the scene has one.
+pub fn golden_digest_path(scene_json: &Path) -> PathBuf {
+    let s = scene_json.to_string_lossy();
+    PathBuf::from(format!(
+        "{}.digest.csv.gz",
+        s.trim_end_matches(".scene.json")
+    ))
+}
+
 /// Compare a ryade run of `sf` with the golden records next to `scene_json`.
 pub fn diff_scene(sf: SceneFile, scene_json: &Path) -> Result<DiffReport> {
+    let dp = golden_digest_path(scene_json);
+    if dp.exists() {
+        return diff_digest_scene(sf, scene_json, &dp);
+    }
     let (bp, ip) = golden_paths(scene_json);
     let bodies = golden::read_bodies(&bp)?;
     let intrs = golden::read_intrs(&ip)?;
@@ -115,35 +129,13 @@ pub fn diff_against_6d(
     intrs: &[golden::IntrRow],
     intrs6d: Option<&[golden::Intr6dRow]>,
 ) -> DiffReport {
-    let SceneFile {
-        mut scene,
-        steps,
-        name,
-    } = sf;
-    let mut rep = DiffReport {
-        scene: name,
-        steps,
-        ..Default::default()
-    };
-    let mut by_step_b: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
-    for r in bodies {
-        by_step_b.entry(r.step).or_default().push(r);
-    }
-    let mut by_step_i: HashMap<u64, Vec<&golden::IntrRow>> = HashMap::new();
-    for r in intrs {
-        by_step_i.entry(r.step).or_default().push(r);
-    }
-    let mut by_step_6: HashMap<u64, Vec<&golden::Intr6dRow>> = HashMap::new();
-    for r in intrs6d.unwrap_or(&[]) {
-        by_step_6.entry(r.step).or_default().push(r);
-    }
+    let (mut scene, steps, mut rep) = start(sf);
+    let by_step_b = by_step(bodies, |r| r.step);
+    let by_step_i = by_step(intrs, |r| r.step);
+    let by_step_6 = by_step(intrs6d.unwrap_or(&[]), |r| r.step);
     for step in 0..=steps {
-        if step > 0 {
-            if let Err(e) = scene.step() {
-                rep.error = Some(e.to_string());
-                rep.mismatches += 1;
-                break;
-            }
+        if !advance(&mut scene, step, &mut rep) {
+            break;
         }
         compare_step(
             &scene,
@@ -157,6 +149,120 @@ pub fn diff_against_6d(
         }
     }
     rep
+}
+
+/// The scene to run, its step count and an empty report named after it.
+fn start(sf: SceneFile) -> (Scene, u64, DiffReport) {
+    let SceneFile { scene, steps, name } = sf;
+    let rep = DiffReport {
+        scene: name,
+        steps,
+        ..Default::default()
+    };
+    (scene, steps, rep)
+}
+
+/// Run step `step` of the scene (nothing for step 0, the state before the first step); a failed step is
+/// a mismatch and the report's error. Returns whether the comparison goes on.
+fn advance(scene: &mut Scene, step: u64, rep: &mut DiffReport) -> bool {
+    if step > 0 {
+        if let Err(e) = scene.step() {
+            rep.error = Some(e.to_string());
+            rep.mismatches += 1;
+            return false;
+        }
+    }
+    true
+}
+
+/// Golden rows grouped by step.
+fn by_step<T>(rows: &[T], step: impl Fn(&T) -> u64) -> HashMap<u64, Vec<&T>> {
+    let mut m: HashMap<u64, Vec<&T>> = HashMap::new();
+    for r in rows {
+        m.entry(step(r)).or_default().push(r);
+    }
+    m
+}
+
+/// A digest scene: every step's three digests (bodies, interactions, cell and controllers), the full
+/// body and interaction rows at the steps the bodies file keeps, and the `peri` rows (cell diagonal
+/// and controller) where the scene has them. Values behind a matching digest count as compared; a
+/// differing digest counts one mismatch per group and step.
+pub fn diff_digest_scene(sf: SceneFile, scene_json: &Path, digest: &Path) -> Result<DiffReport> {
+    let digests = golden::read_step_digests(digest)?;
+    let (bp, ip) = golden_paths(scene_json);
+    let bodies = golden::read_bodies(&bp)?;
+    let intrs = golden::read_intrs(&ip)?;
+    let s = scene_json.to_string_lossy();
+    let pp = PathBuf::from(format!("{}.peri.csv.gz", s.trim_end_matches(".scene.json")));
+    let peri: HashMap<u64, [f64; 17]> = if pp.exists() {
+        golden::read_peri(&pp)?.into_iter().collect()
+    } else {
+        HashMap::new()
+    };
+    let (mut scene, steps, mut rep) = start(sf);
+    let by_step_b = by_step(&bodies, |r| r.step);
+    let by_step_i = by_step(&intrs, |r| r.step);
+    const GROUPS: [&str; 3] = ["bodies", "interactions", "cell and controller"];
+    for step in 0..=steps {
+        if !advance(&mut scene, step, &mut rep) {
+            break;
+        }
+        match digests.get(&step) {
+            None => {
+                rep.mismatches += 1;
+                rep.error
+                    .get_or_insert(format!("no digest for step {}", step));
+            }
+            Some(theirs) => {
+                let (ours, n) = golden::step_digests(&scene);
+                rep.values += n;
+                for g in 0..3 {
+                    if ours[g] != theirs[g] {
+                        rep.mismatches += 1;
+                        if rep.first.is_none() {
+                            rep.first = Some(FirstDiff {
+                                step,
+                                what: format!("digest of the {}", GROUPS[g]),
+                                ryade: f64::NAN,
+                                yade: f64::NAN,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        if by_step_b.contains_key(&step) {
+            compare_step(
+                &scene,
+                step,
+                by_step_b.get(&step),
+                by_step_i.get(&step),
+                &mut rep,
+            );
+        }
+        if let Some(row) = peri.get(&step) {
+            match golden::peri_values(&scene) {
+                None => {
+                    rep.mismatches += 1;
+                    rep.error.get_or_insert(
+                        "the golden has peri rows but ryade no PeriTriaxController".into(),
+                    );
+                }
+                Some(v) => {
+                    for (k, (o, t)) in v.iter().zip(row.iter()).enumerate() {
+                        rep.note(
+                            step,
+                            || format!("cell/controller {}", golden::PERI_COLS[k]),
+                            *o,
+                            *t,
+                        );
+                    }
+                }
+            }
+        }
+    }
+    Ok(rep)
 }
 
 /// The `intrs6d` rows of one step, matched by pair (the pair set itself is checked by
@@ -336,6 +442,9 @@ pub fn format_table(reps: &[DiffReport]) -> String {
     for r in reps {
         let first = match (&r.error, &r.first) {
             (Some(e), _) => format!("ERROR: {}", e),
+            (None, Some(f)) if f.ryade.is_nan() && f.yade.is_nan() => {
+                format!("step {}: {}", f.step, f.what)
+            }
             (None, Some(f)) => format!(
                 "step {}: {} (ryade {:e}, yade {:e})",
                 f.step, f.what, f.ryade, f.yade

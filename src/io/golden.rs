@@ -159,6 +159,150 @@ fn parse_rows<const N: usize>(
     Ok(out)
 }
 
+/// Columns of `<scene>.peri.csv.gz` (digest scenes with a PeriTriaxController, FORMAT.md).
+pub const PERI_COLS: [&str; 17] = [
+    "hSize_xx",
+    "hSize_yy",
+    "hSize_zz",
+    "velGrad_xx",
+    "velGrad_yy",
+    "velGrad_zz",
+    "stress_x",
+    "stress_y",
+    "stress_z",
+    "strain_x",
+    "strain_y",
+    "strain_z",
+    "stiff_x",
+    "stiff_y",
+    "stiff_z",
+    "currUnbalanced",
+    "externalWork",
+];
+
+/// `<scene>.peri.csv.gz`: (step, values in PERI_COLS order).
+pub fn read_peri(path: &Path) -> Result<Vec<(u64, [f64; 17])>> {
+    Ok(parse_rows(path, &["step"], &PERI_COLS)?
+        .into_iter()
+        .map(|(k, v)| (k[0], v))
+        .collect())
+}
+
+/// The PERI_COLS values of the scene (cell diagonal and its first PeriTriaxController), or None
+/// without a cell or controller.
+pub fn peri_values(scene: &Scene) -> Option<[f64; 17]> {
+    let c = scene.cell.as_ref()?;
+    let p = scene.engines.iter().find_map(|e| match e {
+        crate::scene::Engine::PeriTriax(p) => Some(p),
+        _ => None,
+    })?;
+    let mut v = Vec::with_capacity(17);
+    v.extend_from_slice(&[c.hsize[(0, 0)], c.hsize[(1, 1)], c.hsize[(2, 2)]]);
+    v.extend_from_slice(&[c.vel_grad[(0, 0)], c.vel_grad[(1, 1)], c.vel_grad[(2, 2)]]);
+    push3(&mut v, &p.stress);
+    push3(&mut v, &p.strain);
+    push3(&mut v, &p.stiff);
+    v.push(p.curr_unbalanced);
+    v.push(p.external_work);
+    v.try_into().ok()
+}
+
+/// `<scene>.digest.csv.gz` (digest scenes): step -> [bodies, intrs, cell] digests.
+pub fn read_step_digests(path: &Path) -> Result<std::collections::BTreeMap<u64, [String; 3]>> {
+    use std::io::Read;
+    let f = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(f)
+        .read_to_string(&mut text)
+        .with_context(|| format!("decompressing {}", path.display()))?;
+    let mut out = std::collections::BTreeMap::new();
+    for (i, line) in text.lines().enumerate() {
+        if i == 0 {
+            if line != "step,bodies,intrs,cell" {
+                bail!(
+                    "{}: expected header 'step,bodies,intrs,cell'",
+                    path.display()
+                );
+            }
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 4 {
+            bail!(
+                "{}: line {} has {} fields, expected 4",
+                path.display(),
+                i + 1,
+                f.len()
+            );
+        }
+        let step = f[0]
+            .parse::<u64>()
+            .map_err(|_| anyhow!("{}: line {}: bad step '{}'", path.display(), i + 1, f[0]))?;
+        out.insert(step, [f[1].to_string(), f[2].to_string(), f[3].to_string()]);
+    }
+    Ok(out)
+}
+
+/// Little-endian bytes of doubles with every NaN written as the quiet NaN 0x7ff8000000000000 (the
+/// sign and payload of a NaN depend on how it was made; the recorder does the same).
+fn put_doubles(out: &mut Vec<u8>, vals: &[f64]) {
+    for &x in vals {
+        let x = if x.is_nan() {
+            f64::from_bits(0x7ff8_0000_0000_0000)
+        } else {
+            x
+        };
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+}
+
+/// First 16 hex digits of the SHA-256 of `data`.
+fn digest16(data: &[u8]) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(data)
+        .iter()
+        .take(8)
+        .map(|b| format!("{:02x}", b))
+        .collect()
+}
+
+/// The three step digests of a digest scene (FORMAT.md): bodies (19 doubles each, id order), real
+/// interactions (id1, id2 as int64 and the 18 INTR_COLS doubles, container order), cell (hSize,
+/// trsf, velGrad, prevVelGrad row by row, then each PeriTriaxController's state in engine order).
+/// Also returns how many doubles went into them.
+pub fn step_digests(scene: &Scene) -> ([String; 3], u64) {
+    let mut n = 0u64;
+    let mut b = Vec::new();
+    for id in 0..scene.bodies.len() {
+        put_doubles(&mut b, &body_values(scene, id));
+        n += 19;
+    }
+    let mut i = Vec::new();
+    for (a, c, v) in intr_values(scene) {
+        i.extend_from_slice(&(a as i64).to_le_bytes());
+        i.extend_from_slice(&(c as i64).to_le_bytes());
+        put_doubles(&mut i, &v);
+        n += 20;
+    }
+    let mut c = Vec::new();
+    if let Some(cell) = &scene.cell {
+        for m in [&cell.hsize, &cell.trsf, &cell.vel_grad, &cell.prev_vel_grad] {
+            for r in 0..3 {
+                put_doubles(&mut c, &[m[(r, 0)], m[(r, 1)], m[(r, 2)]]);
+            }
+        }
+        n += 36;
+        for e in &scene.engines {
+            if let crate::scene::Engine::PeriTriax(p) = e {
+                let v = p.digest_values();
+                n += v.len() as u64;
+                put_doubles(&mut c, &v);
+            }
+        }
+    }
+    ([digest16(&b), digest16(&i), digest16(&c)], n)
+}
+
 pub fn read_bodies(path: &Path) -> Result<Vec<BodyRow>> {
     Ok(parse_rows(path, &["step", "id"], &BODY_COLS)?
         .into_iter()

@@ -843,8 +843,185 @@ pub fn engine(e: &Value) -> Result<Engine> {
         "RyadePistonController" => Engine::Piston(Box::new(
             crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController; ryade's own: RyadePistonController)", other),
+        "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
     })
+}
+
+/// A number that may be NaN, written as `null` (JSON has no NaN); missing: `default`.
+fn f_nan(v: &Value, key: &str, default: f64) -> Result<f64> {
+    match v.get(key) {
+        None => Ok(default),
+        Some(Value::Null) => Ok(f64::NAN),
+        Some(x) => x
+            .as_f64()
+            .ok_or_else(|| anyhow!("'{}' is neither a number nor null in {}", key, short(v))),
+    }
+}
+
+/// NaN as `null`, any other double as a number.
+fn nan_json(x: f64) -> Value {
+    if x.is_nan() {
+        Value::Null
+    } else {
+        serde_json::json!(x)
+    }
+}
+
+/// A 3x3 matrix as three rows (FORMAT.md), or `default` when absent.
+fn mat3_or(v: &Value, key: &str, default: Mat3) -> Result<Mat3> {
+    let Some(rows) = v.get(key) else {
+        return Ok(default);
+    };
+    let rows = rows
+        .as_array()
+        .filter(|r| r.len() == 3)
+        .ok_or_else(|| anyhow!("'{}' must be 3 rows in {}", key, short(v)))?;
+    let r: Vec<Vec3> = rows.iter().map(vec3_of).collect::<Result<_>>()?;
+    Ok(Mat3::from_rows(&[
+        r[0].transpose(),
+        r[1].transpose(),
+        r[2].transpose(),
+    ]))
+}
+
+/// `{"class": "PeriTriaxController", ...}` (FORMAT.md): YADE's attributes with their 2023.02a
+/// defaults, and the recorded doneHook firings (`doneHookEvents`) when the file carries them.
+fn peri_triax(e: &Value) -> Result<crate::peri_triax::PeriTriax> {
+    use crate::peri_triax::{HookEvent, HookSet, PeriTriax};
+    let d = PeriTriax::default();
+    let s = |key: &str| -> Result<String> {
+        match e.get(key) {
+            None => Ok(String::new()),
+            Some(x) => x
+                .as_str()
+                .map(str::to_string)
+                .ok_or_else(|| anyhow!("'{}' must be a string", key)),
+        }
+    };
+    let mut p = PeriTriax {
+        dyn_cell: bo(e, "dynCell", d.dyn_cell)?,
+        goal: vec3_or(e, "goal", d.goal)?,
+        stress_mask: int(e, "stressMask", d.stress_mask as i64)? as i32,
+        max_strain_rate: vec3_or(e, "maxStrainRate", d.max_strain_rate)?,
+        max_unbalanced: fo(e, "maxUnbalanced", d.max_unbalanced)?,
+        abs_stress_tol: fo(e, "absStressTol", d.abs_stress_tol)?,
+        rel_stress_tol: fo(e, "relStressTol", d.rel_stress_tol)?,
+        grow_damping: fo(e, "growDamping", d.grow_damping)?,
+        glob_update: int(e, "globUpdate", d.glob_update as i64)? as i32,
+        done_hook: s("doneHook")?,
+        max_body_span: vec3_or(e, "maxBodySpan", d.max_body_span)?,
+        stress_tensor: mat3_or(e, "stressTensor", d.stress_tensor)?,
+        stress: vec3_or(e, "stress", d.stress)?,
+        strain: vec3_or(e, "strain", d.strain)?,
+        strain_rate: vec3_or(e, "strainRate", d.strain_rate)?,
+        stiff: vec3_or(e, "stiff", d.stiff)?,
+        curr_unbalanced: f_nan(e, "currUnbalanced", d.curr_unbalanced)?,
+        prev_grow: vec3_or(e, "prevGrow", d.prev_grow)?,
+        mass: f_nan(e, "mass", d.mass)?,
+        external_work: fo(e, "externalWork", d.external_work)?,
+        ..d
+    };
+    if let Some(evs) = e.get("doneHookEvents") {
+        let evs = evs
+            .as_array()
+            .ok_or_else(|| anyhow!("'doneHookEvents' must be an array"))?;
+        p.replay_hooks = true;
+        for ev in evs {
+            let set = ev
+                .get("set")
+                .and_then(Value::as_object)
+                .ok_or_else(|| anyhow!("doneHook event without 'set' object: {}", short(ev)))?;
+            let mut sets = Vec::new();
+            for (k, x) in set {
+                let num = || {
+                    x.as_f64()
+                        .ok_or_else(|| anyhow!("doneHook event: '{}' is not a number", k))
+                };
+                let v3 = || vec3_of(x);
+                sets.push(match k.as_str() {
+                    "goal" => HookSet::Goal(v3()?),
+                    "stressMask" => HookSet::StressMask(num()? as i32),
+                    "maxStrainRate" => HookSet::MaxStrainRate(v3()?),
+                    "maxUnbalanced" => HookSet::MaxUnbalanced(num()?),
+                    "absStressTol" => HookSet::AbsStressTol(num()?),
+                    "relStressTol" => HookSet::RelStressTol(num()?),
+                    "growDamping" => HookSet::GrowDamping(num()?),
+                    "globUpdate" => HookSet::GlobUpdate(num()? as i32),
+                    "doneHook" => HookSet::DoneHook(
+                        x.as_str()
+                            .ok_or_else(|| anyhow!("doneHook event: 'doneHook' is not a string"))?
+                            .to_string(),
+                    ),
+                    "dynCell" => HookSet::DynCell(
+                        x.as_bool()
+                            .ok_or_else(|| anyhow!("doneHook event: 'dynCell' is not a boolean"))?,
+                    ),
+                    "mass" => HookSet::Mass(if x.is_null() { f64::NAN } else { num()? }),
+                    "dead" => HookSet::Dead(
+                        x.as_bool()
+                            .ok_or_else(|| anyhow!("doneHook event: 'dead' is not a boolean"))?,
+                    ),
+                    other => bail!("doneHook event sets '{}', which ryade cannot replay", other),
+                });
+            }
+            p.hook_events.push_back(HookEvent {
+                iter: int(ev, "iter", -1)?,
+                hook: ev
+                    .get("hook")
+                    .and_then(Value::as_str)
+                    .ok_or_else(|| anyhow!("doneHook event without 'hook' string"))?
+                    .to_string(),
+                set: sets,
+            });
+        }
+    }
+    Ok(p)
+}
+
+/// The scene-file object of a PeriTriaxController (NaN as null; remaining recorded firings kept).
+fn peri_triax_value(p: &crate::peri_triax::PeriTriax) -> Value {
+    use crate::peri_triax::HookSet;
+    use serde_json::json;
+    let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
+    let m = &p.stress_tensor;
+    let mut out = json!({"class": "PeriTriaxController", "dynCell": p.dyn_cell, "goal": v3(&p.goal),
+        "stressMask": p.stress_mask, "maxStrainRate": v3(&p.max_strain_rate), "maxUnbalanced": p.max_unbalanced,
+        "absStressTol": p.abs_stress_tol, "relStressTol": p.rel_stress_tol, "growDamping": p.grow_damping,
+        "globUpdate": p.glob_update, "doneHook": p.done_hook, "maxBodySpan": v3(&p.max_body_span),
+        "stressTensor": [[m[(0, 0)], m[(0, 1)], m[(0, 2)]], [m[(1, 0)], m[(1, 1)], m[(1, 2)]], [m[(2, 0)], m[(2, 1)], m[(2, 2)]]],
+        "stress": v3(&p.stress), "strain": v3(&p.strain), "strainRate": v3(&p.strain_rate), "stiff": v3(&p.stiff),
+        "currUnbalanced": nan_json(p.curr_unbalanced), "prevGrow": v3(&p.prev_grow), "mass": nan_json(p.mass),
+        "externalWork": p.external_work});
+    if p.replay_hooks {
+        let evs: Vec<Value> = p
+            .hook_events
+            .iter()
+            .map(|ev| {
+                let mut set = serde_json::Map::new();
+                for s in &ev.set {
+                    let (k, v) = match s {
+                        HookSet::Goal(v) => ("goal", v3(v)),
+                        HookSet::StressMask(m) => ("stressMask", json!(m)),
+                        HookSet::MaxStrainRate(v) => ("maxStrainRate", v3(v)),
+                        HookSet::MaxUnbalanced(x) => ("maxUnbalanced", json!(x)),
+                        HookSet::AbsStressTol(x) => ("absStressTol", json!(x)),
+                        HookSet::RelStressTol(x) => ("relStressTol", json!(x)),
+                        HookSet::GrowDamping(x) => ("growDamping", json!(x)),
+                        HookSet::GlobUpdate(n) => ("globUpdate", json!(n)),
+                        HookSet::DoneHook(h) => ("doneHook", json!(h)),
+                        HookSet::DynCell(b) => ("dynCell", json!(b)),
+                        HookSet::Mass(m) => ("mass", nan_json(*m)),
+                        HookSet::Dead(b) => ("dead", json!(b)),
+                    };
+                    set.insert(k.to_string(), v);
+                }
+                json!({"iter": ev.iter, "hook": ev.hook, "set": set})
+            })
+            .collect();
+        out["doneHookEvents"] = Value::Array(evs);
+    }
+    out
 }
 
 /// Export a scene in the same format (17 significant digits are kept by serde_json's shortest
@@ -1015,6 +1192,7 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
                 "iterPrevStart": p.iter_prev_start}),
             Engine::Piston(p) => p.to_json(),
+            Engine::PeriTriax(p) => peri_triax_value(p),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner
             Engine::External(id) => json!({"class": "External", "id": id}),
         })

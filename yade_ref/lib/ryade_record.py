@@ -305,7 +305,51 @@ def _engine(e, grid=False):
                 'curVel': float(e.curVel), 'errorCur': float(e.errorCur), 'errorPrev': float(e.errorPrev),
                 'maxVelocity': float(e.maxVelocity), 'iterPeriod': int(e.iterPeriod),
                 'iterPrevStart': int(e.iterPrevStart)}
+    if c == 'PeriTriaxController':
+        return _peri_triax_dict(e)
     raise UnsupportedScene('engine class %s is not supported by golden/FORMAT.md' % c)
+
+
+# PeriTriaxController attributes a doneHook may set (replayed by ryade in this order of names); any other
+# change a hook makes is refused (_run_hook)
+PERI_SETTABLE = ('goal', 'stressMask', 'maxStrainRate', 'maxUnbalanced', 'absStressTol', 'relStressTol',
+                 'growDamping', 'globUpdate', 'doneHook', 'dynCell', 'mass', 'dead')
+PERI_STATE = ('maxBodySpan', 'stressTensor', 'stress', 'strain', 'strainRate', 'stiff', 'currUnbalanced',
+              'prevGrow', 'externalWork')
+
+
+def _num_or_null(x):
+    x = float(x)
+    return None if x != x else x
+
+
+def _m3(m):
+    return [[float(m[i][j]) for j in range(3)] for i in range(3)]
+
+
+def _peri_value(k, v):
+    if k in ('goal', 'maxStrainRate', 'maxBodySpan', 'stress', 'strain', 'strainRate', 'stiff', 'prevGrow'):
+        return _v3(v)
+    if k == 'stressTensor':
+        return _m3(v)
+    if k in ('stressMask', 'globUpdate'):
+        return int(v)
+    if k in ('dynCell', 'dead'):
+        return bool(v)
+    if k == 'doneHook':
+        return str(v)
+    return _num_or_null(v)
+
+
+def _peri_triax_dict(e):
+    d = {'class': 'PeriTriaxController'}
+    for k in PERI_SETTABLE + PERI_STATE:
+        if k == 'dead':
+            continue
+        d[k] = _peri_value(k, getattr(e, k))
+    # the hook as the script set it (the recorder wraps it while recording, see _wrap_hooks)
+    d['doneHook'] = _HOOK_ORIG.get(id(e), d['doneHook'])
+    return d
 
 
 def _geom_dict(g):
@@ -384,6 +428,10 @@ def scene_dict(steps, script=None, grid=False):
         c = O.cell
         _require(_is_zero_m3(c.velGrad) and _is_zero_m3(c.nextVelGrad) and _is_zero_m3(c.prevVelGrad),
                  'periodic cell with velGrad != 0 is not supported')
+        t = c.trsf
+        _require(all(t[i][j] == (1 if i == j else 0) for i in range(3) for j in range(3)),
+                 'periodic cell with trsf != identity is not supported')
+        _require(c.homoDeform == 2, 'Cell.homoDeform != 2 is not supported')
         h = c.hSize
         d['cell_hsize'] = [[float(h[i][j]) for j in range(3)] for i in range(3)]
     bodies = [_body(b, grid) for b in O.bodies]
@@ -573,13 +621,151 @@ def _write_intrs6d(out, step, intrs):
         out.write(','.join(f) + '\n')
 
 
+# ----------------------------------------------------------------------------------------
+# PeriTriaxController doneHooks (FORMAT.md, "doneHookEvents")
+
+_HOOK_ORIG = {}     # id(engine) -> the hook string the script set
+_HOOK_EVENTS = {}   # id(engine) -> [event, ...]
+
+
+def _peri_engines():
+    return [e for e in O.engines if _cls(e) == 'PeriTriaxController']
+
+
+def _wrap_hook(e):
+    """Replace the engine's doneHook by a call to _run_hook, which runs the original string and records
+    what it changed."""
+    h = e.doneHook
+    if h:
+        _HOOK_ORIG[id(e)] = h
+        e.doneHook = 'import ryade_record; ryade_record._run_hook(%d)' % id(e)
+    else:
+        _HOOK_ORIG.pop(id(e), None)
+
+
+def _wrap_hooks():
+    for e in _peri_engines():
+        _HOOK_EVENTS.setdefault(id(e), [])
+        _wrap_hook(e)
+
+
+def _unwrap_hooks():
+    for e in _peri_engines():
+        if id(e) in _HOOK_ORIG:
+            e.doneHook = _HOOK_ORIG.pop(id(e))
+
+
+def _world_snapshot():
+    """What a doneHook must not change for ryade to replay it: bodies, time step, cell, engine list."""
+    h = hashlib.sha256()
+    pack = struct.Struct('<19d').pack
+    for b in O.bodies:
+        h.update(pack(*_body_values(b, O.forces)))
+        h.update(str(b.state.blockedDOFs).encode())
+    c = O.cell
+    cell = (tuple(tuple(c.hSize[i]) for i in range(3)), tuple(tuple(c.velGrad[i]) for i in range(3)),
+            tuple(tuple(c.nextVelGrad[i]) for i in range(3))) if O.periodic else None
+    return (h.hexdigest(), float(O.dt), cell, tuple((_cls(e), bool(e.dead)) for e in O.engines),
+            O.interactions.countReal())
+
+
+def _run_hook(key):
+    """Run the original doneHook of the engine whose id() is ``key`` in __main__ (as YADE's pyRunString
+    does) and record the controller attributes it changed."""
+    import __main__
+    e = [x for x in _peri_engines() if id(x) == key][0]
+    orig = _HOOK_ORIG[key]
+    e.doneHook = orig  # the hook sees its own string, as in a plain run
+    before = dict((k, _peri_value(k, getattr(e, k))) for k in PERI_SETTABLE + PERI_STATE)
+    world = _world_snapshot()
+    it = O.iter
+    exec(orig, __main__.__dict__)
+    after = dict((k, _peri_value(k, getattr(e, k))) for k in PERI_SETTABLE + PERI_STATE)
+    for k in PERI_STATE:
+        _require(after[k] == before[k], 'iteration %d: doneHook %r changed PeriTriaxController.%s, which ryade '
+                 'cannot replay' % (it, orig, k))
+    _require(_world_snapshot() == world, 'iteration %d: doneHook %r changed something besides the controller\'s '
+             'attributes %s (bodies, O.dt, the cell or the engines), which ryade cannot replay'
+             % (it, orig, ', '.join(PERI_SETTABLE)))
+    _HOOK_EVENTS[key].append({'iter': it, 'hook': orig,
+                              'set': dict((k, after[k]) for k in PERI_SETTABLE if after[k] != before[k])})
+    _wrap_hook(e)
+
+
+# ----------------------------------------------------------------------------------------
+# per-step digests of the micro extension (FORMAT.md, "Digest scenes")
+
+def _pack_doubles(vals):
+    out = []
+    for x in vals:
+        x = float(x)
+        out.append(b'\x00\x00\x00\x00\x00\x00\xf8\x7f' if x != x else struct.pack('<d', x))
+    return b''.join(out)
+
+
+def _digest16(data):
+    return hashlib.sha256(data).hexdigest()[:16]
+
+
+def _intrs_bytes(intrs):
+    out = []
+    for I in intrs:
+        g = I.geom
+        ph = I.phys
+        out.append(struct.pack('<2q', I.id1, I.id2))
+        out.append(_pack_doubles(tuple(g.normal) + (g.penetrationDepth,) + tuple(g.contactPoint) + tuple(g.shearInc)
+                                 + tuple(ph.normalForce) + tuple(ph.shearForce) + (ph.kn, ph.ks)))
+    return b''.join(out)
+
+
+def _m3_rows(m):
+    return [float(m[i][j]) for i in range(3) for j in range(3)]
+
+
+def _peri_digest_values(e):
+    """FORMAT.md order (ryade: PeriTriax::digest_values)."""
+    v = _m3_rows(e.stressTensor)
+    for k in ('stress', 'strain', 'strainRate', 'stiff'):
+        v += _v3(getattr(e, k))
+    v.append(float(e.currUnbalanced))
+    v += _v3(e.prevGrow) + _v3(e.goal)
+    v += [float(e.mass), float(e.externalWork)]
+    v += _v3(e.maxBodySpan)
+    v += [float(e.stressMask), 1.0 if e.dynCell else 0.0]
+    return v
+
+
+def _cell_bytes():
+    if not O.periodic:
+        return b''
+    c = O.cell
+    vals = _m3_rows(c.hSize) + _m3_rows(c.trsf) + _m3_rows(c.velGrad) + _m3_rows(c.prevVelGrad)
+    for e in _peri_engines():
+        vals += _peri_digest_values(e)
+    return _pack_doubles(vals)
+
+
+PERI_HEADER = ('step,hSize_xx,hSize_yy,hSize_zz,velGrad_xx,velGrad_yy,velGrad_zz,stress_x,stress_y,stress_z,'
+               'strain_x,strain_y,strain_z,stiff_x,stiff_y,stiff_z,currUnbalanced,externalWork')
+
+
+def _peri_row(step):
+    c = O.cell
+    e = _peri_engines()[0]
+    h = c.hSize
+    g = c.velGrad
+    vals = [h[0][0], h[1][1], h[2][2], g[0][0], g[1][1], g[2][2]] + _v3(e.stress) + _v3(e.strain) + _v3(e.stiff)
+    vals += [e.currUnbalanced, e.externalWork]
+    return '%d,' % step + ','.join('%.17g' % float(x) for x in vals) + '\n'
+
+
 def _say(msg):
     print('[ryade_record] ' + msg, flush=True)
     sys.stderr.flush()
 
 
 def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, keep_steps=None, digest=False,
-           min_contacts_check=None, final_check=None, grid=False, step_hook=None):
+           min_contacts_check=None, final_check=None, grid=False, step_hook=None, micro_digest=False):
     """Record scene ``name`` for ``steps`` steps (see module docstring).
 
     keep_steps: None = every step 0..steps in the bodies file, else an iterable of steps to keep.
@@ -590,6 +776,12 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
                 the ``interactions`` array in the scene JSON and <name>.intrs6d.csv.gz (needs ``intrs``).
     step_hook:  callable(step) run after every recorded step (step 0 included, after the rows are written);
                 for script-side checks and statistics. It must not change the scene.
+    micro_digest: digest scene of the micro format (FORMAT.md, "Digest scenes"): every step goes into
+                <name>.digest.csv.gz (SHA-256 prefixes of the bodies, the real interactions and the cell with its
+                PeriTriaxControllers), the bodies and interactions files keep only ``keep_steps``, and a periodic
+                scene with a PeriTriaxController gets <name>.peri.csv.gz (cell and controller, every step).
+    A PeriTriaxController's doneHook is run through _run_hook, which records what each firing changed
+    (``doneHookEvents`` in the scene JSON, written after the last step).
     Returns a dict of statistics.
     """
     if outdir is None:
@@ -600,7 +792,6 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
 
     _require(not grid or intrs, 'grid=True needs intrs=True')
     scene = scene_dict(steps, grid=grid)
-    text = scene_json(scene)
     nb = len(scene['bodies'])
     dynamic = [b['blockedDOFs'] != 63 for b in scene['bodies']]
     keep = None if keep_steps is None else set(int(s) for s in keep_steps)
@@ -609,7 +800,6 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
     try:
         fscene = _AtomicText(os.path.join(outdir, name + '.scene.json'))
         files.append(fscene)
-        fscene.write(text)
         fb = _AtomicGz(os.path.join(outdir, name + '.bodies.csv.gz'))
         files.append(fb)
         fb.write(BODY_HEADER + '\n')
@@ -628,7 +818,20 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
             fd = _AtomicText(os.path.join(outdir, name + '.digest.csv'))
             files.append(fd)
             fd.write('step,sha256\n')
+        fdm = fp = None
+        if micro_digest:
+            _require(not grid, 'micro_digest is for FORMAT.md scenes')
+            fdm = _AtomicGz(os.path.join(outdir, name + '.digest.csv.gz'))
+            files.append(fdm)
+            fdm.write('step,bodies,intrs,cell\n')
+            if O.periodic and _peri_engines():
+                _require(len(_peri_engines()) == 1, 'at most one PeriTriaxController per digest scene')
+                fp = _AtomicGz(os.path.join(outdir, name + '.peri.csv.gz'))
+                files.append(fp)
+                fp.write(PERI_HEADER + '\n')
         pack = struct.Struct('<19d').pack
+        peri = [(k, e) for k, e in enumerate(O.engines) if _cls(e) == 'PeriTriaxController']
+        _wrap_hooks()
 
         max_real = 0
         max_real_step = 0
@@ -650,7 +853,12 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
                     h.update(pack(*v))
                 fd.write('%d,%s\n' % (step, h.hexdigest()))
             real = _real_intrs()
-            if fi is not None:
+            if fdm is not None:
+                fdm.write('%d,%s,%s,%s\n' % (step, _digest16(b''.join(_pack_doubles(v) for v in vals)),
+                                              _digest16(_intrs_bytes(real)), _digest16(_cell_bytes())))
+            if fp is not None:
+                fp.write(_peri_row(step))
+            if fi is not None and (not micro_digest or keep is None or step in keep):
                 _write_intrs(fi, step, real)
             if fi6 is not None:
                 _write_intrs6d(fi6, step, real)
@@ -670,6 +878,11 @@ def record(name, steps, outdir=None, default_sub='golden/micro', intrs=True, kee
                 _say('%s: step %d/%d, real intrs %d' % (name, step, steps, len(real)))
 
         _require(O.iter == steps, 'O.iter=%d after %d steps' % (O.iter, steps))
+        for k, e in peri:
+            if _HOOK_EVENTS.get(id(e)):
+                scene['engines'][k]['doneHookEvents'] = _HOOK_EVENTS[id(e)]
+        _unwrap_hooks()
+        fscene.write(scene_json(scene))
         end_ge3 = sum(1 for c, d in zip(last_counts, dynamic) if d and c >= 3)
         stats = {'name': name, 'bodies': nb, 'steps': steps, 'max_real': max_real, 'max_real_step': max_real_step,
                  'max_contacts_dynamic_body': max_per_body, 'max_contacts_any_body': max_per_body_any,

@@ -725,6 +725,15 @@ class Cell(object):
     def setBox(self, *args):
         size = to_vec3(args[0] if len(args) == 1 else args, 'Cell.setBox')
         self._o._sim.set_cell([[size[0], 0.0, 0.0], [0.0, size[1], 0.0], [0.0, 0.0, size[2]]])
+        self._o._sim.set_cell_matrix('trsf', [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+
+    def _m(self, name):
+        self._h()
+        return Matrix3(*[x for row in self._o._sim.cell_matrix(name) for x in row])
+
+    def _set_m(self, name, m):
+        self._h()
+        self._o._sim.set_cell_matrix(name, [[float(m[i, j]) for j in range(3)] for i in range(3)])
 
     @property
     def hSize(self):
@@ -739,13 +748,19 @@ class Cell(object):
         return self.hSize
 
     @property
+    def hSize0(self):
+        return self.trsf.inverse() * self.hSize
+
+    @property
     def size(self):
         self._h()
         return Vector3(*self._o._sim.cell_size())
 
     @property
     def refSize(self):
-        return self.size
+        # Cell::getRefSize: column lengths of trsf^-1 * hSize
+        h = self.hSize0
+        return Vector3(*[math.sqrt(h[0, j] * h[0, j] + (h[1, j] * h[1, j] + h[2, j] * h[2, j])) for j in range(3)])
 
     @refSize.setter
     def refSize(self, s):
@@ -758,33 +773,57 @@ class Cell(object):
 
     @property
     def trsf(self):
-        return Matrix3.Identity
-
-    @property
-    def velGrad(self):
-        return Matrix3.Zero
-
-    @property
-    def nextVelGrad(self):
-        return Matrix3.Zero
-
-    @property
-    def prevVelGrad(self):
-        return Matrix3.Zero
-
-    @property
-    def homoDeform(self):
-        return 2
+        return self._m('trsf')
 
     @trsf.setter
     def trsf(self, m):
-        if any(float(m[i, j]) != (1.0 if i == j else 0.0) for i in range(3) for j in range(3)):
-            unsupported('Cell.trsf other than identity')
+        self._set_m('trsf', m)
+
+    def getDefGrad(self):
+        return self.trsf
+
+    @property
+    def velGrad(self):
+        # a copy: YADE's getter; assigning the whole matrix takes effect in NewtonIntegrator (nextVelGrad)
+        return self._m('velGrad')
 
     @velGrad.setter
     def velGrad(self, m):
-        if any(float(m[i, j]) != 0.0 for i in range(3) for j in range(3)):
-            unsupported('a deforming periodic cell (Cell.velGrad != 0)')
+        self._set_m('velGrad', m)
+
+    @property
+    def nextVelGrad(self):
+        # live, as in YADE: O.cell.nextVelGrad[0, 0] = 1 works
+        def get():
+            return tuple(x for row in self._o._sim.cell_matrix('nextVelGrad') for x in row)
+
+        def put(t):
+            self._o._sim.set_cell_matrix('nextVelGrad', [list(t[0:3]), list(t[3:6]), list(t[6:9])])
+        self._h()
+        return Matrix3._view(get, put)
+
+    @nextVelGrad.setter
+    def nextVelGrad(self, m):
+        self._set_m('nextVelGrad', m)
+
+    @property
+    def prevVelGrad(self):
+        return self._m('prevVelGrad')
+
+    @property
+    def velGradChanged(self):
+        self._h()
+        return self._o._sim.cell_vel_grad_changed()
+
+    @property
+    def homoDeform(self):
+        self._h()
+        return self._o._sim.cell_homo_deform()
+
+    @homoDeform.setter
+    def homoDeform(self, h):
+        self._h()
+        self._o._sim.set_cell_homo_deform(int(h))
 
     def wrap(self, p):
         return Vector3(*self._o._sim.cell_wrap(to_vec3(p, 'point')))
@@ -993,6 +1032,10 @@ class Omega(_ryade.OmegaBase):
             ext = sim.advance()
             if ext is None:
                 break
+            if ext & _DONE_HOOK:
+                # a PeriTriaxController reached its goal: its doneHook runs before the next engine
+                self._engines[ext & ~_DONE_HOOK]._run_done_hook()
+                continue
             e = self._external[ext]
             if e._is_activated(self):
                 if timed:
@@ -1011,14 +1054,15 @@ class Omega(_ryade.OmegaBase):
         self._paused = False
         if n > 0:
             self.stopAtIter = self.iter + n
-        if not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0:
+        if (not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0
+                and not self._python_hooks()):
             if self.ryadeFastPath:
                 self._sim.run_steps_fast(n, self.ryadeFastThreads)
             else:
                 self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust (a Rust engine may end it early)
             self.stopAtIter = -1
             return
-        if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external:
+        if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external and not self._python_hooks():
             raise RuntimeError('O.run() without a step count and nothing that can stop it (no PyRunner, no '
                                'O.stopAtIter): it would never return; give O.run(nSteps, True)')
         if self._native_stop:
@@ -1033,6 +1077,10 @@ class Omega(_ryade.OmegaBase):
             if self._native_stop and self._sim.take_stop_request():  # as a PyRunner's O.stopAtIter = O.iter + 1
                 self.stopAtIter = -1
                 break
+
+    def _python_hooks(self):
+        """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook)."""
+        return any(type(e).__name__ == 'PeriTriaxController' and not e.dead and e.doneHook for e in self._engines)
 
     def run(self, nSteps=-1, wait=False):
         if wait:
@@ -1096,6 +1144,9 @@ class Omega(_ryade.OmegaBase):
 
 
 import time as _time  # noqa: E402
+
+#: bit of the id `Sim.advance` returns for a PeriTriaxController's doneHook (ryade::scene::DONE_HOOK)
+_DONE_HOOK = 1 << 31
 
 _START = _time.time()
 

@@ -15,7 +15,8 @@ from ._table import (TableParamReader, loadVars, readParamsFromTable, runningInB
 __all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDim', 'defaultMaterial', 'PWaveTimeStep',
            'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor',
            'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
-           'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques']
+           'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques',
+           'getStress']
 
 
 def _O():
@@ -165,6 +166,13 @@ def PWaveTimeStep():
 
 def unbalancedForce(useMaxForce=False):
     return _O()._sim.unbalanced_force(bool(useMaxForce))
+
+
+def getStress(volume=0):
+    """Shop::getStress: Love-Weber stress of the real contacts, divided by the cell volume (periodic) or
+    ``volume``."""
+    from .minieigen import Matrix3
+    return Matrix3(*[x for row in _O()._sim.get_stress(float(volume)) for x in row])
 
 
 def kineticEnergy(findMaxId=False):

@@ -684,6 +684,108 @@ class RyadePistonController(PartialEngine):
         maxRut -1e300, se and seRaw 0)."""
         for k, v in self._CYCLE_START:
             setattr(self, k, v)
+class BoundaryController(GlobalEngine):
+    """Base of YADE's boundary controllers (not usable directly, as in YADE)."""
+
+
+def _nan_none(v):
+    """JSON for the Rust core: NaN (YADE's unset mass / currUnbalanced) as null."""
+    if isinstance(v, float) and v != v:
+        return None
+    if isinstance(v, (list, tuple)):
+        return [_nan_none(x) for x in v]
+    return v
+
+
+class PeriTriaxController(BoundaryController):
+    """YADE's stress/strain controller of the periodic cell (pkg/dem/PeriIsoCompressor.cpp), run in the
+    Rust core (`ryade::peri_triax`). Vector attributes are live views, as in YADE (`triax.goal[2] = -0.1`
+    changes the goal); `doneHook` runs in the script's globals right after the controller, inside the step."""
+    _attrs = {'dynCell': False, 'goal': (0.0, 0.0, 0.0), 'stressMask': 0, 'maxStrainRate': (1.0, 1.0, 1.0),
+              'maxUnbalanced': 1e-4, 'absStressTol': 1e3, 'relStressTol': 3e-5, 'growDamping': 0.25, 'globUpdate': 5,
+              'doneHook': '', 'maxBodySpan': (0.0, 0.0, 0.0), 'stressTensor': (0.0,) * 9, 'stress': (0.0, 0.0, 0.0),
+              'strain': (0.0, 0.0, 0.0), 'strainRate': (0.0, 0.0, 0.0), 'stiff': (0.0, 0.0, 0.0),
+              'currUnbalanced': float('nan'), 'prevGrow': (0.0, 0.0, 0.0), 'mass': float('nan'), 'externalWork': 0.0}
+    _vectors = ('goal', 'maxStrainRate', 'maxBodySpan', 'stress', 'strain', 'strainRate', 'stiff', 'prevGrow')
+    _ints = ('stressMask', 'globUpdate')
+    _own = tuple(k for k in _attrs)
+
+    def _convert(self, k, v):
+        if k in self._vectors:
+            return tuple(float(x) for x in _vec3_attr('PeriTriaxController', k, v))
+        if k == 'stressTensor':
+            try:
+                vals = tuple(float(v[i, j]) for i in range(3) for j in range(3))
+            except (TypeError, IndexError):
+                vals = tuple(float(x) for row in v for x in row)
+            if len(vals) != 9:
+                raise TypeError('PeriTriaxController.stressTensor must be a 3x3 matrix')
+            return vals
+        if k in self._ints:
+            return int(v)
+        if k == 'dynCell':
+            return bool(v)
+        if k == 'doneHook':
+            if not isinstance(v, str):
+                raise TypeError('PeriTriaxController.doneHook must be a string (Python code)')
+            return v
+        if k in self._own:
+            return float(v)
+        return v
+
+    def _raw(self, k):
+        """The current value: from the Rust core while in O.engines, else the stored one."""
+        if self._owner is not None and k in self._own:
+            omega, index = self._owner
+            v = json.loads(omega._sim.engine_get(index, k))
+            if k == 'stressTensor':
+                return tuple(x for row in v for x in row)
+            if v is None:
+                return float('nan')
+            return tuple(v) if isinstance(v, list) else v
+        return self._values[k]
+
+    def _read(self, k):
+        from .minieigen import Matrix3, Vector3
+        if k in self._vectors:
+            return Vector3._view(lambda: self._raw(k), lambda t: self._assign(k, t))
+        if k == 'stressTensor':
+            return Matrix3._view(lambda: self._raw(k), lambda t: self._assign(k, t))
+        return self._raw(k)
+
+    def _changed(self, k):
+        if self._owner is not None and k in self._own:
+            omega, index = self._owner
+            v = self._values[k]
+            if k == 'stressTensor':
+                v = [list(v[0:3]), list(v[3:6]), list(v[6:9])]
+            omega._sim.engine_set(index, k, json.dumps(_nan_none(v)))
+            return
+        BoundaryController._changed(self, k)
+
+    def _timing_detach(self):
+        # the object leaves this engine list: keep the state the Rust core reached (YADE keeps the object)
+        if self._owner is not None:
+            for k in self._own:
+                self._values[k] = self._raw(k)
+        BoundaryController._timing_detach(self)
+
+    def _json(self):
+        d = {'class': 'PeriTriaxController'}
+        for k in self._own:
+            v = self._values[k]
+            if k == 'stressTensor':
+                v = [list(v[0:3]), list(v[3:6]), list(v[6:9])]
+            elif isinstance(v, tuple):
+                v = list(v)
+            d[k] = _nan_none(v)
+        return d
+
+    def _run_done_hook(self):
+        """`pyRunString(doneHook)`: the hook in the script's globals (`__main__`)."""
+        hook = self._raw('doneHook')
+        if hook:
+            exec(compile(hook, '<PeriTriaxController.doneHook>', 'exec'), sys.modules['__main__'].__dict__)
 
 
 class PeriodicEngine(GlobalEngine):
@@ -833,6 +935,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, ServoPIDController,
     RyadePistonController,
+    BoundaryController, PeriTriaxController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
