@@ -66,7 +66,10 @@ PRESETS = {
     'paper200': {
         # loading: rolling resistance as the angularity proxy the paper names, crushed-aggregate friction
         # (steps.csv every 50 steps: 18 samples a cycle, 3,640 rows for 200 cycles)
-        'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0, 'steps_every': 50, 'profile_cycle': 100},
+        # (PI gains: stiffness factor 0.075; at 0.05 the filtered peak overshot to 317 kPa at r07 full, at 0.1 the
+        # tracking error at medium size doubled: results/paper200/sweep.md "Controller")
+        'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0, 'steps_every': 50, 'profile_cycle': 100,
+                'stiffness_factor': 0.075},
         # generation: compaction friction (lower = denser) and the porosity that sets the sphere count, so that
         # N and G land at 25 +- 1 cm and 41-46 % porosity (measured, seed 1, in the README's preset table)
         0.3: {'friction': 25.0, 'target_porosity': 0.415},
