@@ -118,6 +118,28 @@ pub struct HistoryRow {
     pub grid_z_m: Option<f64>,
 }
 
+impl HistoryRow {
+    /// A row with only the cycle and the rut set (porosity 0.4, piston at 0.2 m): for tests of what reads ruts.
+    #[cfg(test)]
+    pub(crate) fn with_rut(cycle: u32, rut_mm: f64) -> Self {
+        HistoryRow {
+            cycle,
+            complete: 1,
+            steps: 0,
+            time_s: 0.0,
+            rut_mm,
+            rut_max_mm: rut_mm,
+            peak_kpa: 0.0,
+            peak_raw_kpa: 0.0,
+            tracking_rms_kpa: 0.0,
+            tracking_rms_raw_kpa: 0.0,
+            porosity_box: 0.4,
+            piston_z_m: 0.2,
+            grid_z_m: None,
+        }
+    }
+}
+
 /// Read a `history.csv`; a malformed file gets an error naming the file and the record.
 pub fn read_history(path: &Path) -> Result<Vec<HistoryRow>> {
     let mut rd = csv::Reader::from_path(path)
@@ -375,21 +397,7 @@ mod tests {
 
     #[test]
     fn surface_displacement_ratio() {
-        let row = |c: u32, rut: f64| HistoryRow {
-            cycle: c,
-            complete: 1,
-            steps: 0,
-            time_s: 0.0,
-            rut_mm: rut,
-            rut_max_mm: rut,
-            peak_kpa: 0.0,
-            peak_raw_kpa: 0.0,
-            tracking_rms_kpa: 0.0,
-            tracking_rms_raw_kpa: 0.0,
-            porosity_box: 0.4,
-            piston_z_m: 0.2,
-            grid_z_m: None,
-        };
+        let row = HistoryRow::with_rut;
         let n = vec![row(0, 0.0), row(1, 10.0)];
         let g = vec![row(0, 0.0), row(1, 8.0)];
         let f = vec![row(0, 0.0), row(1, 6.0)];
