@@ -194,6 +194,9 @@ pub struct Horizon {
     pub last_iter: i64,
     /// Whether the two history.csv files (17 significant digits) are byte-identical (set by the caller).
     pub history_identical: bool,
+    /// Every compared row agreed and one run simply has more rows (a rut stop, or `--cycles` shorter
+    /// than the other run's); `first_diff_iter` is then the longer run's next sample.
+    pub one_ran_longer: bool,
 }
 
 pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
@@ -218,6 +221,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
                 first_diff_phase: ra[i].get(1).cloned(),
                 last_iter: iter_of(&ra[i]),
                 history_identical: false,
+                one_ran_longer: false,
             });
         }
     }
@@ -230,6 +234,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
             first_diff_phase: longer[n].get(1).cloned(),
             last_iter: n.checked_sub(1).map(|k| iter_of(&ra[k])).unwrap_or(-1),
             history_identical: false,
+            one_ran_longer: true,
         });
     }
     Ok(Horizon {
@@ -238,6 +243,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
         first_diff_phase: None,
         last_iter: n.checked_sub(1).map(|k| iter_of(&ra[k])).unwrap_or(-1),
         history_identical: false,
+        one_ran_longer: false,
     })
 }
 

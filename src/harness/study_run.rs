@@ -496,6 +496,10 @@ pub fn format_diff(rep: &DiffReport) -> String {
                     "  seed {}: exact-match horizon: none, identical at all {} sampled steps (through iteration {})\n",
                     seed, h.rows_compared, h.last_iter
                 ),
+                Some(_) if h.one_ran_longer => format!(
+                    "  seed {}: exact-match horizon: none; identical at all {} sampled steps of the shorter run (through iteration {}), the other ran on\n",
+                    seed, h.rows_compared, h.last_iter
+                ),
                 Some(it) => format!(
                     "  seed {}: exact-match horizon: first difference at iteration {} ({}), after {} identical samples\n",
                     seed,
