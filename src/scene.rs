@@ -13,6 +13,7 @@ use crate::geom::{self, GeomClass, GeomCtx, Pair};
 use crate::idle_skip::IdleSkip;
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
+use crate::energy::{EnergyTracker, IdCache};
 use crate::law::{self, LawBodies, LawEnergy, LawFunctor};
 use crate::material::{FrictMat, MatClass};
 use crate::math::Vec3;
@@ -49,6 +50,8 @@ pub struct InteractionLoop {
     pub scgridco_cohfrict: Option<law::grid::ScGridCoParams>,
     /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
     pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
+    /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
+    pub energy_caches: [IdCache; LawFunctor::COUNT],
 }
 
 impl Default for InteractionLoop {
@@ -91,6 +94,7 @@ impl InteractionLoop {
             scgridco_frict: None,
             scgridco_cohfrict: None,
             gridco_gridco_frict: None,
+            energy_caches: Default::default(),
         }
     }
 
@@ -278,18 +282,6 @@ pub enum StepError {
     Engine { iter: i64, msg: String },
 }
 
-/// Energy bookkeeping (`O.trackEnergy`): the terms this engine's laws produce.
-#[derive(Clone, Debug, Default)]
-pub struct Energy {
-    pub plast_dissip: f64,
-    pub elast_potential: f64,
-    /// `velGradWork` (PeriTriaxController): absent until the controller first adds to it.
-    pub vel_grad_work: Option<f64>,
-    pub shear_dissip: f64,
-    pub bending_dissip: f64,
-    pub twist_dissip: f64,
-}
-
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub bodies: Bodies,
@@ -304,7 +296,8 @@ pub struct Scene {
     pub iter: i64,
     pub time: f64,
     pub track_energy: bool,
-    pub energy: Energy,
+    /// `O.energy` (filled while `track_energy`)
+    pub energy: EnergyTracker,
     /// Threads of the YADE-order path (1: none). The steady sphere-sphere contacts are evaluated in
     /// parallel and their forces added in container order afterwards, so every thread count gives
     /// YADE's single-thread bits.
@@ -357,7 +350,7 @@ impl Default for Scene {
             iter: 0,
             time: 0.0,
             track_energy: false,
-            energy: Energy::default(),
+            energy: EnergyTracker::default(),
             threads: 1,
             par_min_slots: PAR_MIN_SLOTS,
             pool: Pool::default(),
@@ -471,7 +464,7 @@ impl Scene {
             Engine::ForceResetter => {
                 self.forces.reset(self.bodies.len(), self.iter);
                 if self.track_energy {
-                    self.energy.elast_potential = 0.0;
+                    self.energy.reset_resettables();
                 }
                 Ok(())
             }
@@ -513,6 +506,7 @@ impl Scene {
                     self.cell.as_mut(),
                     self.dt,
                     pool.as_deref(),
+                    self.track_energy.then_some(&mut self.energy),
                 );
                 if t0.is_some() {
                     newton_marks[2] = Some(std::time::Instant::now());
@@ -708,11 +702,31 @@ impl Scene {
     /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
     /// then the law.
     fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
+        // the laws add to O.energy as they go (YADE's scene->energy->add per contact); the tracker
+        // and the functors' index caches are moved out for the loop and put back after it
+        let mut tracker = std::mem::take(&mut self.energy);
+        let mut caches = std::mem::take(&mut il.energy_caches);
+        let mut energy = LawEnergy {
+            tracker: &mut tracker,
+            caches: &mut caches,
+            functor: LawFunctor::CundallStrack,
+            trace: false,
+        };
+        let r = self.interaction_loop_with(il, &mut energy);
+        self.energy = tracker;
+        il.energy_caches = caches;
+        r
+    }
+
+    fn interaction_loop_with(
+        &mut self,
+        il: &mut InteractionLoop,
+        energy: &mut LawEnergy<'_>,
+    ) -> Result<(), String> {
         let ctx0 = GeomCtx {
             dt: self.dt,
             shift_vel: Vec3::zeros(),
         };
-        let mut energy = LawEnergy::default();
         let mut geom_entries = None;
         if il.uses_idle_skip() {
             self.idle_skip.prepare(
@@ -725,10 +739,10 @@ impl Scene {
         }
         if let Some(runs) = self.pre_pass(il) {
             for ev in runs.iter().flatten() {
-                self.event(il, *ev, &ctx0, &mut energy, &mut geom_entries)?;
+                self.event(il, *ev, &ctx0, energy, &mut geom_entries)?;
             }
         } else if let (Some(ss), Some(cs), false) =
-            (il.sphere_sphere, il.cundall_strack, self.track_energy)
+            (il.sphere_sphere, il.cundall_strack, self.energy_wanted(il))
         {
             // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
@@ -750,7 +764,7 @@ impl Scene {
                     &mut self.interactions.list[k],
                 );
                 if let Some(ev) = ev {
-                    self.event(il, ev, &ctx0, &mut energy, &mut geom_entries)?;
+                    self.event(il, ev, &ctx0, energy, &mut geom_entries)?;
                 }
             }
         } else {
@@ -760,17 +774,16 @@ impl Scene {
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
                 }
-                self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?;
+                self.visit(il, k, &ctx0, energy, &mut geom_entries)?;
             }
         }
-        if self.track_energy {
-            self.energy.plast_dissip += energy.plast_dissip;
-            self.energy.elast_potential += energy.elast_potential;
-            self.energy.shear_dissip += energy.shear_dissip;
-            self.energy.bending_dissip += energy.bending_dissip;
-            self.energy.twist_dissip += energy.twist_dissip;
-        }
         Ok(())
+    }
+
+    /// Whether a law may add to `O.energy` this step: `O.trackEnergy`, or a GridCoGridCo law with
+    /// `traceEnergy` (which YADE's law adds `elastPotential` for even without trackEnergy).
+    fn energy_wanted(&self, il: &InteractionLoop) -> bool {
+        self.track_energy || il.gridco_gridco_frict.is_some_and(|p| p.trace_energy)
     }
 
     /// What `pre_slot` left for the container-order walk: visit the slot, add the steady
@@ -781,7 +794,7 @@ impl Scene {
         il: &mut InteractionLoop,
         ev: Event,
         ctx0: &GeomCtx,
-        energy: &mut LawEnergy,
+        energy: &mut LawEnergy<'_>,
         geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
     ) -> Result<(), String> {
         match ev {
@@ -801,7 +814,7 @@ impl Scene {
         il: &mut InteractionLoop,
         k: usize,
         ctx0: &GeomCtx,
-        energy: &mut LawEnergy,
+        energy: &mut LawEnergy<'_>,
         geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
     ) -> Result<(), String> {
         // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
@@ -968,12 +981,14 @@ impl Scene {
         if !was_real {
             it.iter_made_real = self.iter;
         }
-        let energy_arg = if self.track_energy {
-            Some(&mut *energy)
-        } else {
-            None
-        };
         let keep = if plain {
+            let energy_arg = if self.track_energy {
+                energy.functor = LawFunctor::CundallStrack;
+                energy.trace = false;
+                Some(&mut *energy)
+            } else {
+                None
+            };
             let b = &self.bodies;
             let lb = LawBodies {
                 pos1: &b.pos[id1],
@@ -990,7 +1005,7 @@ impl Scene {
                 energy_arg,
             )
         } else {
-            let keep = self.law(il, k, id1, id2, &shift2, energy_arg)?;
+            let keep = self.law(il, k, id1, id2, &shift2, energy)?;
             if self.interactions.share_of(k) != 0 {
                 self.interactions.sync_shared(k);
             }
@@ -1072,7 +1087,7 @@ impl Scene {
         let (Some(ss), Some(cs)) = (il.sphere_sphere.as_ref(), il.cundall_strack.as_ref()) else {
             return None;
         };
-        if self.track_energy || self.interactions.list.len() < self.par_min_slots {
+        if self.energy_wanted(il) || self.interactions.list.len() < self.par_min_slots {
             return None;
         }
         let pool = self.pool_for_threads()?;
@@ -1277,7 +1292,7 @@ impl Scene {
         id1: usize,
         id2: usize,
         shift2: &Vec3,
-        energy: Option<&mut LawEnergy>,
+        energy: &mut LawEnergy<'_>,
     ) -> Result<bool, String> {
         let b = &self.bodies;
         let it = &mut self.interactions.list[k];
@@ -1303,6 +1318,17 @@ impl Scene {
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
+        };
+        // the law adds to O.energy while trackEnergy; a GridCoGridCo law with traceEnergy takes its
+        // energy branch in any case (Grid.cpp)
+        let trace = lf == LawFunctor::GridCoGridCoFrict
+            && il.gridco_gridco_frict.is_some_and(|p| p.trace_energy);
+        let energy = if self.track_energy || trace {
+            energy.functor = lf;
+            energy.trace = trace;
+            Some(energy)
+        } else {
+            None
         };
         let g = *it.geom.as_ref().unwrap();
         let fresh = it.iter_made_real == self.iter;

@@ -864,17 +864,26 @@ impl Sim {
     fn set_track_energy(&mut self, on: bool) {
         self.scene.track_energy = on;
     }
-    /// Energy terms tracked by the laws (YADE names).
-    fn energy(&self) -> HashMap<String, f64> {
-        let mut m = HashMap::new();
-        if self.scene.track_energy {
-            m.insert("plastDissip".into(), self.scene.energy.plast_dissip);
-            m.insert("elastPotential".into(), self.scene.energy.elast_potential);
-            if let Some(w) = self.scene.energy.vel_grad_work {
-                m.insert("velGradWork".into(), w);
-            }
-        }
-        m
+    /// `O.energy.items()`: (name, value) in name order (YADE's EnergyTracker; filled while
+    /// `O.trackEnergy`, readable at any time).
+    fn energy_items(&self) -> Vec<(String, f64)> {
+        self.scene.energy.items()
+    }
+    /// `O.energy.total()`: the values summed in creation order.
+    fn energy_total(&self) -> f64 {
+        self.scene.energy.total()
+    }
+    /// `O.energy[name]`; None for an unknown name.
+    fn energy_get(&self, name: &str) -> Option<f64> {
+        self.scene.energy.get_item(name)
+    }
+    /// `O.energy[name] = value` (a new name is not reset every step).
+    fn energy_set(&mut self, name: &str, value: f64) {
+        self.scene.energy.set_item(name, value)
+    }
+    /// `O.energy.clear()`.
+    fn energy_clear(&mut self) {
+        self.scene.energy.clear()
     }
 
     // ---- materials ----

@@ -833,26 +833,40 @@ class Cell(object):
 
 
 class EnergyTracker(object):
+    """`O.energy` (YADE's EnergyTracker, kept by the Rust core): filled while `O.trackEnergy` by
+    NewtonIntegrator (nonviscDamp, kinetic, gravWork), the laws (elastPotential, plastDissip, shearDissip,
+    bendingDissip, twistDissip) and PeriTriaxController (velGradWork), in YADE's arithmetic and order."""
+
     def __init__(self, omega):
         self._o = omega
 
-    def _d(self):
-        return self._o._sim.energy()
-
     def keys(self):
-        return list(self._d().keys())
+        return [k for k, _ in self._o._sim.energy_items()]
 
     def items(self):
-        return list(self._d().items())
+        return list(self._o._sim.energy_items())
 
     def __getitem__(self, k):
-        return self._d()[k]
+        v = self._o._sim.energy_get(str(k))
+        if v is None:
+            raise KeyError("Unknown energy name '%s'." % k)
+        return v
+
+    def __setitem__(self, k, v):
+        self._o._sim.energy_set(str(k), float(v))
 
     def total(self):
-        return sum(self._d().values())
+        return self._o._sim.energy_total()
 
     def clear(self):
-        pass
+        self._o._sim.energy_clear()
+
+    def __getattr__(self, k):
+        if k.startswith('__') or k == '_o':
+            raise AttributeError(k)
+        if k in ('energies', 'dict', 'updateAttrs', 'dispHierarchy', '_perThreadData'):
+            unsupported('O.energy.%s' % k)
+        raise AttributeError("'EnergyTracker' object has no attribute '%s'" % k)
 
 
 # ---------------------------------------------------------------- Omega
