@@ -137,8 +137,10 @@ impl Newton {
         let e_trans = 0.5 * mass * norm2(fluct);
         let inertia = bodies.inertia[id];
         let e_rot = if bodies.aspherical[id] {
+            // YADE 2023.02a: `T.transpose() * mI * T` with T = ori (the later `T * mI * T^T` is the
+            // physically right one; ryade gives YADE's number)
             let t = bodies.ori[id].to_rotation_matrix();
-            let tit = mat_mul(&mat_mul(&t, &Mat3::from_diagonal(&inertia)), &t.transpose());
+            let tit = mat_mul(&mat_mul(&t.transpose(), &Mat3::from_diagonal(&inertia)), &t);
             0.5 * dot(&w, &mat_vec(&tit, &w))
         } else {
             0.5 * dot(&w, &inertia.component_mul(&w))
