@@ -107,12 +107,28 @@ enum Cmd {
         preset: Option<String>,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
+    ///
+    /// The script gets YADE's startup namespace (O, every YADE class, utils, pack, geom, math...) and
+    /// its arguments in sys.argv. Before its first line runs, it is checked for YADE names ryade does
+    /// not provide (classes, functions, O's methods, refused keywords, also inside PyRunner command
+    /// strings): if it uses any, each is listed with its line and the run is refused (exit code 1), so
+    /// a long run cannot die at its last line. Code inside try/except, or an `if` marked with a
+    /// `# YADE only` comment, is not refused. What depends on run-time values is still found when
+    /// reached (exit code 1, naming it and the line).
     #[command(trailing_var_arg = true)]
     Run {
         /// Threads of the YADE-order path (like `yade -jN`; the results have the same bits for any
         /// count)
         #[arg(short = 'j', long = "threads", default_value_t = 1)]
         threads: usize,
+        /// Only check: list every unsupported name the script can reach, run nothing (exit 0 when
+        /// none refuses the run, 1 otherwise)
+        #[arg(long)]
+        check: bool,
+        /// Run without the check (the run stops at the first unsupported name it reaches)
+        #[arg(long, conflicts_with = "check")]
+        no_check: bool,
+        /// The YADE script
         script: PathBuf,
         /// Arguments passed to the script in sys.argv
         #[arg(allow_hyphen_values = true)]
@@ -270,8 +286,11 @@ fn main() -> ExitCode {
     }
 }
 
-/// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
+/// Replace this process with `python -m module args` (the Python that has the `yade` compat package:
+/// `RYADE_PYTHON`, default `python3`): the script's exit code and the signals sent to `compat run` /
+/// `compat batch` (SIGINT, SIGTERM) are Python's own, and no process is left behind.
 fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<ExitCode> {
+    use std::os::unix::process::CommandExt;
     let py = ryade::harness::env::python();
     let mut cmd = std::process::Command::new(&py);
     // read by the yade package when it makes the scene (O.numThreads)
@@ -281,22 +300,11 @@ fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<E
     if std::env::var_os("OPENBLAS_NUM_THREADS").is_none() {
         cmd.env("OPENBLAS_NUM_THREADS", "1");
     }
-    let status = cmd
-        .arg("-m")
-        .arg(module)
-        .args(args)
-        .status()
-        .with_context(|| {
-            format!(
-                "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
-                py
-            )
-        })?;
-    Ok(match status.code() {
-        Some(0) => ExitCode::SUCCESS,
-        Some(c) => ExitCode::from(c.clamp(1, 255) as u8),
-        None => ExitCode::from(1),
-    })
+    let e = cmd.arg("-m").arg(module).args(args).exec();
+    Err(anyhow::Error::new(e).context(format!(
+        "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
+        py
+    )))
 }
 
 fn cores() -> usize {
@@ -309,13 +317,21 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
         Cmd::Run {
             threads,
+            check,
+            no_check,
             script,
             args,
         } => {
             if threads == 0 {
                 bail!("-j/--threads: counts start at 1");
             }
-            let mut a: Vec<std::ffi::OsString> = vec![script.into_os_string()];
+            let mut a: Vec<std::ffi::OsString> = Vec::new();
+            if check {
+                a.push("--check".into());
+            } else if no_check {
+                a.push("--no-check".into());
+            }
+            a.push(script.into_os_string());
             a.extend(args.into_iter().map(Into::into));
             python("yade.runner", &a, threads)
         }

@@ -34,7 +34,9 @@ def unsupported(what, hint=None):
     msg = 'ryade does not support %s yet %s' % (what, script_location())
     if hint:
         msg += ': ' + hint
-    raise UnsupportedError(msg.rstrip())
+    e = UnsupportedError(msg.rstrip())
+    e.what, e.hint = what, hint
+    raise e
 
 
 import os as _os  # noqa: E402

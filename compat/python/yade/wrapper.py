@@ -925,7 +925,8 @@ def _jsonable(v):
 def _make_unsupported(name):
     def __init__(self, *args, **kw):
         unsupported('class %s' % name)
-    return type(name, (Serializable,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+    return type(name, (Serializable,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.',
+                                        '_ryade_unsupported': 'class %s' % name})
 
 
 _IMPLEMENTED = {c.__name__: c for c in [
@@ -968,7 +969,8 @@ def all_classes():
         else:
             def __init__(self, *args, **kw):
                 unsupported('class %s' % name)
-            cls = type(name, (base,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+            cls = type(name, (base,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.',
+                                       '_ryade_unsupported': 'class %s' % name})
         out[name] = cls
         return cls
 
