@@ -270,14 +270,9 @@ impl Engine {
 /// Why a step stopped. Carries what a user needs to fix it.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum StepError {
-    #[error("step {iter}: body #{id} has a non-finite {what}. Likely cause: the time step {dt:e} s is above the critical one ({crit}); lower O.dt (e.g. 0.5*PWaveTimeStep()) or check stiffness and masses")]
-    NonFinite {
-        iter: i64,
-        id: usize,
-        what: &'static str,
-        dt: f64,
-        crit: String,
-    },
+    /// A body's motion came out non-finite; `report` says what was found (see `non_finite_report`).
+    #[error("step {iter}: {report}")]
+    NonFinite { iter: i64, id: usize, report: String },
     #[error("step {iter}: {msg}")]
     Engine { iter: i64, msg: String },
 }
@@ -581,15 +576,10 @@ impl Scene {
 
     fn newton_error(&self, e: NewtonError) -> StepError {
         match e {
-            NewtonError::NonFinite { id, what } => StepError::NonFinite {
+            NewtonError::NonFinite { id, .. } => StepError::NonFinite {
                 iter: self.iter,
                 id,
-                what,
-                dt: self.dt,
-                crit: match crate::utils::pwave_time_step(self) {
-                    Some(c) => format!("PWaveTimeStep = {:e} s", c),
-                    None => "unknown: no spheres".into(),
-                },
+                report: self.non_finite_report(id),
             },
             NewtonError::BadMass { id } => StepError::Engine {
                 iter: self.iter,
@@ -599,6 +589,141 @@ impl Scene {
                 ),
             },
         }
+    }
+
+    /// What a user needs when body `id` came out of NewtonIntegrator non-finite: the quantity found
+    /// non-finite and its value, the body's mass, O.dt against the critical time step, its contacts
+    /// now, and the cause those facts point to (not always the time step).
+    pub fn non_finite_report(&self, id: usize) -> String {
+        let b = &self.bodies;
+        let fin = |v: &Vec3| v.iter().all(|x| x.is_finite());
+        let fmt = |v: &Vec3| format!("({:e}, {:e}, {:e})", v[0], v[1], v[2]);
+        let (f, m) = (*self.forces.force(id), *self.forces.torque(id));
+        let mass = b.mass[id];
+        let shape = match b.shape[id].sphere_radius() {
+            Some(r) => format!("{} of radius {:e} m", b.shape[id].class_name(), r),
+            None => b.shape[id].class_name().to_string(),
+        };
+        let mut s = format!("body #{} ({}, mass {:e} kg): ", id, shape, mass);
+        let quantity = if !fin(&f) {
+            format!("its force {} N is not finite", fmt(&f))
+        } else if !fin(&m) {
+            format!("its torque {} N m is not finite", fmt(&m))
+        } else if !fin(&b.vel[id]) {
+            format!(
+                "its velocity {} m/s came out not finite (force {} N)",
+                fmt(&b.vel[id]),
+                fmt(&f)
+            )
+        } else {
+            format!(
+                "its position {} m came out not finite (velocity {} m/s)",
+                fmt(&b.pos[id]),
+                fmt(&b.vel[id])
+            )
+        };
+        s += &quantity;
+        let crit = crate::utils::pwave_time_step(self);
+        s += &match crit {
+            Some(c) => format!(
+                ". O.dt = {:e} s is {:.3} x the critical time step (PWaveTimeStep = {:e} s)",
+                self.dt,
+                self.dt / c,
+                c
+            ),
+            None => format!(
+                ". O.dt = {:e} s (no sphere, so no PWaveTimeStep to compare with)",
+                self.dt
+            ),
+        };
+        // its contacts now, deepest first
+        struct Contact {
+            pen: f64,
+            text: String,
+            other: u32,
+            force_finite: bool,
+            other_finite: bool,
+            kn_finite: bool,
+        }
+        let state_finite = |j: usize| fin(&b.pos[j]) && fin(&b.vel[j]) && fin(&b.ang_vel[j]);
+        let mut contacts: Vec<Contact> = Vec::new();
+        for it in &self.interactions.list {
+            if !it.is_real() || (it.id1 as usize != id && it.id2 as usize != id) {
+                continue;
+            }
+            let other = if it.id1 as usize == id { it.id2 } else { it.id1 };
+            let (g, p) = (it.geom.as_ref().unwrap(), it.phys.as_ref().unwrap());
+            let other_finite = state_finite(other as usize);
+            contacts.push(Contact {
+                pen: if g.pen.is_nan() { f64::INFINITY } else { g.pen },
+                text: format!(
+                    "#{} ({}{}, penetration {:e} m, kn {:e} N/m, normal force {:e} N)",
+                    other,
+                    b.shape[other as usize].class_name(),
+                    if other_finite { "" } else { " whose state is not finite" },
+                    g.pen,
+                    p.kn,
+                    crate::math::norm(&p.normal_force)
+                ),
+                other,
+                force_finite: fin(&p.normal_force) && fin(&p.shear_force),
+                other_finite,
+                kn_finite: p.kn.is_finite() && p.ks.is_finite(),
+            });
+        }
+        contacts.sort_by(|a, b| b.pen.total_cmp(&a.pen));
+        s += &if contacts.is_empty() {
+            ". It has no contact now".to_string()
+        } else {
+            format!(
+                ". Its contacts now ({}): {}",
+                contacts.len(),
+                contacts
+                    .iter()
+                    .take(3)
+                    .map(|c| c.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        // the cause the facts point to
+        let above = crit.is_some_and(|c| self.dt > c);
+        let dynamic = b.blocked[id] != crate::body::DOF_ALL;
+        let cause = if above {
+            "the time step is above the critical one: lower O.dt (e.g. O.dt = 0.5*PWaveTimeStep())"
+                .to_string()
+        } else if dynamic && !(mass.is_finite() && mass > 0.0) {
+            "the body is dynamic but its mass is not a positive number: check its material density and size".to_string()
+        } else if !fin(&f) {
+            // a contact partner finite now was finite before the step (Newton stops at the first
+            // failing body, and a non-finite state stays non-finite): then the non-finite input of
+            // the contact was this body's own state
+            match contacts.iter().find(|c| !c.force_finite) {
+                Some(c) if !c.kn_finite => format!(
+                    "the contact with #{} has a non-finite stiffness: check both materials (young, poisson) and sizes",
+                    c.other
+                ),
+                Some(c) if !c.other_finite => format!(
+                    "the contact with #{}, whose own state is not finite, gives a non-finite force",
+                    c.other
+                ),
+                Some(c) => format!(
+                    "its own position or velocity was already not finite before step {} (its contact with #{} turned it into a non-finite force): set so by the script (a NaN or inf given to the body) or by an engine",
+                    self.iter, c.other
+                ),
+                None => "no contact of this body has a non-finite force: it comes from a force the script or an engine added (O.forces.addF/setPermF) or from gravity".to_string(),
+            }
+        } else if !fin(&m) {
+            "no contact is the likely source: check the torques the script or an engine added (O.forces.addT/setPermT)".to_string()
+        } else {
+            // force, mass and dt are finite: v + dt*a and x + dt*v can only be non-finite if v or x were
+            format!(
+                "its state was already not finite (or astronomically large) before step {}: set so by the script (a NaN or inf given to the body) or by an engine; the time step is below the critical one",
+                self.iter
+            )
+        };
+        s += &format!(". Likely cause: {}", cause);
+        s
     }
 
     /// `utils.createInteraction(id1, id2)` (`InteractionLoop::createExplicitInteraction`,

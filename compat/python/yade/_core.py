@@ -9,7 +9,7 @@ import operator
 import sys
 
 from . import _ryade
-from ._errors import unsupported
+from ._errors import bridge_json, unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, Vector3i, to_vec3
 from .wrapper import Engine, FrictMat, Material, Serializable, YADE_CLASSES
 
@@ -389,7 +389,7 @@ class BodyContainer(object):
             unsupported('material class %s' % type(mat).__name__)
         if o._sim.in_step():
             unsupported('adding bodies from inside a PyRunner during a step', 'add them between O.run calls')
-        bid = o._sim.add_body(json.dumps(b._json(mat._json())))
+        bid = o._sim.add_body(bridge_json(b._json(mat._json()), 'O.bodies.append: body #%d' % len(self._objs)))
         object.__setattr__(b, '_id', bid)
         b._bind_all(o, bid) if hasattr(b, '_bind_all') else None
         object.__setattr__(b, '_owner', (o, bid))
@@ -495,7 +495,7 @@ class MaterialContainer(object):
             unsupported('material class %s' % type(m).__name__)
         mid = len(self._mats)
         m._values['id'] = mid
-        idx = self._o._sim.add_material(json.dumps(m._json()))
+        idx = self._o._sim.add_material(bridge_json(m._json(), 'O.materials.append(%s)' % type(m).__name__))
         m._bind(self._o, idx)
         self._mats.append(m)
         return mid
@@ -1009,6 +1009,8 @@ class Omega(_ryade.OmegaBase):
             else:
                 reuse.append(old.pop(id(e), None))
             specs.append(d)
+        for k, d in enumerate(specs):
+            bridge_json(d, 'O.engines[%d] (%s)' % (k, d.get('class')))
         self._sim.set_engines(json.dumps(specs), reuse)
         self._external = external
         self._engines = lst

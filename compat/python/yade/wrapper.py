@@ -13,7 +13,7 @@ import os
 import sys
 import time as _time
 
-from ._errors import unsupported
+from ._errors import bridge_json, unsupported
 
 with open(os.path.join(os.path.dirname(__file__), '_yade_classes.json')) as _f:
     YADE_CLASSES = json.load(_f)
@@ -272,7 +272,7 @@ class Engine(Serializable):
         elif k in ('label', 'ompThreads'):
             pass
         elif k in self._live:
-            omega._sim.engine_set(index, k, json.dumps(_jsonable(self._values[k])))
+            omega._sim.engine_set(index, k, bridge_json(_jsonable(self._values[k]), '%s.%s' % (type(self).__name__, k)))
         elif self._is_builtin():
             unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k))
 
