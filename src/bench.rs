@@ -171,15 +171,16 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
 /// Time the scene in Debian YADE (one thread) through `yade_ref/bench/run_scene.py`.
 pub fn run_yade(root: &Path, scene: &Path, steps: u64, warmup: u64) -> Result<Sample> {
     let script = root.join("yade_ref/bench/run_scene.py");
-    let out = Command::new("yade")
-        .env("OMP_NUM_THREADS", "1")
-        .args(["-n", "-x"])
-        .arg(&script)
-        .arg(scene)
-        .arg(steps.to_string())
-        .arg(warmup.to_string())
-        .output()
-        .context("starting yade (apt-get install -y --no-install-recommends yade)")?;
+    let out = crate::harness::proc::output(
+        Command::new("yade")
+            .env("OMP_NUM_THREADS", "1")
+            .args(["-n", "-x"])
+            .arg(&script)
+            .arg(scene)
+            .arg(steps.to_string())
+            .arg(warmup.to_string()),
+    )
+    .context("starting yade (apt-get install -y --no-install-recommends yade)")?;
     let text = String::from_utf8_lossy(&out.stdout);
     let line = text
         .lines()
@@ -350,13 +351,12 @@ fn run_script_in(
     if let Some(t) = timings {
         cmd.arg(root.join(TIMED_RUN)).arg(t);
     }
-    let out = cmd
-        .current_dir(root)
+    cmd.current_dir(root)
         .arg(root.join(&sc.script))
         .args(&sc.args)
         .arg("--out")
-        .arg(dir)
-        .output()
+        .arg(dir);
+    let out = crate::harness::proc::output(&mut cmd)
         .with_context(|| format!("starting {} for {}", v.name(), sc.label))?;
     if !out.status.success() {
         bail!(

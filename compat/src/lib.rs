@@ -26,6 +26,9 @@ fn vec(t: V3) -> Vec3 {
     Vec3::new(t.0, t.1, t.2)
 }
 
+/// Steps run between two checks for a Python signal (Ctrl-C, SIGTERM) in `run_steps`.
+const SIGNAL_CHECK_STEPS: u64 = 256;
+
 fn err<E: std::fmt::Display>(e: E) -> PyErr {
     PyRuntimeError::new_err(format!("{:#}", e))
 }
@@ -1479,16 +1482,28 @@ impl Sim {
         // an engine may end the run after a step (`RyadePistonController`: `O.stopAtIter = O.iter + 1`
         // in a PyRunner); a request left from an earlier O.step() does not count
         scene.stop_requested = false;
-        py.allow_threads(|| {
-            for _ in 0..n {
-                scene.step().map_err(|e| e.to_string())?;
-                if std::mem::take(&mut scene.stop_requested) {
-                    break;
-                }
+        // in chunks, with Python's signal check between them: Ctrl-C and SIGTERM stop a long run
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(SIGNAL_CHECK_STEPS);
+            left -= k;
+            let stopped = py
+                .allow_threads(|| {
+                    for _ in 0..k {
+                        scene.step().map_err(|e| e.to_string())?;
+                        if std::mem::take(&mut scene.stop_requested) {
+                            return Ok(true);
+                        }
+                    }
+                    Ok::<bool, String>(false)
+                })
+                .map_err(PyRuntimeError::new_err)?;
+            if stopped {
+                break;
             }
-            Ok::<(), String>(())
-        })
-        .map_err(PyRuntimeError::new_err)
+            py.check_signals()?;
+        }
+        Ok(())
     }
 
     /// Run `n` whole steps on the fast path (`ryade::fast`, `O.ryadeFastPath = True`): the state goes
@@ -1505,13 +1520,26 @@ impl Sim {
                 threads: threads.max(1),
                 ..Default::default()
             };
-            let mut f = ryade::fast::FastSim::from_scene(scene, opt)
-                .map_err(|e| format!("O.ryadeFastPath: {}", e))?;
-            f.run(n);
-            f.write_back(scene);
-            Ok::<(), String>(())
+            ryade::fast::FastSim::from_scene(scene, opt)
+                .map_err(|e| format!("O.ryadeFastPath: {}", e))
         })
         .map_err(PyRuntimeError::new_err)
+        .and_then(|mut f| {
+            // in chunks, with Python's signal check between them (the state goes back either way)
+            let mut left = n;
+            let mut r = Ok(());
+            while left > 0 {
+                let k = left.min(SIGNAL_CHECK_STEPS);
+                left -= k;
+                py.allow_threads(|| f.run(k));
+                r = py.check_signals();
+                if r.is_err() {
+                    break;
+                }
+            }
+            py.allow_threads(|| f.write_back(scene));
+            r
+        })
     }
 
     // ---- forces ----

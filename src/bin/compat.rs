@@ -44,7 +44,7 @@ enum Cmd {
         /// rXX: number of seeds (YADE's band needs >= 2)
         #[arg(long, default_value_t = 3)]
         seeds: u32,
-        /// rXX: first seed
+        /// rXX: first seed (seeds FIRST..FIRST+SEEDS-1)
         #[arg(long, default_value_t = 1)]
         first_seed: u32,
         /// rXX: load cycles (default: the size's, 5 for tiny)
@@ -82,8 +82,10 @@ enum Cmd {
         /// Cases (N,G,F or all)
         #[arg(long, default_value = "all")]
         cases: String,
+        /// Seeds per ratio and case (specimens; each seed rebuilds the same specimen in both engines)
         #[arg(long, default_value_t = 1)]
         seeds: u32,
+        /// First seed (the runs use seeds FIRST..FIRST+SEEDS-1)
         #[arg(long, default_value_t = 1)]
         first_seed: u32,
         /// Load cycles (default: the size's)
@@ -219,7 +221,8 @@ enum Cmd {
         /// Diagnose every case of a blind dataset DIR (cases/ and, read only after diagnosing, truth/)
         #[arg(long)]
         validate: Option<PathBuf>,
-        /// Build the library of simulated runs (baseline seeds + each effect at its strengths)
+        /// Build (or complete) the library of simulated runs in --library (baseline seeds + each
+        /// effect at its strengths); without it a missing library is an error
         #[arg(long)]
         make_library: bool,
         /// Make blind datasets with Debian YADE in DIR (hidden effects, truth stored apart)
@@ -229,10 +232,13 @@ enum Cmd {
         /// detectability floor of the blind-dataset design
         #[arg(long)]
         detectability: bool,
+        /// The study scenario of the library runs (r03 | r05 | r07)
         #[arg(long, default_value = "r07")]
         scenario: String,
+        /// The study case of the library runs (N | G | F)
         #[arg(long, default_value = "G")]
         case: String,
+        /// Specimen size of the library runs (tiny | small | medium | full)
         #[arg(long, default_value = "medium")]
         size: String,
         /// Load cycles of every library / dataset run
@@ -241,11 +247,14 @@ enum Cmd {
         /// Cycles 1..K are fitted, the later ones held out
         #[arg(long, default_value_t = 4)]
         fit_cycles: usize,
-        /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>)
+        /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>); it must hold a
+        /// library (library.json) unless --make-library builds it there
         #[arg(long)]
         library: Option<PathBuf>,
+        /// Library building: baseline runs (seeds 1..N) of today's model
         #[arg(long, default_value_t = 12)]
         baseline_seeds: u32,
+        /// Library building: runs (seeds 1..N) of each effect at each strength
         #[arg(long, default_value_t = 4)]
         effect_seeds: u32,
         /// Blind datasets to make
@@ -260,6 +269,8 @@ enum Cmd {
         /// Report directory for --observed
         #[arg(long, default_value = "gap_out")]
         out: PathBuf,
+        /// Simulation runs at the same time while building a library or blind datasets (default:
+        /// number of cores)
         #[arg(short = 'j', long)]
         jobs: Option<usize>,
     },
@@ -277,7 +288,13 @@ enum Cmd {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli) {
+    // SIGINT/SIGTERM/SIGHUP stop every process this command starts (`compat run` and `compat batch`
+    // become Python, which handles them itself)
+    ryade::harness::proc::install();
+    let r = run(cli);
+    // stopped by a signal: the watcher thread reports what was kept and exits
+    ryade::harness::proc::wait_if_stopping();
+    match r {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {:#}", e);
@@ -305,6 +322,67 @@ fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<E
         "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
         py
     )))
+}
+
+/// A bench scene: the path if it exists, else a scene of bench/scenes (the checkout's or the built-in
+/// copy) named by its file name or stem (`dense8000`, `r05_G_medium.study.json`,
+/// `bench/scenes/dense8000.scene.json`).
+fn bench_scene(root: &std::path::Path, p: &std::path::Path) -> Result<PathBuf> {
+    if p.is_file() {
+        return Ok(p.to_path_buf());
+    }
+    let name = p
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let dir = root.join("bench/scenes");
+    for cand in [
+        name.clone(),
+        format!("{}.scene.json", name),
+        format!("{}.study.json", name),
+    ] {
+        if dir.join(&cand).is_file() {
+            return Ok(dir.join(cand));
+        }
+    }
+    let known: Vec<String> = std::fs::read_dir(&dir)
+        .map(|d| {
+            d.filter_map(|e| e.ok()?.file_name().into_string().ok())
+                .filter(|n| n.ends_with(".scene.json") || n.ends_with(".study.json"))
+                .collect()
+        })
+        .unwrap_or_default();
+    bail!(
+        "{}: no such scene file, nor a built-in scene of that name (built in: {})",
+        p.display(),
+        known.join(", ")
+    )
+}
+
+/// `--golden DIR`, else golden/<target> of the working directory, else of the checkout
+/// (`checkout_root`); an error that says how to point the command at one otherwise.
+fn golden_dir(given: Option<PathBuf>, target: &str) -> Result<PathBuf> {
+    if let Some(d) = given {
+        if !d.is_dir() {
+            bail!("--golden {}: no such folder", d.display());
+        }
+        return Ok(d);
+    }
+    let here = PathBuf::from("golden").join(target);
+    if here.is_dir() {
+        return Ok(here);
+    }
+    match ryade::harness::env::checkout_root() {
+        Some(r) if r.join("golden").join(target).is_dir() => Ok(r.join("golden").join(target)),
+        _ => bail!(
+            "golden/{} not found here ({}): {}",
+            target,
+            std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_default(),
+            ryade::harness::env::GOLDEN_HINT
+        ),
+    }
 }
 
 fn cores() -> usize {
@@ -435,7 +513,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ryade_extra: ryade_arg,
                     quiet: false,
                 };
-                let rep = study_run::diff(&study_run::repo_root(), &o)?;
+                let out = o.out.clone();
+                ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));
+                let rep = study_run::diff(&study_run::repo_root()?, &o)?;
                 print!("{}", study_run::format_diff(&rep));
                 println!(
                     "outputs: {}/diff_{}_{}.{{csv,json,png}}",
@@ -449,7 +529,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ExitCode::from(1)
                 });
             }
-            let dir = golden.unwrap_or_else(|| PathBuf::from("golden").join(&target));
+            if !matches!(target.as_str(), "micro" | "micro_grid" | "meso") {
+                bail!(
+                    "unknown diff target '{}': available targets are: micro, micro_grid, meso, r03, r05, r07",
+                    target
+                );
+            }
+            let dir = golden_dir(golden, &target)?;
             if target == "meso" {
                 let rep = ryade::harness::meso::diff_meso(&dir)?;
                 print!("{}", ryade::harness::meso::format_report(&rep));
@@ -462,12 +548,6 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 } else {
                     ExitCode::from(1)
                 });
-            }
-            if target != "micro" && target != "micro_grid" {
-                bail!(
-                    "unknown diff target '{}': available targets are: micro, micro_grid, meso, r03, r05, r07",
-                    target
-                );
             }
             let mut reps = Vec::new();
             for p in micro::scene_files(&dir)? {
@@ -543,8 +623,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if !matches!(path.as_str(), "yade" | "fast" | "all") {
                 bail!("--path: yade, fast or all, not '{}'", path);
             }
-            let root = ryade::harness::env::repo_root();
+            let root = ryade::harness::env::repo_root()?;
             for sc in &scenes {
+                let sc = &bench_scene(&root, sc)?;
                 let r = ryade::bench::bench(&root, sc, steps, warmup, reps, &variants)?;
                 print!("{}", ryade::bench::format_report(&r));
                 if let Some(l) = &log {
@@ -597,7 +678,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 extra,
                 quiet: false,
             };
-            let r = study_run::study_sweep(&study_run::repo_root(), &o)?;
+            let out = o.out.clone();
+            ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));
+            let r = study_run::study_sweep(&study_run::repo_root()?, &o)?;
             let failed: Vec<String> = r
                 .runs
                 .iter()
@@ -646,7 +729,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 bail!("--case takes one case (N, G or F)");
             }
             study::check_size(&size)?;
-            let root = study_run::repo_root();
+            let root = study_run::repo_root()?;
             let jobs = jobs.unwrap_or_else(cores);
             let sc = gap_run::Scenario {
                 ratio,
@@ -658,10 +741,26 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 PathBuf::from("gap_lib")
                     .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
             });
-            if make_library || !lib_dir.join("library.json").is_file() {
+            if make_library {
                 let b: Vec<u32> = (1..=baseline_seeds).collect();
                 let e: Vec<u32> = (1..=effect_seeds).collect();
+                let (dir, cmd) = (lib_dir.clone(), std::env::args().collect::<Vec<_>>().join(" "));
+                ryade::harness::proc::set_kept(move || {
+                    format!(
+                        "the library runs finished so far are kept in {}; `{}` completes it",
+                        dir.display(),
+                        cmd
+                    )
+                });
                 gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
+            } else if !lib_dir.join("library.json").is_file() {
+                bail!(
+                    "no gap library at {} ({} missing): give --library with the folder of an existing one \
+                     (a checkout has results/gap/library_r07_G_medium_c6), or build it there with --make-library \
+                     (r07 G medium, 6 cycles: about 11 min on 2 cores)",
+                    lib_dir.display(),
+                    lib_dir.join("library.json").display()
+                );
             }
             let (_, lib) = gap_run::load_library(&lib_dir)?;
             if detectability {

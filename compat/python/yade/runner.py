@@ -97,8 +97,21 @@ def run(script, args, mode='check'):
     _namespace(mod)
     with open(path, 'rb') as f:
         code = compile(f.read(), path, 'exec')
+    import signal
+    stop = ['SIGINT', 2]
+
+    def on_stop(signum, frame):
+        stop[:] = [signal.Signals(signum).name, signum]
+        raise KeyboardInterrupt
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, on_stop)
     try:
         exec(code, mod.__dict__)
+    except KeyboardInterrupt:
+        import yade
+        sys.stderr.write('compat run: stopped by %s at iteration %d; what %s wrote so far is kept\n'
+                         % (stop[0], yade.O.iter, script))
+        return 128 + stop[1]
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except _errors.UnsupportedError as e:
