@@ -625,6 +625,35 @@ fn format_profiles(ps: &[Profile]) -> String {
 }
 
 /// The report as text lines.
+/// Fewest bodies of a scene file whose timing says something about the physics.
+pub const MIN_TIMED_BODIES: usize = 1000;
+/// Shortest timed run (s) whose rate is not dominated by the timer and start-up.
+pub const MIN_TIMED_SECONDS: f64 = 0.2;
+
+/// Why the ratios of a report say little (a scene too small or too short to time), if they do.
+pub fn too_small_warning(r: &BenchReport) -> Option<String> {
+    let bodies = r.samples.iter().map(|s| s.bodies).max().unwrap_or(0);
+    let shortest = r
+        .samples
+        .iter()
+        .map(|s| s.seconds)
+        .fold(f64::INFINITY, f64::min);
+    if r.script.is_none() && bodies < MIN_TIMED_BODIES {
+        Some(format!(
+            "{} bodies: too small to time; the ratios measure per-step overhead (YADE's engine dispatch and \
+             Python), not the contact physics. Time a scene of {}+ bodies (e.g. bench/scenes/dense8000.scene.json)",
+            bodies, MIN_TIMED_BODIES
+        ))
+    } else if shortest < MIN_TIMED_SECONDS {
+        Some(format!(
+            "the shortest timed run took {:.3} s (< {} s): too short to time reliably; give more --steps",
+            shortest, MIN_TIMED_SECONDS
+        ))
+    } else {
+        None
+    }
+}
+
 pub fn format_report(r: &BenchReport) -> String {
     let mut out = String::new();
     let (b, c) = r
@@ -642,6 +671,9 @@ pub fn format_report(r: &BenchReport) -> String {
             r.scene, b, c, r.steps, r.reps
         ),
     };
+    if let Some(w) = too_small_warning(r) {
+        out += &format!("  WARNING: {}\n", w);
+    }
     let p = |s: &Stats| {
         format!(
             "min {:.3e} median {:.3e} max {:.3e}",
@@ -713,6 +745,41 @@ pub fn format_report(r: &BenchReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn report(bodies: usize, seconds: f64) -> BenchReport {
+        BenchReport {
+            scene: "s".into(),
+            script: None,
+            histories_identical: None,
+            steps: 100,
+            reps: 1,
+            samples: vec![Sample {
+                engine: "yade".into(),
+                seconds,
+                particle_steps_per_s: 1.0,
+                contact_updates_per_s: 0.0,
+                bodies,
+                contacts: 0,
+                phases: None,
+                history: None,
+            }],
+            variants: vec![],
+            ratios: vec![],
+            profiles: vec![],
+            load_before: String::new(),
+            load_after: String::new(),
+        }
+    }
+
+    /// Issue 18: a 2-body scene gave a 342x ratio without a word; now the report warns.
+    #[test]
+    fn small_or_short_scenes_are_flagged() {
+        let f = format_report(&report(2, 1.0));
+        assert!(f.contains("WARNING: 2 bodies: too small to time"), "{}", f);
+        let f = format_report(&report(8000, 0.05));
+        assert!(f.contains("WARNING: the shortest timed run took 0.050 s"), "{}", f);
+        assert!(!format_report(&report(8000, 3.0)).contains("WARNING"));
+    }
 
     /// The committed script scenes parse, and every file they name exists in the repository.
     #[test]

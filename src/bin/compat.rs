@@ -324,6 +324,14 @@ fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<E
     )))
 }
 
+/// `--cycles 0` would run no load cycle and write empty histories and figures.
+fn check_cycles(cycles: Option<u32>) -> Result<()> {
+    if cycles == Some(0) {
+        bail!("--cycles must be at least 1 (0 load cycles give empty histories and figures)");
+    }
+    Ok(())
+}
+
 /// A bench scene: the path if it exists, else a scene of bench/scenes (the checkout's or the built-in
 /// copy) named by its file name or stem (`dense8000`, `r05_G_medium.study.json`,
 /// `bench/scenes/dense8000.scene.json`).
@@ -494,6 +502,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             preset,
         } => {
             if target.starts_with('r') && target.len() == 3 {
+                check_cycles(cycles)?;
                 use ryade::harness::{study, study_run};
                 let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &[])?;
                 let o = study_run::DiffOptions {
@@ -665,6 +674,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if seeds == 0 {
                 bail!("--seeds must be at least 1");
             }
+            check_cycles(cycles)?;
             let o = study_run::StudyOptions {
                 out: out.unwrap_or_else(|| PathBuf::from("study_out").join(&size)),
                 size,
@@ -729,6 +739,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 bail!("--case takes one case (N, G or F)");
             }
             study::check_size(&size)?;
+            check_cycles(Some(cycles))?;
             let root = study_run::repo_root()?;
             let jobs = jobs.unwrap_or_else(cores);
             let sc = gap_run::Scenario {
