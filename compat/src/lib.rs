@@ -1348,6 +1348,14 @@ impl Sim {
                 serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
             }
             (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
+            (Engine::Newton(n), "prevVelGrad") => {
+                let m = &n.prev_vel_grad;
+                serde_json::json!([
+                    [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+                    [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+                    [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
+                ])
+            }
             (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
             (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
             (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),

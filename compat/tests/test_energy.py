@@ -51,3 +51,36 @@ print(O.energy.items(), O.energy.total())
     assert p.stdout.splitlines() == ["[('a', 2.0), ('b', 1.0)] ['a', 'b'] 3.0",
                                      "KeyError \"Unknown energy name 'zz'.\"",
                                      "[] 0.0"]
+
+
+# printed by `yade -n -x data/scripts/kinetic_clump.py` (YADE 2023.02a): the clump counts once (not its
+# members) and its rotation as 0.5 w.(T I T^T) w
+KINETIC_CLUMP_YADE = ['K 150 1.0615659510297015', 'K 300 4.2462638041188105', 'K 450 9.554093559267328',
+                      'K 600 7.884438663097596', 'K 750 4.270058363548972', 'K 900 3.75094939298148']
+
+
+def test_kinetic_energy_of_a_clump_as_yade():
+    from _scripts import tagged_lines
+    assert tagged_lines('ryade', 'kinetic_clump.py', tags='K') == KINETIC_CLUMP_YADE
+
+
+def test_newton_prev_vel_grad_is_the_integrators():
+    """Audit (issue 18): NewtonIntegrator.prevVelGrad used to be a constant zero; YADE 2023.02a prints the
+    cell's velGrad of the last step (the second line)."""
+    code = r'''
+O.periodic = True
+O.cell.setBox(1, 1, 1)
+O.bodies.append(sphere((0.5, 0.5, 0.5), 0.1))
+newton = NewtonIntegrator()
+O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]), newton]
+O.dt = 1e-4
+print(newton.prevVelGrad)
+O.cell.velGrad = Matrix3(0.1, 0, 0, 0, -0.2, 0, 0, 0, 0.3)
+O.run(3, True)
+print(newton.prevVelGrad)
+'''
+    p = subprocess.run([sys.executable, '-c', 'from yade import *\nfrom yade.utils import *\n' + code], capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.splitlines() == ['Matrix3(0,0,0, 0,0,0, 0,0,0)',
+                                     'Matrix3(0.1000000000000000056,0,0, 0,-0.2000000000000000111,0, 0,0,0.2999999999999999889)']

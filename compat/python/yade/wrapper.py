@@ -84,6 +84,8 @@ class Serializable(object):
         name = type(self).__name__
         if k in _yade_attrs(name) or any(k in _yade_attrs(b) for b in YADE_CLASSES.get(name, {}).get('bases', ())):
             unsupported('the attribute %s.%s' % (name, k))
+        if k in YADE_CLASSES.get(name, {}).get('methods', ()):
+            unsupported('the method %s.%s' % (name, k))
         raise AttributeError("'%s' object has no attribute '%s'" % (name, k))
 
     def _convert(self, k, v):
@@ -457,8 +459,14 @@ class NewtonIntegrator(GlobalEngine):
 
     @property
     def prevVelGrad(self):
+        """The cell's velGrad of the previous step (zero until a periodic step ran), read from the
+        integrator in O.engines; a copy, as YADE returns."""
         from .minieigen import Matrix3
-        return Matrix3.Zero
+        if self._owner is None:
+            return Matrix3.Zero
+        omega, index = self._owner
+        m = json.loads(omega._sim.engine_get(index, 'prevVelGrad'))
+        return Matrix3(*[x for row in m for x in row])
 
     def _read(self, k):
         if k == 'gravity':
