@@ -777,7 +777,11 @@ mod tests {
         let f = format_report(&report(2, 1.0));
         assert!(f.contains("WARNING: 2 bodies: too small to time"), "{}", f);
         let f = format_report(&report(8000, 0.05));
-        assert!(f.contains("WARNING: the shortest timed run took 0.050 s"), "{}", f);
+        assert!(
+            f.contains("WARNING: the shortest timed run took 0.050 s"),
+            "{}",
+            f
+        );
         assert!(!format_report(&report(8000, 3.0)).contains("WARNING"));
     }
 

@@ -442,7 +442,8 @@ impl Runner {
         );
         writeln!(self.log, "$ {}", shown)?;
         cmd.stdout(Stdio::piped()).stderr(Stdio::piped());
-        let mut tracked = crate::harness::proc::spawn(&mut cmd).with_context(|| match self.engine {
+        let mut tracked =
+            crate::harness::proc::spawn(&mut cmd).with_context(|| match self.engine {
                 Engine::Yade => format!(
                     "starting YADE for `{}` (is `yade` installed? set YADE to its command)",
                     shown

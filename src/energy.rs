@@ -84,7 +84,8 @@ impl EnergyTracker {
         let k = *id as usize;
         if k >= self.slots.len() {
             // only reachable after `clear()`; YADE writes past its size there too
-            self.slots.resize(k.div_ceil(PER_LINE).max(1) * PER_LINE, 0.0);
+            self.slots
+                .resize(k.div_ceil(PER_LINE).max(1) * PER_LINE, 0.0);
         }
         self.slots[k] += val;
     }

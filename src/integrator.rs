@@ -802,7 +802,8 @@ mod tests {
             damping: 0.0,
             ..Default::default()
         };
-        n.step(&mut bodies, &mut forces, None, 0.1, None, None).unwrap();
+        n.step(&mut bodies, &mut forces, None, 0.1, None, None)
+            .unwrap();
         let half = 0.5 * (2.0f64 * 0.1);
         for id in 0..3 {
             let q = bodies.ori[id];
@@ -867,7 +868,14 @@ mod tests {
             let mut c = cell.clone();
             newton
                 .clone()
-                .step(&mut all, &mut f_all, periodic.then_some(&mut c), 1e-3, None, None)
+                .step(
+                    &mut all,
+                    &mut f_all,
+                    periodic.then_some(&mut c),
+                    1e-3,
+                    None,
+                    None,
+                )
                 .unwrap();
             let (reference, f_ref) = varied(10);
             for id in 0..10 {
@@ -889,7 +897,14 @@ mod tests {
                 let mut c = cell.clone();
                 newton
                     .clone()
-                    .step(&mut one, &mut f_one, periodic.then_some(&mut c), 1e-3, None, None)
+                    .step(
+                        &mut one,
+                        &mut f_one,
+                        periodic.then_some(&mut c),
+                        1e-3,
+                        None,
+                        None,
+                    )
                     .unwrap();
                 let same = |a: &Vec3, b: &Vec3| (0..3).all(|k| a[k].to_bits() == b[k].to_bits());
                 assert!(

@@ -8,12 +8,12 @@ use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderCtx};
 use crate::dispatch::{self, Entry};
+use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
 use crate::geom::{self, GeomClass, GeomCtx, Pair};
 use crate::idle_skip::IdleSkip;
 use crate::integrator::{Newton, NewtonError};
 use crate::interaction::{GeomFunctor, Interactions};
-use crate::energy::{EnergyTracker, IdCache};
 use crate::law::{self, LawBodies, LawEnergy, LawFunctor};
 use crate::material::{FrictMat, MatClass};
 use crate::math::Vec3;
@@ -272,7 +272,11 @@ impl Engine {
 pub enum StepError {
     /// A body's motion came out non-finite; `report` says what was found (see `non_finite_report`).
     #[error("step {iter}: {report}")]
-    NonFinite { iter: i64, id: usize, report: String },
+    NonFinite {
+        iter: i64,
+        id: usize,
+        report: String,
+    },
     #[error("step {iter}: {msg}")]
     Engine { iter: i64, msg: String },
 }
@@ -651,7 +655,11 @@ impl Scene {
             if !it.is_real() || (it.id1 as usize != id && it.id2 as usize != id) {
                 continue;
             }
-            let other = if it.id1 as usize == id { it.id2 } else { it.id1 };
+            let other = if it.id1 as usize == id {
+                it.id2
+            } else {
+                it.id1
+            };
             let (g, p) = (it.geom.as_ref().unwrap(), it.phys.as_ref().unwrap());
             let other_finite = state_finite(other as usize);
             contacts.push(Contact {
@@ -660,7 +668,11 @@ impl Scene {
                     "#{} ({}{}, penetration {:e} m, kn {:e} N/m, normal force {:e} N)",
                     other,
                     b.shape[other as usize].class_name(),
-                    if other_finite { "" } else { " whose state is not finite" },
+                    if other_finite {
+                        ""
+                    } else {
+                        " whose state is not finite"
+                    },
                     g.pen,
                     p.kn,
                     crate::math::norm(&p.normal_force)

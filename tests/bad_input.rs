@@ -104,7 +104,11 @@ fn non_finite_report_says_what_was_found_not_always_the_time_step() {
     let e = s.step().unwrap_err().to_string();
     let crit = utils::pwave_time_step(&s).unwrap();
     assert!(e.contains("body #1 (Sphere of radius 1e-2 m"), "{}", e);
-    assert!(e.contains("its force (NaN, NaN, NaN) N is not finite"), "{}", e);
+    assert!(
+        e.contains("its force (NaN, NaN, NaN) N is not finite"),
+        "{}",
+        e
+    );
     assert!(
         e.contains(&format!("{:.3} x the critical time step", 1e-5 / crit)),
         "{}",

@@ -755,7 +755,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if make_library {
                 let b: Vec<u32> = (1..=baseline_seeds).collect();
                 let e: Vec<u32> = (1..=effect_seeds).collect();
-                let (dir, cmd) = (lib_dir.clone(), std::env::args().collect::<Vec<_>>().join(" "));
+                let (dir, cmd) = (
+                    lib_dir.clone(),
+                    std::env::args().collect::<Vec<_>>().join(" "),
+                );
                 ryade::harness::proc::set_kept(move || {
                     format!(
                         "the library runs finished so far are kept in {}; `{}` completes it",

@@ -35,7 +35,11 @@ pub const FILES: &[(&str, &[u8])] = embed!(
 const COMPLETE: &str = ".complete";
 
 fn cache_base() -> PathBuf {
-    let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
+    let env = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    };
     env("RYADE_CACHE")
         .or_else(|| env("XDG_CACHE_HOME").map(|p| p.join("ryade")))
         .or_else(|| env("HOME").map(|p| p.join(".cache").join("ryade")))
@@ -50,7 +54,10 @@ fn digest() -> String {
         h.update((c.len() as u64).to_le_bytes());
         h.update(c);
     }
-    h.finalize()[..8].iter().map(|b| format!("{:02x}", b)).collect()
+    h.finalize()[..8]
+        .iter()
+        .map(|b| format!("{:02x}", b))
+        .collect()
 }
 
 /// The folder holding the embedded files (written on first use).
@@ -66,7 +73,8 @@ fn root_in(base: &Path) -> Result<PathBuf> {
     std::fs::create_dir_all(base).with_context(|| format!("creating {}", base.display()))?;
     let tmp = base.join(format!(".assets-{}-{}", digest(), std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
-    write_all(&tmp).with_context(|| format!("writing the built-in scripts to {}", tmp.display()))?;
+    write_all(&tmp)
+        .with_context(|| format!("writing the built-in scripts to {}", tmp.display()))?;
     if std::fs::rename(&tmp, &dir).is_err() {
         // another compat finished first (or an incomplete folder is in the way)
         let _ = std::fs::remove_dir_all(&tmp);
@@ -98,9 +106,15 @@ mod tests {
         let tmp = std::env::temp_dir().join(format!("ryade-assets-test-{}", std::process::id()));
         let d = root_in(&tmp).unwrap();
         assert!(d.starts_with(&tmp));
-        let t0 = std::fs::metadata(d.join(FILES[0].0)).unwrap().modified().unwrap();
+        let t0 = std::fs::metadata(d.join(FILES[0].0))
+            .unwrap()
+            .modified()
+            .unwrap();
         assert_eq!(root_in(&tmp).unwrap(), d);
-        let t1 = std::fs::metadata(d.join(FILES[0].0)).unwrap().modified().unwrap();
+        let t1 = std::fs::metadata(d.join(FILES[0].0))
+            .unwrap()
+            .modified()
+            .unwrap();
         assert_eq!(t0, t1, "the second call reuses the folder");
         for (p, _) in FILES {
             let want = std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join(p)).unwrap();

@@ -613,7 +613,12 @@ fn write_diff_outputs(rep: &DiffReport, out: &Path) -> Result<()> {
 /// Figures are a convenience: a missing matplotlib is reported, never fatal.
 pub fn figures(args: &[&str]) -> bool {
     let py = super::env::python();
-    match super::proc::status(Command::new(&py).arg("-m").arg("yade._ryade_figures").args(args)) {
+    match super::proc::status(
+        Command::new(&py)
+            .arg("-m")
+            .arg("yade._ryade_figures")
+            .args(args),
+    ) {
         Ok(s) if s.success() => true,
         Ok(s) => {
             eprintln!(
@@ -1133,7 +1138,8 @@ mod tests {
 
     #[test]
     fn presets_listed_here_exist_in_study_py() {
-        let py = std::fs::read_to_string(repo_root().unwrap().join("yade_ref/study/study.py")).unwrap();
+        let py =
+            std::fs::read_to_string(repo_root().unwrap().join("yade_ref/study/study.py")).unwrap();
         for (name, cycles) in PRESETS {
             let at = py
                 .find(&format!("'{}': {{", name))
