@@ -160,12 +160,21 @@ mod tests {
                 ("nonviscDamp".to_string(), 1.5)
             ]
         );
-        // (1.5 + 2) + 1e-17, not (1e-17 + 2) + 1.5
-        assert_eq!(e.total(), (1.5 + 2.0) + 1e-17);
         e.reset_resettables();
         assert_eq!(e.get_item("kinetic"), Some(0.0));
         assert_eq!(e.get_item("nonviscDamp"), Some(1.5));
         assert_eq!(e.get_item("nope"), None);
+    }
+
+    #[test]
+    fn total_sums_in_creation_order_not_name_order() {
+        let mut e = EnergyTracker::default();
+        let mut c = IdCache::default();
+        e.add(1e16, "z", &mut c, false);
+        e.add(-1e16, "a", &mut c, false);
+        e.add(1.0, "m", &mut c, false);
+        // creation order: (1e16 - 1e16) + 1 = 1; name order would give (-1e16 + 1) + 1e16 = 0
+        assert_eq!(e.total(), 1.0);
     }
 
     #[test]

@@ -271,8 +271,8 @@ class Checker(ast.NodeVisitor):
                     continue
                 self._check_member(n, 'yade.' + sub, a.name)
 
-    def _check_member(self, node, dotted, name):
-        """`name` of YADE's module `dotted` ('yade' or 'yade.X')."""
+    def _check_member(self, node, dotted, name, called=False):
+        """`name` of YADE's module `dotted` ('yade' or 'yade.X'); a class stub counts when `called`."""
         m = self._module(dotted)
         if m is None:
             return
@@ -287,9 +287,7 @@ class Checker(ast.NodeVisitor):
             if name in table:
                 self.add(node, '%s.%s' % (dotted, name))
             return
-        r = _stub_reason(obj)
-        if r and not isinstance(obj, type):
-            self.add(node, r)
+        self._report_obj(node, obj, called)
 
     # ---- names and attribute chains
     def _chain(self, node):
@@ -350,20 +348,7 @@ class Checker(ast.NodeVisitor):
                 return
         if len(rest) != 1:
             return
-        self._check_member(node, dotted, rest[0]) if not called else self._check_member_called(node, dotted, rest[0])
-
-    def _check_member_called(self, node, dotted, name):
-        m = self._module(dotted)
-        if m is None:
-            return
-        try:
-            obj = inspect.getattr_static(m, name)
-        except AttributeError:
-            self._check_member(node, dotted, name)
-            return
-        r = _stub_reason(obj)
-        if r:
-            self.add(node, r)
+        self._check_member(node, dotted, rest[0], called)
 
     _OMEGA_TABLES = {(): 'O', ('bodies',): 'O.bodies', ('interactions',): 'O.interactions', ('forces',): 'O.forces',
                      ('materials',): 'O.materials', ('cell',): 'O.cell', ('energy',): 'O.energy', ('tags',): 'O.tags'}
