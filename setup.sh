@@ -20,10 +20,7 @@ echo "== building and installing the compat command into ~/.cargo/bin (release b
 cargo install --path . --locked
 echo "== building and installing the yade Python package (compat layer) into $(command -v python3)"
 python3 -m maturin --version >/dev/null 2>&1 || python3 -m pip install maturin
-# maturin shows cargo's progress; the wheel then goes in with pip
-rm -rf target/wheels
-python3 -m maturin build --release --manifest-path compat/Cargo.toml --out target/wheels
-python3 -m pip install --force-reinstall --no-deps target/wheels/*.whl
-python3 -m pip install target/wheels/*.whl   # its dependencies (matplotlib) if missing
+# -v: pip shows maturin's cargo build as it goes
+python3 -m pip install -v --no-build-isolation ./compat
 command -v compat >/dev/null 2>&1 || echo "note: add ~/.cargo/bin to PATH to call 'compat' directly"
 echo "== done: try 'compat study --size tiny' (any folder)"
