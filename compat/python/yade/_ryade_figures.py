@@ -163,7 +163,7 @@ def study(hist_csv, sdr_csv, outdir):
         ax.text(0.5, 0.5, info['note'].replace(': ', ':\n', 1), transform=ax.transAxes, ha='center', va='center',
                 fontsize=9, wrap=True)
     else:
-        info['note'] = ('%d of %d points masked: undefined where F and N rut alike (|F-N| < %g %% of N) or off '
+        info['note'] = ('%d of %d points masked: undefined where F and N rut alike (|F-N| < %g %% of N)\nor off '
                         '[%g, %g]; every value in sdr.csv' % (info['masked'], info['points'], tol * 100, lo, hi))
         ax.text(0.01, 0.01, info['note'], transform=ax.transAxes, fontsize=6.5, color='0.3')
     last = max([int(r['cycle']) for r in sd] or [0])
