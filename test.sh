@@ -42,6 +42,9 @@ if ./target/release/compat diff r05 --case N --size tiny --seeds 3 --yade-from g
   echo "compat diff r05 with --peak-kpa=400 in ryade passed: the band rule cannot fail" >&2; exit 1
 fi
 echo "   failed as it must: $(grep -c OUTSIDE "${TMPDIR:-/tmp}/ryade_diff_neg.log") cycle values outside YADE's band"
+echo "== preset paper200: ryade on YADE's medium r05 specimens (the first 20 of YADE's 200 cycles) inside YADE's band"
+./target/release/compat diff r05 --preset paper200 --size medium --cycles 20 --yade-from golden/study_paper200 \
+    --out "${TMPDIR:-/tmp}/ryade_diff_p200"
 echo "== unmodified YADE scripts under compat run reproduce YADE's files"
 yade_ref/check_compat.sh
 if command -v yade >/dev/null 2>&1; then

@@ -248,6 +248,10 @@ pub struct ScriptScene {
     pub args: Vec<String>,
     /// The timed phase in summary.json's `timings`.
     pub phase: String,
+    /// Arguments for ryade's runs only, after `args` (the study's `--controller native`: ryade runs the
+    /// script's PI law in its Rust engine while YADE runs the script's PyRunner; same bytes)
+    #[serde(default)]
+    pub ryade_args: Vec<String>,
 }
 
 /// Is this a script scene (`*.study.json`) rather than a scene file?
@@ -354,6 +358,11 @@ fn run_script_in(
     cmd.current_dir(root)
         .arg(root.join(&sc.script))
         .args(&sc.args)
+        .args(if matches!(v, Variant::Yade) {
+            &[][..]
+        } else {
+            &sc.ryade_args[..]
+        })
         .arg("--out")
         .arg(dir);
     let out = crate::harness::proc::output(&mut cmd)

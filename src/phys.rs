@@ -42,6 +42,37 @@ pub struct FrictPhys {
     pub shear_force: Vec3,
 }
 
+/// The FrictMat constants a contact's creation needs (what the fast path keeps per material).
+#[derive(Clone, Copy, Debug)]
+pub struct FrictConsts {
+    pub young: f64,
+    pub poisson: f64,
+    pub friction_angle: f64,
+}
+
+impl FrictMat {
+    pub fn consts(&self) -> FrictConsts {
+        FrictConsts {
+            young: self.young,
+            poisson: self.poisson,
+            friction_angle: self.friction_angle,
+        }
+    }
+}
+
+/// The numbers of `Ip2_FrictMat_FrictMat_FrictPhys::go` (pkg/dem/FrictPhys.cpp) for radii ra, rb: harmonic
+/// means of E·R and E·R·ν, tan of the weaker friction angle. Both paths (YADE-order and fast) use this.
+#[inline]
+pub fn frict_stiffness(m1: &FrictConsts, m2: &FrictConsts, ra: f64, rb: f64) -> (f64, f64, f64) {
+    let kna = m1.young * ra;
+    let knb = m2.young * rb;
+    let ksa = kna * m1.poisson;
+    let ksb = knb * m2.poisson;
+    let kn = 2.0 * kna * knb / (kna + knb);
+    let ks = 2.0 * ksa * ksb / (ksa + ksb);
+    (kn, ks, m1.friction_angle.min(m2.friction_angle).tan())
+}
+
 /// `Ip2_FrictMat_FrictMat_FrictPhys::go`: harmonic means of E·R and E·R·ν, friction of the weaker.
 pub fn ip2_frict(m1: &FrictMat, m2: &FrictMat, g: &ScGeom) -> FrictPhys {
     let ra = if g.radius1 > 0.0 {
@@ -54,17 +85,11 @@ pub fn ip2_frict(m1: &FrictMat, m2: &FrictMat, g: &ScGeom) -> FrictPhys {
     } else {
         g.radius1
     };
-    let kna = m1.young * ra;
-    let knb = m2.young * rb;
-    let ksa = kna * m1.poisson;
-    let ksb = knb * m2.poisson;
-    let kn = 2.0 * kna * knb / (kna + knb);
-    let ks = 2.0 * ksa * ksb / (ksa + ksb);
-    let phi = m1.friction_angle.min(m2.friction_angle);
+    let (kn, ks, tan_phi) = frict_stiffness(&m1.consts(), &m2.consts(), ra, rb);
     FrictPhys {
         kn,
         ks,
-        tan_phi: phi.tan(),
+        tan_phi,
         normal_force: Vec3::zeros(),
         shear_force: Vec3::zeros(),
     }

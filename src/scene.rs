@@ -73,7 +73,28 @@ impl InteractionLoop {
     /// pairs the skip covers); only such a loop may skip an idle pair.
     #[inline(always)]
     pub fn uses_idle_skip(&self) -> bool {
-        self.sphere_sphere.is_some() || self.sphere_gridco.is_some()
+        self.idle_params().is_some() || self.sphere_gridco.is_some()
+    }
+
+    /// The sphere-sphere distance pre-check of the potential pairs the idle skip follows: that of
+    /// `Ig2_Sphere_Sphere_ScGeom`, or, without it, that of `Ig2_Sphere_Sphere_ScGeom6D`, whose `go`
+    /// starts with the ScGeom one and returns at once (no side effect) for a pair apart
+    /// (pkg/dem/Ig2_Sphere_Sphere_ScGeom.cpp, Ig2_Sphere_Sphere_ScGeom6D::go).
+    pub fn idle_params(&self) -> Option<&geom::sphere_sphere::Params> {
+        self.sphere_sphere
+            .as_ref()
+            .or(self.sphere_sphere_6d.as_ref().map(|p| &p.ss))
+    }
+
+    /// The functor whose potential pairs the idle skip follows (see `idle_params`).
+    fn idle_functor(&self) -> Option<GeomFunctor> {
+        if self.sphere_sphere.is_some() {
+            Some(GeomFunctor::SphereSphere)
+        } else if self.sphere_sphere_6d.is_some() {
+            Some(GeomFunctor::SphereSphere6D)
+        } else {
+            None
+        }
     }
 
     /// No functor at all.
@@ -869,7 +890,7 @@ impl Scene {
             self.idle_skip.prepare(
                 &self.bodies,
                 self.cell.as_ref(),
-                il.sphere_sphere
+                il.idle_params()
                     .map_or(1.0, |p| p.interaction_detection_factor),
                 &mut self.interactions.scan,
             );
@@ -958,11 +979,11 @@ impl Scene {
         // summary alone (same operands, so the same decision), without touching the interaction
         let sc = &mut self.interactions.scan[k];
         if sc.idle {
-            if let Some(p) = &il.sphere_sphere {
+            if let Some(p) = il.idle_params() {
                 debug_assert!({
                     let it = &self.interactions.list[k];
                     !it.is_real()
-                        && it.functor == GeomFunctor::SphereSphere
+                        && Some(it.functor) == il.idle_functor()
                         && (it.id1, it.id2, it.cell_dist) == (sc.id1, sc.id2, sc.cell_dist)
                 });
                 if idle_apart(p, &self.bodies, self.cell.as_ref(), &self.idle_skip, sc) {
@@ -1088,7 +1109,7 @@ impl Scene {
         if !created {
             if was_real {
                 self.interactions.list[k].reset();
-            } else if functor == GeomFunctor::SphereSphere {
+            } else if Some(functor) == il.idle_functor() {
                 self.interactions.scan[k] = crate::interaction::ScanEntry {
                     id1: id1 as u32,
                     id2: id2 as u32,

@@ -67,6 +67,38 @@ fn an_approaching_sphere_touches_on_the_step_yades_check_says() {
     assert!(skipped > 100, "the skip was exercised ({skipped} steps)");
 }
 
+/// The same scene with `Ig2_Sphere_Sphere_ScGeom6D` in place of `Ig2_Sphere_Sphere_ScGeom` (the study's
+/// rolling-resistance loading): its potential pairs are skipped by the same proof.
+fn scene_6d(gap: f64, speed: f64) -> Scene {
+    let mut s = scene(gap, speed);
+    for e in &mut s.engines {
+        if let ryade::scene::Engine::InteractionLoop(il) = e {
+            il.sphere_sphere = None;
+            il.sphere_sphere_6d = Some(Default::default());
+        }
+    }
+    s
+}
+
+#[test]
+fn six_d_geometry_pairs_are_skipped_and_touch_on_the_step_yades_check_says() {
+    // fails if the 6D functor's pairs are checked every step again (skipped = 0) or skipped too long
+    let mut s = scene_6d(0.004, 0.5);
+    let skipped = run_checking(&mut s, 2000, |_, _| {});
+    assert!(skipped > 100, "the skip was exercised ({skipped} steps)");
+    let mut s = scene_6d(0.004, 1e-3);
+    let skipped = run_checking(&mut s, 100, |s, step| {
+        if step == 50 {
+            s.bodies.pos[1][0] = 0.0199;
+        }
+    });
+    assert!(
+        skipped > 10 && s.iter <= 51,
+        "skipped {skipped}, contact at iter {}",
+        s.iter
+    );
+}
+
 #[test]
 fn a_teleported_sphere_is_checked_at_once() {
     // slow approach, then the sphere is put in contact by hand at step 50

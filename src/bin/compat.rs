@@ -130,6 +130,12 @@ enum Cmd {
         /// Run without the check (the run stops at the first unsupported name it reaches)
         #[arg(long, conflicts_with = "check")]
         no_check: bool,
+        /// Run every `O.run` the fast path can take on it (spheres, FrictMat, Cundall-Strack; results
+        /// agree with YADE statistically, not bit for bit); any other run says why in one line and takes
+        /// the YADE-order path. `--fast=strict` makes that an error. Also: env RYADE_FAST=on|strict
+        #[arg(long, num_args = 0..=1, default_missing_value = "on", require_equals = true,
+              value_parser = ["on", "strict"])]
+        fast: Option<String>,
         /// The YADE script
         script: PathBuf,
         /// Arguments passed to the script in sys.argv
@@ -405,11 +411,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
             threads,
             check,
             no_check,
+            fast,
             script,
             args,
         } => {
             if threads == 0 {
                 bail!("-j/--threads: counts start at 1");
+            }
+            if let Some(mode) = fast {
+                // read by the yade package (O's fast-path mode); a child process inherits it
+                std::env::set_var("RYADE_FAST", mode);
             }
             let mut a: Vec<std::ffi::OsString> = Vec::new();
             if check {

@@ -55,23 +55,12 @@ pub struct Contact {
 }
 
 /// Material constants the contact creation needs (FrictMat).
-#[derive(Clone, Copy, Debug)]
-pub struct Mat {
-    pub young: f64,
-    pub poisson: f64,
-    pub friction_angle: f64,
-}
+pub type Mat = crate::phys::FrictConsts;
 
-/// `Ip2_FrictMat_FrictMat_FrictPhys::go`: harmonic means of E·R and E·R·ν, friction of the weaker.
+/// `Ip2_FrictMat_FrictMat_FrictPhys::go` (the one formula, `phys::frict_stiffness`) on a fresh contact.
 #[inline(never)]
 pub fn create(c: &mut Contact, m1: &Mat, m2: &Mat, r1: f64, r2: f64) {
-    let kna = m1.young * r1;
-    let knb = m2.young * r2;
-    let ksa = kna * m1.poisson;
-    let ksb = knb * m2.poisson;
-    c.kn = 2.0 * kna * knb / (kna + knb);
-    c.ks = 2.0 * ksa * ksb / (ksa + ksb);
-    c.tan_phi = m1.friction_angle.min(m2.friction_angle).tan();
+    (c.kn, c.ks, c.tan_phi) = crate::phys::frict_stiffness(m1, m2, r1, r2);
     c.fs = [0.0; 3];
     c.active = true;
 }

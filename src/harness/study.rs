@@ -118,6 +118,28 @@ pub struct HistoryRow {
     pub grid_z_m: Option<f64>,
 }
 
+impl HistoryRow {
+    /// A row with only the cycle and the rut set (porosity 0.4, piston at 0.2 m): for tests of what reads ruts.
+    #[cfg(test)]
+    pub(crate) fn with_rut(cycle: u32, rut_mm: f64) -> Self {
+        HistoryRow {
+            cycle,
+            complete: 1,
+            steps: 0,
+            time_s: 0.0,
+            rut_mm,
+            rut_max_mm: rut_mm,
+            peak_kpa: 0.0,
+            peak_raw_kpa: 0.0,
+            tracking_rms_kpa: 0.0,
+            tracking_rms_raw_kpa: 0.0,
+            porosity_box: 0.4,
+            piston_z_m: 0.2,
+            grid_z_m: None,
+        }
+    }
+}
+
 /// Read a `history.csv`; a malformed file gets an error naming the file and the record.
 pub fn read_history(path: &Path) -> Result<Vec<HistoryRow>> {
     let mut rd = csv::Reader::from_path(path)
@@ -172,6 +194,9 @@ pub struct Horizon {
     pub last_iter: i64,
     /// Whether the two history.csv files (17 significant digits) are byte-identical (set by the caller).
     pub history_identical: bool,
+    /// Every compared row agreed and one run simply has more rows (a rut stop, or `--cycles` shorter
+    /// than the other run's); `first_diff_iter` is then the longer run's next sample.
+    pub one_ran_longer: bool,
 }
 
 pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
@@ -196,6 +221,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
                 first_diff_phase: ra[i].get(1).cloned(),
                 last_iter: iter_of(&ra[i]),
                 history_identical: false,
+                one_ran_longer: false,
             });
         }
     }
@@ -208,6 +234,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
             first_diff_phase: longer[n].get(1).cloned(),
             last_iter: n.checked_sub(1).map(|k| iter_of(&ra[k])).unwrap_or(-1),
             history_identical: false,
+            one_ran_longer: true,
         });
     }
     Ok(Horizon {
@@ -216,6 +243,7 @@ pub fn exact_match_horizon(a: &Path, b: &Path) -> Result<Horizon> {
         first_diff_phase: None,
         last_iter: n.checked_sub(1).map(|k| iter_of(&ra[k])).unwrap_or(-1),
         history_identical: false,
+        one_ran_longer: false,
     })
 }
 
@@ -375,21 +403,7 @@ mod tests {
 
     #[test]
     fn surface_displacement_ratio() {
-        let row = |c: u32, rut: f64| HistoryRow {
-            cycle: c,
-            complete: 1,
-            steps: 0,
-            time_s: 0.0,
-            rut_mm: rut,
-            rut_max_mm: rut,
-            peak_kpa: 0.0,
-            peak_raw_kpa: 0.0,
-            tracking_rms_kpa: 0.0,
-            tracking_rms_raw_kpa: 0.0,
-            porosity_box: 0.4,
-            piston_z_m: 0.2,
-            grid_z_m: None,
-        };
+        let row = HistoryRow::with_rut;
         let n = vec![row(0, 0.0), row(1, 10.0)];
         let g = vec![row(0, 0.0), row(1, 8.0)];
         let f = vec![row(0, 0.0), row(1, 6.0)];

@@ -522,6 +522,10 @@ pub fn format_diff(rep: &DiffReport) -> String {
                     "  seed {}: exact-match horizon: none, identical at all {} sampled steps (through iteration {})\n",
                     seed, h.rows_compared, h.last_iter
                 ),
+                Some(_) if h.one_ran_longer => format!(
+                    "  seed {}: exact-match horizon: none; identical at all {} sampled steps of the shorter run (through iteration {}), the other ran on\n",
+                    seed, h.rows_compared, h.last_iter
+                ),
                 Some(it) => format!(
                     "  seed {}: exact-match horizon: first difference at iteration {} ({}), after {} identical samples\n",
                     seed,
@@ -1155,21 +1159,7 @@ mod tests {
     /// 'steady') must read 'yes' for d/a 0.5 and 'no' for 0.7 (no early ratio above 0.7, no fall).
     #[test]
     fn findings_read_the_order_and_the_trend() {
-        let row = |k: u32, rut: f64| HistoryRow {
-            cycle: k,
-            complete: 1,
-            steps: 0,
-            time_s: 0.0,
-            rut_mm: rut,
-            rut_max_mm: rut,
-            peak_kpa: 0.0,
-            peak_raw_kpa: 0.0,
-            tracking_rms_kpa: 0.0,
-            tracking_rms_raw_kpa: 0.0,
-            porosity_box: 0.4,
-            piston_z_m: 0.0,
-            grid_z_m: None,
-        };
+        let row = HistoryRow::with_rut;
         let mut hist = Histories::new();
         let mut sdr = Vec::new();
         for r in [5u8, 7] {

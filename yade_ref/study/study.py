@@ -57,7 +57,7 @@ SPECIMEN_PARAMS = ('ratio', 'case', 'size', 'seed', 'rib', 'nx', 'ny', 'young', 
 # SPECIMEN_PARAM; specimens written before it existed read as 0); the others act on the loading.
 KNOB_DEFAULTS = {'psd_fuzz': 0.0, 'clump_size': 0, 'eta_roll': 0.0, 'alpha_kr': 2.0, 'roll_plates': False, 'subgrade_k': 0.0,
                  'subgrade_mass': None, 'subgrade_zeta': 0.2, 'grid_kn_scale': 1.0, 'grid_kr_scale': 1.0, 'load_friction': None,
-                 'grid_block': '', 'block_rotations': False, 'preset': None, 'profile_cycle': 0}
+                 'grid_block': '', 'block_rotations': False, 'preset': None, 'profile_cycle': 0, 'adapt_gains': 0.0}
 
 
 # named presets (README "Preset paper200"): defaults for a group of options, chosen per ratio d/a where the
@@ -69,7 +69,7 @@ PRESETS = {
         # (PI gains: stiffness factor 0.075; at 0.05 the filtered peak overshot to 317 kPa at r07 full, at 0.1 the
         # tracking error at medium size doubled: results/paper200/sweep.md "Controller")
         'all': {'cycles': 200, 'eta_roll': 0.5, 'load_friction': 35.0, 'steps_every': 50, 'profile_cycle': 100,
-                'stiffness_factor': 0.075},
+                'stiffness_factor': 0.075, 'adapt_gains': 0.08},
         # generation: compaction friction (lower = denser) and the porosity that sets the sphere count, so that
         # N and G land at 25 +- 1 cm and 41-46 % porosity (measured, seed 1, in the README's preset table)
         0.3: {'friction': 25.0, 'target_porosity': 0.415},
@@ -146,6 +146,9 @@ def parse_args(argv):
     ap.add_argument('--vmax', type=float, default=1.0, help='piston speed limit [m/s]')
     ap.add_argument('--stop-rut', type=float, default=0.075, help='stop when the rut exceeds this [m] (0.3 x 0.25 m)')
     ap.add_argument('--steps-every', type=int, default=10, help='steps.csv sampling period [steps]')
+    ap.add_argument('--adapt-gains', type=float, default=0.0, metavar='X',
+                    help='after a cycle whose filtered peak misses the target by more than the fraction X, scale the PI gains by 1.1 '
+                         '(short) or 1/1.1 (over), within [0.5, 4] x the initial ones (0: fixed gains; not with --controller servopid)')
     ap.add_argument('--profile-cycle', type=int, default=0, metavar='K',
                     help='also write profile_cK.csv: the displacement profile at the end of cycle K (0: only the final profile.csv)')
     # unmodelled-effect knobs (README "Unmodelled-effect knobs"); the defaults are the study's model
@@ -202,6 +205,8 @@ def parse_args(argv):
         ap.error('--psd-fuzz must be in [0, 1)')
     if a.no_rebuild and any(getattr(a, k) != v for k, v in KNOB_DEFAULTS.items() if k not in ('psd_fuzz', 'clump_size')):
         ap.error('the loading knobs act at the specimen rebuild: not with --no-rebuild')
+    if a.adapt_gains and a.controller == 'servopid':
+        ap.error('--adapt-gains scales the PI law of --controller pi/native, not ServoPIDController')
     if a.roll_plates and not a.eta_roll > 0:
         ap.error('--roll-plates needs --eta-roll > 0')
     if a.out is None:
@@ -927,6 +932,7 @@ class Study:
             pc.zRef = self.zRef
         ref = {i: O.bodies[i].state.pos for i in self.spheres}
         self.profileAt = None
+        P.Kp0, P.Ki0, self.gainScale, self.gainChanges = P.Kp, P.Ki, 1.0, []  # --adapt-gains scales from these
         self.rows = [self.history_row(0, {'n': 0})]
         t0, c0 = time.time(), time.process_time()
         it0 = O.iter
@@ -943,6 +949,8 @@ class Study:
             r = self.rows[-1]
             print('[study] cycle %3d rut %7.2f mm peak %6.1f kPa rms %6.1f kPa porosity %.4f' % (
                 k, r['rut_mm'], r['peak_kPa'], r['tracking_rms_kPa'], r['porosity_box']), flush=True)
+            if a.adapt_gains > 0:
+                self.adapt_gains(k, r, pc)
             if k == a.profile_cycle:  # the paper's Fig 7 is the field at cycle 100
                 self.profileAt = self.displacement_profile(ref)
             if self.stopped:
@@ -954,6 +962,26 @@ class Study:
         self.timings.append(('cycles', O.iter - it0, time.time() - t0, time.process_time() - c0))
         print('[study] %-12s %7d steps %8.2f s wall %8.2f s cpu' % ('cycles', O.iter - it0, time.time() - t0, time.process_time() - c0), flush=True)
         self.profile = self.displacement_profile(ref)
+
+    def adapt_gains(self, k, row, pc):
+        """Knob --adapt-gains X: after a cycle whose filtered peak missed the target peak by more than the
+        fraction X, scale both PI gains by 1.1 (peak short) or 1/1.1 (peak over), within [0.5, 4] times the
+        initial gains; the next cycle runs with them. A cycle inside the band changes nothing, so a run that
+        never leaves it is the same, bit for bit, as one without the knob."""
+        a, P = self.a, self.P
+        ratio = row['peak_kPa'] / a.peak_kpa
+        if not (ratio < 1 - a.adapt_gains or ratio > 1 + a.adapt_gains):
+            return
+        scale = min(4.0, max(0.5, self.gainScale * (1.1 if ratio < 1 else 1 / 1.1)))
+        if scale == self.gainScale:
+            return
+        self.gainScale = scale
+        P.Kp, P.Ki = P.Kp0 * scale, P.Ki0 * scale
+        if pc:
+            pc.Kp, pc.Ki = P.Kp, P.Ki
+        self.gainChanges.append([k, scale])
+        print('[study] cycle %3d peak %.1f kPa (%.0f %% of the target): PI gains x %.3f of the initial' % (
+            k, row['peak_kPa'], 100 * ratio, scale), flush=True)
 
     def history_row(self, k, c):
         P = self.P
@@ -1099,5 +1127,7 @@ summary = {'params': params_dict(args),
            'wall_s': time.time() - T0, 'cpu_s': time.process_time() - C0}
 if not args.generate_only:
     summary['loading'] = {'stopped': study.stopped, 'cycles_run': study.rows[-1]['cycle'], 'final_rut_mm': study.rows[-1]['rut_mm']}
+    if args.adapt_gains:
+        summary['loading']['gain_changes'] = study.gainChanges  # [cycle after which, gain scale]
 write_json(os.path.join(args.out, 'summary.json'), summary)
 print('[study] done in %.1f s, outputs in %s' % (time.time() - T0, args.out), flush=True)

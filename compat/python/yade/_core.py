@@ -6,6 +6,7 @@ import builtins
 import json
 import math
 import operator
+import os
 import sys
 
 from . import _ryade
@@ -907,6 +908,10 @@ class Omega(_ryade.OmegaBase):
         # free summation order, so agreement with YADE is statistical) with this many threads
         self.ryadeFastPath = False
         self.ryadeFastThreads = 1
+        # `compat run --fast[=strict]` (env RYADE_FAST=on|strict): every O.run the fast path can take runs
+        # there; any other says why once and runs on the YADE-order path ('strict': an error instead)
+        self._fast_env = os.environ.get('RYADE_FAST', '')
+        self._fast_said = set()
         self._saved = {}
         self._default_engines()
 
@@ -1070,14 +1075,19 @@ class Omega(_ryade.OmegaBase):
         self._paused = False
         if n > 0:
             self.stopAtIter = self.iter + n
-        if (not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0
-                and not self._python_hooks()):
+        whole = (not self._external and self._pending_engines is None and n > 0 and self.stopAtTime <= 0
+                 and not self._python_hooks())
+        if whole:
             if self.ryadeFastPath:
                 self._sim.run_steps_fast(n, self.ryadeFastThreads)
+            elif self._fast_env and self._fast_run(n):
+                pass
             else:
                 self._sim.run_steps(n)   # no Python engine: the whole run stays in Rust (a Rust engine may end it early)
             self.stopAtIter = -1
             return
+        if self._fast_env:
+            self._fast_refused('the engine list calls Python during the run (%s)' % self._python_reason())
         if self.stopAtIter <= 0 and self.stopAtTime <= 0 and not self._external and not self._python_hooks():
             raise RuntimeError('O.run() without a step count and nothing that can stop it (no PyRunner, no '
                                'O.stopAtIter): it would never return; give O.run(nSteps, True)')
@@ -1093,6 +1103,35 @@ class Omega(_ryade.OmegaBase):
             if self._native_stop and self._sim.take_stop_request():  # as a PyRunner's O.stopAtIter = O.iter + 1
                 self.stopAtIter = -1
                 break
+
+    def _fast_refused(self, why):
+        """`compat run --fast`: this run stays on the YADE-order path; say why once per reason
+        (`--fast=strict`: an error)."""
+        if self._fast_env == 'strict':
+            raise RuntimeError('compat run --fast=strict: the fast path cannot run this O.run: %s' % why)
+        if why not in self._fast_said:
+            self._fast_said.add(why)
+            print('[ryade] --fast: YADE-order path for this run (from iteration %d): %s' % (self.iter, why), file=sys.stderr,
+                  flush=True)
+
+    def _python_reason(self):
+        if self._external:  # engines run in Python (PyRunner, ...)
+            return ', '.join(type(e).__name__ + (" '%s'" % e.label if getattr(e, 'label', '') else '') for e in self._external)
+        if self.stopAtTime > 0:
+            return 'O.stopAtTime is set'
+        return 'a Python hook (PeriTriaxController.doneHook) or an engine list set during the run'
+
+    def _fast_run(self, n):
+        """Try the fast path for a whole O.run(n); False (nothing changed) where its scene is outside it."""
+        try:
+            self._sim.run_steps_fast(n, self.ryadeFastThreads)
+            return True
+        except RuntimeError as e:
+            msg = str(e)
+            if 'fast path does not support' not in msg and 'O.ryadeFastPath' not in msg:
+                raise
+            self._fast_refused(msg.replace('O.ryadeFastPath: ', ''))
+            return False
 
     def _python_hooks(self):
         """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook)."""
