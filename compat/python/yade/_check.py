@@ -187,19 +187,21 @@ class Checker(ast.NodeVisitor):
         self.findings.append(Finding(line, what, hint, guarded=self.guard > 0))
 
     # ---- guarded regions
+    def _visit_guarded(self, body, guarded, rest):
+        """`body` (as guarded code when `guarded`), then `rest`."""
+        self.guard += guarded
+        for s in body:
+            self.visit(s)
+        self.guard -= guarded
+        for s in rest:
+            self.visit(s)
+
     def visit_Try(self, n):
         catches = any(h.type is None or any(isinstance(t, ast.Name) and t.id in _CATCHING or
                                             isinstance(t, ast.Attribute) and t.attr in _CATCHING
                                             for t in (h.type.elts if isinstance(h.type, ast.Tuple) else [h.type]))
                       for h in n.handlers)
-        if catches:
-            self.guard += 1
-        for s in n.body:
-            self.visit(s)
-        if catches:
-            self.guard -= 1
-        for s in n.handlers + n.orelse + n.finalbody:
-            self.visit(s)
+        self._visit_guarded(n.body, catches, n.handlers + n.orelse + n.finalbody)
 
     visit_TryStar = visit_Try
 
@@ -207,14 +209,7 @@ class Checker(ast.NodeVisitor):
         line = self.lines[n.lineno - 1] if 0 < n.lineno <= len(self.lines) else ''
         marked = self.line0 is None and bool(_YADE_ONLY.search(line))
         self.visit(n.test)
-        if marked:
-            self.guard += 1
-        for s in n.body:
-            self.visit(s)
-        if marked:
-            self.guard -= 1
-        for s in n.orelse:
-            self.visit(s)
+        self._visit_guarded(n.body, marked, n.orelse)
 
     # ---- imports
     def _module(self, dotted):
@@ -271,23 +266,26 @@ class Checker(ast.NodeVisitor):
                     continue
                 self._check_member(n, 'yade.' + sub, a.name)
 
+    def _member(self, node, obj, name, table, label):
+        """`obj`'s attribute `name` without running it; when it has none, `label` is reported if YADE's
+        `table` has the name, and _MISSING returned."""
+        try:
+            return inspect.getattr_static(obj, name)
+        except AttributeError:
+            if name in table:
+                self.add(node, label)
+            return _MISSING
+
     def _check_member(self, node, dotted, name, called=False):
-        """`name` of YADE's module `dotted` ('yade' or 'yade.X'); a class stub counts when `called`."""
+        """`name` of YADE's module `dotted` ('yade' or 'yade.X'); a class stub counts when `called`.
+        (yade's own names are the classes and modules, handled elsewhere.)"""
         m = self._module(dotted)
         if m is None:
             return
-        try:
-            obj = inspect.getattr_static(m, name)
-        except AttributeError:
-            obj = _MISSING
-        if obj is _MISSING:
-            if dotted == 'yade':
-                return  # yade's own names are the classes and modules, handled elsewhere
-            table = _tables()['modules'].get(dotted.split('.', 1)[1], {}).get('names', ())
-            if name in table:
-                self.add(node, '%s.%s' % (dotted, name))
-            return
-        self._report_obj(node, obj, called)
+        table = () if dotted == 'yade' else _tables()['modules'].get(dotted.split('.', 1)[1], {}).get('names', ())
+        obj = self._member(node, m, name, table, '%s.%s' % (dotted, name))
+        if obj is not _MISSING:
+            self._report_obj(node, obj, called)
 
     # ---- names and attribute chains
     def _chain(self, node):
@@ -362,13 +360,8 @@ class Checker(ast.NodeVisitor):
             key = self._OMEGA_TABLES.get(tuple(rest[:k]))
             if key is None:
                 return
-            try:
-                nxt = inspect.getattr_static(obj, name)
-            except AttributeError:
-                nxt = _MISSING
+            nxt = self._member(node, obj, name, _tables()['objects'].get(key, ()), '%s.%s' % (key, name))
             if nxt is _MISSING:
-                if name in _tables()['objects'].get(key, ()):
-                    self.add(node, '%s.%s' % (key, name))
                 return
             r = _stub_reason(nxt)
             if r:
