@@ -171,15 +171,16 @@ pub fn run_ryade(scene: &Path, v: Variant, steps: u64, warmup: u64) -> Result<(S
 /// Time the scene in Debian YADE (one thread) through `yade_ref/bench/run_scene.py`.
 pub fn run_yade(root: &Path, scene: &Path, steps: u64, warmup: u64) -> Result<Sample> {
     let script = root.join("yade_ref/bench/run_scene.py");
-    let out = Command::new("yade")
-        .env("OMP_NUM_THREADS", "1")
-        .args(["-n", "-x"])
-        .arg(&script)
-        .arg(scene)
-        .arg(steps.to_string())
-        .arg(warmup.to_string())
-        .output()
-        .context("starting yade (apt-get install -y --no-install-recommends yade)")?;
+    let out = crate::harness::proc::output(
+        Command::new("yade")
+            .env("OMP_NUM_THREADS", "1")
+            .args(["-n", "-x"])
+            .arg(&script)
+            .arg(scene)
+            .arg(steps.to_string())
+            .arg(warmup.to_string()),
+    )
+    .context("starting yade (apt-get install -y --no-install-recommends yade)")?;
     let text = String::from_utf8_lossy(&out.stdout);
     let line = text
         .lines()
@@ -354,8 +355,7 @@ fn run_script_in(
     if let Some(t) = timings {
         cmd.arg(root.join(TIMED_RUN)).arg(t);
     }
-    let out = cmd
-        .current_dir(root)
+    cmd.current_dir(root)
         .arg(root.join(&sc.script))
         .args(&sc.args)
         .args(if matches!(v, Variant::Yade) {
@@ -364,8 +364,8 @@ fn run_script_in(
             &sc.ryade_args[..]
         })
         .arg("--out")
-        .arg(dir)
-        .output()
+        .arg(dir);
+    let out = crate::harness::proc::output(&mut cmd)
         .with_context(|| format!("starting {} for {}", v.name(), sc.label))?;
     if !out.status.success() {
         bail!(
@@ -634,6 +634,35 @@ fn format_profiles(ps: &[Profile]) -> String {
 }
 
 /// The report as text lines.
+/// Fewest bodies of a scene file whose timing says something about the physics.
+pub const MIN_TIMED_BODIES: usize = 1000;
+/// Shortest timed run (s) whose rate is not dominated by the timer and start-up.
+pub const MIN_TIMED_SECONDS: f64 = 0.2;
+
+/// Why the ratios of a report say little (a scene too small or too short to time), if they do.
+pub fn too_small_warning(r: &BenchReport) -> Option<String> {
+    let bodies = r.samples.iter().map(|s| s.bodies).max().unwrap_or(0);
+    let shortest = r
+        .samples
+        .iter()
+        .map(|s| s.seconds)
+        .fold(f64::INFINITY, f64::min);
+    if r.script.is_none() && bodies < MIN_TIMED_BODIES {
+        Some(format!(
+            "{} bodies: too small to time; the ratios measure per-step overhead (YADE's engine dispatch and \
+             Python), not the contact physics. Time a scene of {}+ bodies (e.g. bench/scenes/dense8000.scene.json)",
+            bodies, MIN_TIMED_BODIES
+        ))
+    } else if shortest < MIN_TIMED_SECONDS {
+        Some(format!(
+            "the shortest timed run took {:.3} s (< {} s): too short to time reliably; give more --steps",
+            shortest, MIN_TIMED_SECONDS
+        ))
+    } else {
+        None
+    }
+}
+
 pub fn format_report(r: &BenchReport) -> String {
     let mut out = String::new();
     let (b, c) = r
@@ -651,6 +680,9 @@ pub fn format_report(r: &BenchReport) -> String {
             r.scene, b, c, r.steps, r.reps
         ),
     };
+    if let Some(w) = too_small_warning(r) {
+        out += &format!("  WARNING: {}\n", w);
+    }
     let p = |s: &Stats| {
         format!(
             "min {:.3e} median {:.3e} max {:.3e}",
@@ -722,6 +754,45 @@ pub fn format_report(r: &BenchReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn report(bodies: usize, seconds: f64) -> BenchReport {
+        BenchReport {
+            scene: "s".into(),
+            script: None,
+            histories_identical: None,
+            steps: 100,
+            reps: 1,
+            samples: vec![Sample {
+                engine: "yade".into(),
+                seconds,
+                particle_steps_per_s: 1.0,
+                contact_updates_per_s: 0.0,
+                bodies,
+                contacts: 0,
+                phases: None,
+                history: None,
+            }],
+            variants: vec![],
+            ratios: vec![],
+            profiles: vec![],
+            load_before: String::new(),
+            load_after: String::new(),
+        }
+    }
+
+    /// Issue 18: a 2-body scene gave a 342x ratio without a word; now the report warns.
+    #[test]
+    fn small_or_short_scenes_are_flagged() {
+        let f = format_report(&report(2, 1.0));
+        assert!(f.contains("WARNING: 2 bodies: too small to time"), "{}", f);
+        let f = format_report(&report(8000, 0.05));
+        assert!(
+            f.contains("WARNING: the shortest timed run took 0.050 s"),
+            "{}",
+            f
+        );
+        assert!(!format_report(&report(8000, 3.0)).contains("WARNING"));
+    }
 
     /// The committed script scenes parse, and every file they name exists in the repository.
     #[test]

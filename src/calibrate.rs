@@ -377,18 +377,18 @@ fn jstr(p: &Path) -> String {
 fn scripts_dir(given: &Option<PathBuf>, probe: &str) -> Result<PathBuf> {
     let dir = match given {
         Some(s) => s.clone(),
-        None => [
-            PathBuf::from("yade_ref/calibration"),
-            crate::harness::env::repo_root().join("yade_ref/calibration"),
-        ]
-        .into_iter()
-        .find(|c| c.join(probe).is_file())
-        .ok_or_else(|| {
-            anyhow!(
-                "yade_ref/calibration/{} not found: run from the ryade checkout or pass --scripts DIR",
-                probe
-            )
-        })?,
+        None => {
+            let mut c = vec![PathBuf::from("yade_ref/calibration")];
+            c.push(crate::harness::env::repo_root()?.join("yade_ref/calibration"));
+            c.into_iter()
+                .find(|c| c.join(probe).is_file())
+                .ok_or_else(|| {
+                    anyhow!(
+                        "yade_ref/calibration/{} not found: pass --scripts DIR (or set RYADE_ROOT to a ryade checkout)",
+                        probe
+                    )
+                })?
+        }
     };
     dir.canonicalize()
         .with_context(|| format!("scripts folder {}", dir.display()))
@@ -441,18 +441,16 @@ impl Runner {
             args.join(" ")
         );
         writeln!(self.log, "$ {}", shown)?;
-        let mut child = cmd
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .with_context(|| match self.engine {
+        cmd.stdout(Stdio::piped()).stderr(Stdio::piped());
+        let mut tracked =
+            crate::harness::proc::spawn(&mut cmd).with_context(|| match self.engine {
                 Engine::Yade => format!(
                     "starting YADE for `{}` (is `yade` installed? set YADE to its command)",
                     shown
                 ),
                 Engine::Ryade => format!("starting `{}`", shown),
             })?;
-        let stderr = child.stderr.take().unwrap();
+        let stderr = tracked.child.stderr.take().unwrap();
         let err_thread = std::thread::spawn(move || {
             BufReader::new(stderr)
                 .lines()
@@ -460,7 +458,7 @@ impl Runner {
                 .collect::<Vec<String>>()
         });
         let mut tail: Vec<String> = Vec::new();
-        for line in BufReader::new(child.stdout.take().unwrap()).lines() {
+        for line in BufReader::new(tracked.child.stdout.take().unwrap()).lines() {
             let line = line?;
             writeln!(self.log, "{}", line)?;
             if !is_banner(&line) {
@@ -472,7 +470,7 @@ impl Runner {
                 tail.remove(0);
             }
         }
-        let status = child.wait()?;
+        let status = tracked.wait()?;
         let err = err_thread.join().unwrap_or_default();
         for l in &err {
             writeln!(self.log, "{}", l)?;
@@ -963,11 +961,7 @@ pub fn plot(result: &Path) -> Result<Vec<String>> {
 /// Runs a plotting script (Python source) with `arg`; returns the names it reports ("wrote NAME").
 fn run_plot(script: &str, arg: &Path) -> Result<Vec<String>> {
     let py = crate::harness::env::python();
-    let o = Command::new(&py)
-        .arg("-c")
-        .arg(script)
-        .arg(arg)
-        .output()
+    let o = crate::harness::proc::output(Command::new(&py).arg("-c").arg(script).arg(arg))
         .with_context(|| format!("starting {:?}", py))?;
     if !o.status.success() {
         bail!(

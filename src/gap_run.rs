@@ -167,7 +167,10 @@ fn run_missing(
     if yade {
         c.args(["--command", "yade -n -x"]);
     }
-    let st = c.status().context("starting python3 -m yade.batch")?;
+    let st = crate::harness::proc::status(&mut c).context("starting python3 -m yade.batch")?;
+    if crate::harness::proc::stopping() {
+        bail!("stopped: the finished runs of {} are kept", path.display());
+    }
     if !st.success() {
         eprintln!(
             "warning: some jobs of {} failed (see its .logs/summary.csv); finished runs are kept",
@@ -211,8 +214,10 @@ pub fn make_library(
             s
         );
     }
+    // a checkout's committed YADE specimen saves the generation (without a checkout it is made)
+    let checkout = crate::harness::env::checkout_root();
     let golden = |s: u32| {
-        let p = root.join(format!(
+        let p = checkout.as_ref()?.join(format!(
             "golden/study/r{:02}_{}_{}_s{}/specimen.json",
             sc.ratio, sc.case, sc.size, s
         ));

@@ -8,8 +8,9 @@
 
 use crate::body::{Bodies, DOF_ALL};
 use crate::cell::Cell;
+use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
-use crate::math::{cross, mat_vec, norm2, sign, Mat3, Quat, Vec3};
+use crate::math::{cross, dot, mat_mul, mat_vec, norm2, sign, Mat3, Quat, Vec3};
 use crate::shape::Shape;
 
 /// `State::DOF_RXRYRZ`: the three rotational DOF bits.
@@ -31,6 +32,8 @@ pub struct Newton {
     pub prev_cell_size: Option<Vec3>,
     /// Per-step work lists, kept to avoid an allocation per step (no state).
     pub scratch: Scratch,
+    /// Cached `O.energy` indices (`nonviscDampIx`, `kinEnergyIx`, `fieldWorkIx`).
+    pub energy_cache: IdCache,
 }
 
 /// The bodies whose orientation `leapfrogSphericalRotate` updates and the clumps whose members are
@@ -53,6 +56,7 @@ impl Default for Newton {
             prev_vel_grad: Mat3::zeros(),
             prev_cell_size: None,
             scratch: Scratch::default(),
+            energy_cache: IdCache::default(),
         }
     }
 }
@@ -98,8 +102,62 @@ impl Newton {
         }
     }
 
+    /// `NewtonIntegrator::updateEnergy`: body `id`'s damping dissipation, kinetic energy and
+    /// gravity work, from the state before this step's update (`f`, `m`: its force and torque).
+    #[allow(clippy::too_many_arguments)]
+    fn update_energy(
+        &mut self,
+        e: &mut EnergyTracker,
+        bodies: &Bodies,
+        id: usize,
+        fluct: &Vec3,
+        f: &Vec3,
+        m: &Vec3,
+        dt: f64,
+    ) {
+        let abs = |v: &Vec3| Vec3::new(v[0].abs(), v[1].abs(), v[2].abs());
+        let mass = bodies.mass[id];
+        let w = bodies.ang_vel[id];
+        let c = &mut self.energy_cache;
+        if self.damping != 0.0 && bodies.is_damped[id] {
+            let fg = f + self.gravity * mass;
+            e.add(
+                dot(&abs(fluct), &abs(&fg)) * self.damping * dt,
+                "nonviscDamp",
+                c,
+                false,
+            );
+            e.add(
+                dot(&abs(&w), &abs(m)) * self.damping * dt,
+                "nonviscDamp",
+                c,
+                false,
+            );
+        }
+        let e_trans = 0.5 * mass * norm2(fluct);
+        let inertia = bodies.inertia[id];
+        let e_rot = if bodies.aspherical[id] {
+            // YADE 2023.02a: `T.transpose() * mI * T` with T = ori (the later `T * mI * T^T` is the
+            // physically right one; ryade gives YADE's number)
+            let t = bodies.ori[id].to_rotation_matrix();
+            let tit = mat_mul(&mat_mul(&t.transpose(), &Mat3::from_diagonal(&inertia)), &t);
+            0.5 * dot(&w, &mat_vec(&tit, &w))
+        } else {
+            0.5 * dot(&w, &inertia.component_mul(&w))
+        };
+        e.add(e_trans + e_rot, "kinetic", c, true);
+        e.add(
+            -dot(&self.gravity, &bodies.vel[id]) * mass * dt,
+            "gravWork",
+            c,
+            false,
+        );
+    }
+
     /// One `NewtonIntegrator::action` over all bodies (YADE order: forces already synced). Clumps
-    /// add their members' forces to their own entry in `forces`, as YADE does.
+    /// add their members' forces to their own entry in `forces`, as YADE does. With `energy`
+    /// (`O.trackEnergy`), each body's terms are added before its update.
+    #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
         bodies: &mut Bodies,
@@ -107,7 +165,9 @@ impl Newton {
         cell: Option<&mut Cell>,
         dt: f64,
         pool: Option<&rayon::ThreadPool>,
+        energy: Option<&mut EnergyTracker>,
     ) -> Result<(), NewtonError> {
+        let mut energy = energy;
         let mut cell = cell;
         if let Some(c) = cell.as_deref_mut() {
             // a velGrad assigned by the user (`Cell::setVelGrad`) takes effect here, after the
@@ -163,9 +223,13 @@ impl Newton {
         let mut id = 0;
         while id < n {
             // a run of plain bodies: the same arithmetic over arrays (see `plain_run`)
-            let run = (id..n.min(id + RUN))
-                .take_while(|&j| self.is_plain(bodies, j))
-                .count();
+            let run = if energy.is_some() {
+                0
+            } else {
+                (id..n.min(id + RUN))
+                    .take_while(|&j| self.is_plain(bodies, j))
+                    .count()
+            };
             if run >= 4 {
                 let done = plain_run(&run_ctx, bodies, forces, id, run);
                 for j in id..id + done {
@@ -208,6 +272,9 @@ impl Newton {
             } else {
                 bodies.vel[id]
             };
+            if let Some(e) = energy.as_deref_mut() {
+                self.update_energy(e, bodies, id, &fluct, &f, &m, dt);
+            }
             if blocked != DOF_ALL {
                 let mass = bodies.mass[id];
                 let mut a = Vec3::zeros();
@@ -735,7 +802,8 @@ mod tests {
             damping: 0.0,
             ..Default::default()
         };
-        n.step(&mut bodies, &mut forces, None, 0.1, None).unwrap();
+        n.step(&mut bodies, &mut forces, None, 0.1, None, None)
+            .unwrap();
         let half = 0.5 * (2.0f64 * 0.1);
         for id in 0..3 {
             let q = bodies.ori[id];
@@ -746,7 +814,7 @@ mod tests {
         let before: Vec<(Vec3, Quat)> = (0..3).map(|i| (bodies.pos[i], bodies.ori[i])).collect();
         bodies.vel[1][1] = f64::NAN;
         let e = n
-            .step(&mut bodies, &mut forces, None, 0.1, None)
+            .step(&mut bodies, &mut forces, None, 0.1, None, None)
             .unwrap_err();
         assert_eq!(
             e,
@@ -800,7 +868,14 @@ mod tests {
             let mut c = cell.clone();
             newton
                 .clone()
-                .step(&mut all, &mut f_all, periodic.then_some(&mut c), 1e-3, None)
+                .step(
+                    &mut all,
+                    &mut f_all,
+                    periodic.then_some(&mut c),
+                    1e-3,
+                    None,
+                    None,
+                )
                 .unwrap();
             let (reference, f_ref) = varied(10);
             for id in 0..10 {
@@ -822,7 +897,14 @@ mod tests {
                 let mut c = cell.clone();
                 newton
                     .clone()
-                    .step(&mut one, &mut f_one, periodic.then_some(&mut c), 1e-3, None)
+                    .step(
+                        &mut one,
+                        &mut f_one,
+                        periodic.then_some(&mut c),
+                        1e-3,
+                        None,
+                        None,
+                    )
                     .unwrap();
                 let same = |a: &Vec3, b: &Vec3| (0..3).all(|k| a[k].to_bits() == b[k].to_bits());
                 assert!(
@@ -847,7 +929,7 @@ mod tests {
         let before = bodies.clone();
         forces.force_mut(6)[2] = f64::INFINITY;
         let e = Newton::default()
-            .step(&mut bodies, &mut forces, None, 1e-3, None)
+            .step(&mut bodies, &mut forces, None, 1e-3, None, None)
             .unwrap_err();
         assert_eq!(
             e,

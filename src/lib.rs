@@ -37,6 +37,7 @@ pub mod cell;
 pub mod clump;
 pub mod collider;
 pub mod dispatch;
+pub mod energy;
 pub mod fast;
 pub mod forces;
 pub mod gap;

@@ -76,6 +76,8 @@ pub struct PeriTriax {
     pub hook_events: VecDeque<HookEvent>,
     /// Whether this controller was loaded with recorded firings (then every firing must match one).
     pub replay_hooks: bool,
+    /// Cached `O.energy` index (`velGradWorkIx`).
+    pub energy_cache: crate::energy::IdCache,
 }
 
 impl Default for PeriTriax {
@@ -103,6 +105,7 @@ impl Default for PeriTriax {
             external_work: 0.0,
             hook_events: VecDeque::new(),
             replay_hooks: false,
+            energy_cache: Default::default(),
         }
     }
 }
@@ -317,7 +320,9 @@ impl PeriTriax {
         let dw = trace(&mat_mul(&mean_vg, &self.stress_tensor)) * dt * det3(&cell.hsize);
         self.external_work += dw;
         if scene.track_energy {
-            *scene.energy.vel_grad_work.get_or_insert(0.0) += -dw;
+            scene
+                .energy
+                .add(-dw, "velGradWork", &mut self.energy_cache, false);
         }
         self.prev_grow = self.strain_rate;
         if all_ok {

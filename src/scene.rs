@@ -8,6 +8,7 @@ use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderCtx};
 use crate::dispatch::{self, Entry};
+use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
 use crate::geom::{self, GeomClass, GeomCtx, Pair};
 use crate::idle_skip::IdleSkip;
@@ -49,6 +50,8 @@ pub struct InteractionLoop {
     pub scgridco_cohfrict: Option<law::grid::ScGridCoParams>,
     /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
     pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
+    /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
+    pub energy_caches: [IdCache; LawFunctor::COUNT],
 }
 
 impl Default for InteractionLoop {
@@ -112,6 +115,7 @@ impl InteractionLoop {
             scgridco_frict: None,
             scgridco_cohfrict: None,
             gridco_gridco_frict: None,
+            energy_caches: Default::default(),
         }
     }
 
@@ -287,28 +291,15 @@ impl Engine {
 /// Why a step stopped. Carries what a user needs to fix it.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum StepError {
-    #[error("step {iter}: body #{id} has a non-finite {what}. Likely cause: the time step {dt:e} s is above the critical one ({crit}); lower O.dt (e.g. 0.5*PWaveTimeStep()) or check stiffness and masses")]
+    /// A body's motion came out non-finite; `report` says what was found (see `non_finite_report`).
+    #[error("step {iter}: {report}")]
     NonFinite {
         iter: i64,
         id: usize,
-        what: &'static str,
-        dt: f64,
-        crit: String,
+        report: String,
     },
     #[error("step {iter}: {msg}")]
     Engine { iter: i64, msg: String },
-}
-
-/// Energy bookkeeping (`O.trackEnergy`): the terms this engine's laws produce.
-#[derive(Clone, Debug, Default)]
-pub struct Energy {
-    pub plast_dissip: f64,
-    pub elast_potential: f64,
-    /// `velGradWork` (PeriTriaxController): absent until the controller first adds to it.
-    pub vel_grad_work: Option<f64>,
-    pub shear_dissip: f64,
-    pub bending_dissip: f64,
-    pub twist_dissip: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -325,7 +316,8 @@ pub struct Scene {
     pub iter: i64,
     pub time: f64,
     pub track_energy: bool,
-    pub energy: Energy,
+    /// `O.energy` (filled while `track_energy`)
+    pub energy: EnergyTracker,
     /// Threads of the YADE-order path (1: none). The steady sphere-sphere contacts are evaluated in
     /// parallel and their forces added in container order afterwards, so every thread count gives
     /// YADE's single-thread bits.
@@ -378,7 +370,7 @@ impl Default for Scene {
             iter: 0,
             time: 0.0,
             track_energy: false,
-            energy: Energy::default(),
+            energy: EnergyTracker::default(),
             threads: 1,
             par_min_slots: PAR_MIN_SLOTS,
             pool: Pool::default(),
@@ -492,7 +484,7 @@ impl Scene {
             Engine::ForceResetter => {
                 self.forces.reset(self.bodies.len(), self.iter);
                 if self.track_energy {
-                    self.energy.elast_potential = 0.0;
+                    self.energy.reset_resettables();
                 }
                 Ok(())
             }
@@ -534,6 +526,7 @@ impl Scene {
                     self.cell.as_mut(),
                     self.dt,
                     pool.as_deref(),
+                    self.track_energy.then_some(&mut self.energy),
                 );
                 if t0.is_some() {
                     newton_marks[2] = Some(std::time::Instant::now());
@@ -608,15 +601,10 @@ impl Scene {
 
     fn newton_error(&self, e: NewtonError) -> StepError {
         match e {
-            NewtonError::NonFinite { id, what } => StepError::NonFinite {
+            NewtonError::NonFinite { id, .. } => StepError::NonFinite {
                 iter: self.iter,
                 id,
-                what,
-                dt: self.dt,
-                crit: match crate::utils::pwave_time_step(self) {
-                    Some(c) => format!("PWaveTimeStep = {:e} s", c),
-                    None => "unknown: no spheres".into(),
-                },
+                report: self.non_finite_report(id),
             },
             NewtonError::BadMass { id } => StepError::Engine {
                 iter: self.iter,
@@ -626,6 +614,149 @@ impl Scene {
                 ),
             },
         }
+    }
+
+    /// What a user needs when body `id` came out of NewtonIntegrator non-finite: the quantity found
+    /// non-finite and its value, the body's mass, O.dt against the critical time step, its contacts
+    /// now, and the cause those facts point to (not always the time step).
+    pub fn non_finite_report(&self, id: usize) -> String {
+        let b = &self.bodies;
+        let fin = |v: &Vec3| v.iter().all(|x| x.is_finite());
+        let fmt = |v: &Vec3| format!("({:e}, {:e}, {:e})", v[0], v[1], v[2]);
+        let (f, m) = (*self.forces.force(id), *self.forces.torque(id));
+        let mass = b.mass[id];
+        let shape = match b.shape[id].sphere_radius() {
+            Some(r) => format!("{} of radius {:e} m", b.shape[id].class_name(), r),
+            None => b.shape[id].class_name().to_string(),
+        };
+        let mut s = format!("body #{} ({}, mass {:e} kg): ", id, shape, mass);
+        let quantity = if !fin(&f) {
+            format!("its force {} N is not finite", fmt(&f))
+        } else if !fin(&m) {
+            format!("its torque {} N m is not finite", fmt(&m))
+        } else if !fin(&b.vel[id]) {
+            format!(
+                "its velocity {} m/s came out not finite (force {} N)",
+                fmt(&b.vel[id]),
+                fmt(&f)
+            )
+        } else {
+            format!(
+                "its position {} m came out not finite (velocity {} m/s)",
+                fmt(&b.pos[id]),
+                fmt(&b.vel[id])
+            )
+        };
+        s += &quantity;
+        let crit = crate::utils::pwave_time_step(self);
+        s += &match crit {
+            Some(c) => format!(
+                ". O.dt = {:e} s is {:.3} x the critical time step (PWaveTimeStep = {:e} s)",
+                self.dt,
+                self.dt / c,
+                c
+            ),
+            None => format!(
+                ". O.dt = {:e} s (no sphere, so no PWaveTimeStep to compare with)",
+                self.dt
+            ),
+        };
+        // its contacts now, deepest first
+        struct Contact {
+            pen: f64,
+            text: String,
+            other: u32,
+            force_finite: bool,
+            other_finite: bool,
+            kn_finite: bool,
+        }
+        let state_finite = |j: usize| fin(&b.pos[j]) && fin(&b.vel[j]) && fin(&b.ang_vel[j]);
+        let mut contacts: Vec<Contact> = Vec::new();
+        for it in &self.interactions.list {
+            if !it.is_real() || (it.id1 as usize != id && it.id2 as usize != id) {
+                continue;
+            }
+            let other = if it.id1 as usize == id {
+                it.id2
+            } else {
+                it.id1
+            };
+            let (g, p) = (it.geom.as_ref().unwrap(), it.phys.as_ref().unwrap());
+            let other_finite = state_finite(other as usize);
+            contacts.push(Contact {
+                pen: if g.pen.is_nan() { f64::INFINITY } else { g.pen },
+                text: format!(
+                    "#{} ({}{}, penetration {:e} m, kn {:e} N/m, normal force {:e} N)",
+                    other,
+                    b.shape[other as usize].class_name(),
+                    if other_finite {
+                        ""
+                    } else {
+                        " whose state is not finite"
+                    },
+                    g.pen,
+                    p.kn,
+                    crate::math::norm(&p.normal_force)
+                ),
+                other,
+                force_finite: fin(&p.normal_force) && fin(&p.shear_force),
+                other_finite,
+                kn_finite: p.kn.is_finite() && p.ks.is_finite(),
+            });
+        }
+        contacts.sort_by(|a, b| b.pen.total_cmp(&a.pen));
+        s += &if contacts.is_empty() {
+            ". It has no contact now".to_string()
+        } else {
+            format!(
+                ". Its contacts now ({}): {}",
+                contacts.len(),
+                contacts
+                    .iter()
+                    .take(3)
+                    .map(|c| c.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        // the cause the facts point to
+        let above = crit.is_some_and(|c| self.dt > c);
+        let dynamic = b.blocked[id] != crate::body::DOF_ALL;
+        let cause = if above {
+            "the time step is above the critical one: lower O.dt (e.g. O.dt = 0.5*PWaveTimeStep())"
+                .to_string()
+        } else if dynamic && !(mass.is_finite() && mass > 0.0) {
+            "the body is dynamic but its mass is not a positive number: check its material density and size".to_string()
+        } else if !fin(&f) {
+            // a contact partner finite now was finite before the step (Newton stops at the first
+            // failing body, and a non-finite state stays non-finite): then the non-finite input of
+            // the contact was this body's own state
+            match contacts.iter().find(|c| !c.force_finite) {
+                Some(c) if !c.kn_finite => format!(
+                    "the contact with #{} has a non-finite stiffness: check both materials (young, poisson) and sizes",
+                    c.other
+                ),
+                Some(c) if !c.other_finite => format!(
+                    "the contact with #{}, whose own state is not finite, gives a non-finite force",
+                    c.other
+                ),
+                Some(c) => format!(
+                    "its own position or velocity was already not finite before step {} (its contact with #{} turned it into a non-finite force): set so by the script (a NaN or inf given to the body) or by an engine",
+                    self.iter, c.other
+                ),
+                None => "no contact of this body has a non-finite force: it comes from a force the script or an engine added (O.forces.addF/setPermF) or from gravity".to_string(),
+            }
+        } else if !fin(&m) {
+            "no contact is the likely source: check the torques the script or an engine added (O.forces.addT/setPermT)".to_string()
+        } else {
+            // force, mass and dt are finite: v + dt*a and x + dt*v can only be non-finite if v or x were
+            format!(
+                "its state was already not finite (or astronomically large) before step {}: set so by the script (a NaN or inf given to the body) or by an engine; the time step is below the critical one",
+                self.iter
+            )
+        };
+        s += &format!(". Likely cause: {}", cause);
+        s
     }
 
     /// `utils.createInteraction(id1, id2)` (`InteractionLoop::createExplicitInteraction`,
@@ -729,11 +860,31 @@ impl Scene {
     /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
     /// then the law.
     fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
+        // the laws add to O.energy as they go (YADE's scene->energy->add per contact); the tracker
+        // and the functors' index caches are moved out for the loop and put back after it
+        let mut tracker = std::mem::take(&mut self.energy);
+        let mut caches = std::mem::take(&mut il.energy_caches);
+        let mut energy = LawEnergy {
+            tracker: &mut tracker,
+            caches: &mut caches,
+            functor: LawFunctor::CundallStrack,
+            trace: false,
+        };
+        let r = self.interaction_loop_with(il, &mut energy);
+        self.energy = tracker;
+        il.energy_caches = caches;
+        r
+    }
+
+    fn interaction_loop_with(
+        &mut self,
+        il: &mut InteractionLoop,
+        energy: &mut LawEnergy<'_>,
+    ) -> Result<(), String> {
         let ctx0 = GeomCtx {
             dt: self.dt,
             shift_vel: Vec3::zeros(),
         };
-        let mut energy = LawEnergy::default();
         let mut geom_entries = None;
         if il.uses_idle_skip() {
             self.idle_skip.prepare(
@@ -746,10 +897,10 @@ impl Scene {
         }
         if let Some(runs) = self.pre_pass(il) {
             for ev in runs.iter().flatten() {
-                self.event(il, *ev, &ctx0, &mut energy, &mut geom_entries)?;
+                self.event(il, *ev, &ctx0, energy, &mut geom_entries)?;
             }
         } else if let (Some(ss), Some(cs), false) =
-            (il.sphere_sphere, il.cundall_strack, self.track_energy)
+            (il.sphere_sphere, il.cundall_strack, self.energy_wanted(il))
         {
             // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
@@ -771,7 +922,7 @@ impl Scene {
                     &mut self.interactions.list[k],
                 );
                 if let Some(ev) = ev {
-                    self.event(il, ev, &ctx0, &mut energy, &mut geom_entries)?;
+                    self.event(il, ev, &ctx0, energy, &mut geom_entries)?;
                 }
             }
         } else {
@@ -781,17 +932,16 @@ impl Scene {
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
                 }
-                self.visit(il, k, &ctx0, &mut energy, &mut geom_entries)?;
+                self.visit(il, k, &ctx0, energy, &mut geom_entries)?;
             }
         }
-        if self.track_energy {
-            self.energy.plast_dissip += energy.plast_dissip;
-            self.energy.elast_potential += energy.elast_potential;
-            self.energy.shear_dissip += energy.shear_dissip;
-            self.energy.bending_dissip += energy.bending_dissip;
-            self.energy.twist_dissip += energy.twist_dissip;
-        }
         Ok(())
+    }
+
+    /// Whether a law may add to `O.energy` this step: `O.trackEnergy`, or a GridCoGridCo law with
+    /// `traceEnergy` (which YADE's law adds `elastPotential` for even without trackEnergy).
+    fn energy_wanted(&self, il: &InteractionLoop) -> bool {
+        self.track_energy || il.gridco_gridco_frict.is_some_and(|p| p.trace_energy)
     }
 
     /// What `pre_slot` left for the container-order walk: visit the slot, add the steady
@@ -802,7 +952,7 @@ impl Scene {
         il: &mut InteractionLoop,
         ev: Event,
         ctx0: &GeomCtx,
-        energy: &mut LawEnergy,
+        energy: &mut LawEnergy<'_>,
         geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
     ) -> Result<(), String> {
         match ev {
@@ -822,7 +972,7 @@ impl Scene {
         il: &mut InteractionLoop,
         k: usize,
         ctx0: &GeomCtx,
-        energy: &mut LawEnergy,
+        energy: &mut LawEnergy<'_>,
         geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
     ) -> Result<(), String> {
         // a potential sphere-sphere pair seen before: YADE's distance pre-check from the compact
@@ -989,12 +1139,14 @@ impl Scene {
         if !was_real {
             it.iter_made_real = self.iter;
         }
-        let energy_arg = if self.track_energy {
-            Some(&mut *energy)
-        } else {
-            None
-        };
         let keep = if plain {
+            let energy_arg = if self.track_energy {
+                energy.functor = LawFunctor::CundallStrack;
+                energy.trace = false;
+                Some(&mut *energy)
+            } else {
+                None
+            };
             let b = &self.bodies;
             let lb = LawBodies {
                 pos1: &b.pos[id1],
@@ -1011,7 +1163,7 @@ impl Scene {
                 energy_arg,
             )
         } else {
-            let keep = self.law(il, k, id1, id2, &shift2, energy_arg)?;
+            let keep = self.law(il, k, id1, id2, &shift2, energy)?;
             if self.interactions.share_of(k) != 0 {
                 self.interactions.sync_shared(k);
             }
@@ -1093,7 +1245,7 @@ impl Scene {
         let (Some(ss), Some(cs)) = (il.sphere_sphere.as_ref(), il.cundall_strack.as_ref()) else {
             return None;
         };
-        if self.track_energy || self.interactions.list.len() < self.par_min_slots {
+        if self.energy_wanted(il) || self.interactions.list.len() < self.par_min_slots {
             return None;
         }
         let pool = self.pool_for_threads()?;
@@ -1298,7 +1450,7 @@ impl Scene {
         id1: usize,
         id2: usize,
         shift2: &Vec3,
-        energy: Option<&mut LawEnergy>,
+        energy: &mut LawEnergy<'_>,
     ) -> Result<bool, String> {
         let b = &self.bodies;
         let it = &mut self.interactions.list[k];
@@ -1324,6 +1476,17 @@ impl Scene {
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
+        };
+        // the law adds to O.energy while trackEnergy; a GridCoGridCo law with traceEnergy takes its
+        // energy branch in any case (Grid.cpp)
+        let trace = lf == LawFunctor::GridCoGridCoFrict
+            && il.gridco_gridco_frict.is_some_and(|p| p.trace_energy);
+        let energy = if self.track_energy || trace {
+            energy.functor = lf;
+            energy.trace = trace;
+            Some(energy)
+        } else {
+            None
         };
         let g = *it.geom.as_ref().unwrap();
         let fresh = it.iter_made_real == self.iter;

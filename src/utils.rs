@@ -335,15 +335,17 @@ fn at_rest(
     }
 }
 
-/// Kinetic energy of all dynamic bodies (`Shop::kineticEnergy`, preprocessing/dem/Shop_01.cpp):
+/// Kinetic energy of all dynamic bodies but clump members (`Shop::kineticEnergy`,
+/// preprocessing/dem/Shop_01.cpp):
 /// per body `E = .5*(m*|v|²)` (periodic: `.5*m*|v - velGrad*(x - v*dt)|²`) plus `0.5*ω·(I∘ω)`,
-/// summed body by body in id order, in YADE's evaluation order. Aspherical bodies use the spherical
-/// formula (ryade has no aspherical rotation yet).
+/// summed body by body in id order, in YADE's evaluation order; aspherical bodies (clumps) take
+/// `0.5*ω·((T I Tᵀ) ω)` with T = ori (NewtonIntegrator's energy term has `Tᵀ I T` in 2023.02a).
 pub fn kinetic_energy(scene: &Scene) -> f64 {
     let b = &scene.bodies;
     let mut ret = 0.0;
     for id in 0..b.len() {
-        if !b.is_dynamic(id) {
+        // a clump member's motion is its clump's (YADE counts the clump only)
+        if !b.is_dynamic(id) || b.is_clump_member(id) {
             continue;
         }
         let v = b.vel[id];
@@ -356,7 +358,16 @@ pub fn kinetic_energy(scene: &Scene) -> f64 {
             None => 0.5 * (b.mass[id] * norm2(&v)),
         };
         let w = b.ang_vel[id];
-        e += 0.5 * crate::math::dot(&w, &b.inertia[id].component_mul(&w));
+        e += if b.aspherical[id] {
+            let t = b.ori[id].to_rotation_matrix();
+            let m = crate::math::mat_mul(
+                &crate::math::mat_mul(&t, &crate::math::Mat3::from_diagonal(&b.inertia[id])),
+                &t.transpose(),
+            );
+            0.5 * crate::math::dot(&w, &crate::math::mat_vec(&m, &w))
+        } else {
+            0.5 * crate::math::dot(&w, &b.inertia[id].component_mul(&w))
+        };
         ret += e;
     }
     ret

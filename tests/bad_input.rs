@@ -92,6 +92,43 @@ fn nan_in_a_state_stops_the_run_naming_body_and_step_and_keeps_records() {
 }
 
 #[test]
+fn non_finite_report_says_what_was_found_not_always_the_time_step() {
+    // issue 18: a NaN velocity at 1/16 of the critical step used to be blamed on "the time step
+    // above the critical one"; the report now gives the quantity, dt against the critical step, the
+    // body's contacts, and the cause those point to
+    let mut s = column(1e-5);
+    for _ in 0..5 {
+        s.step().unwrap();
+    }
+    s.bodies.vel[1][2] = f64::NAN;
+    let e = s.step().unwrap_err().to_string();
+    let crit = utils::pwave_time_step(&s).unwrap();
+    assert!(e.contains("body #1 (Sphere of radius 1e-2 m"), "{}", e);
+    assert!(
+        e.contains("its force (NaN, NaN, NaN) N is not finite"),
+        "{}",
+        e
+    );
+    assert!(
+        e.contains(&format!("{:.3} x the critical time step", 1e-5 / crit)),
+        "{}",
+        e
+    );
+    assert!(e.contains("Its contacts now (2): #"), "{}", e);
+    assert!(e.contains("already not finite"), "{}", e);
+    assert!(!e.contains("above the critical"), "{}", e);
+
+    // the same NaN with a time step above the critical one (set without the check): then the time
+    // step is named as the cause
+    let mut s = column(1e-5);
+    s.dt = 6.0 * utils::pwave_time_step(&s).unwrap();
+    s.bodies.vel[1][2] = f64::NAN;
+    let e = s.step().unwrap_err().to_string();
+    assert!(e.contains("above the critical one"), "{}", e);
+    assert!(e.contains("6.000 x the critical time step"), "{}", e);
+}
+
+#[test]
 fn records_before_a_failure_are_kept_on_disk() {
     let mut s = column(1e-5);
     let dir = std::env::temp_dir().join(format!("ryade-keep-{}", std::process::id()));

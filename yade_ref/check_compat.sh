@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Run every reference script of yade_ref/{micro,meso,pack} UNCHANGED under `compat run` (ryade's
+# Run every reference script of yade_ref/{micro,meso,pack,export,energy} UNCHANGED under `compat run` (ryade's
 # YADE-compatible Python layer) and require the files it writes to equal YADE's goldens
 # (decompressed content, byte for byte).
 set -euo pipefail
@@ -10,7 +10,7 @@ TMP="$(mktemp -d "${TMPDIR:-/tmp}/ryade_check_compat.XXXXXX")"
 trap 'rm -rf "$TMP"' EXIT
 content() { case "$1" in *.gz) gzip -dc -- "$1" ;; *) cat -- "$1" ;; esac; }
 bad=0; n=0
-for kind in micro meso pack export examples; do
+for kind in micro meso pack export energy examples; do
   mkdir -p "$TMP/$kind"
   for s in "$HERE/$kind"/*.py; do
     [[ $kind == examples ]] && break

@@ -29,7 +29,7 @@ content() {  # print the (decompressed) content of a file
 }
 
 bad=0; n=0
-for kind in micro meso pack export examples micro_grid; do
+for kind in micro meso pack export energy examples micro_grid; do
     names="$( { [[ -d "$GOLD/$kind" ]] && ls -1 "$GOLD/$kind"; ls -1 "$TMP/$kind"; } | grep -v '\.tmp[0-9]*$' | sort -u )"
     if [[ -z "$names" ]]; then echo "MISSING  $kind/ (no files at all)"; bad=1; continue; fi
     while IFS= read -r f; do

@@ -18,7 +18,7 @@ fi
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 OUT="$1"
-mkdir -p "$OUT/micro" "$OUT/meso" "$OUT/pack" "$OUT/export"
+mkdir -p "$OUT/micro" "$OUT/meso" "$OUT/pack" "$OUT/export" "$OUT/energy"
 OUT="$(cd "$OUT" && pwd)"
 
 export OMP_NUM_THREADS=1
@@ -35,6 +35,7 @@ for s in "$HERE"/micro/*.py; do scripts+=("micro:$s"); done
 for s in "$HERE"/meso/*.py; do scripts+=("meso:$s"); done
 for s in "$HERE"/pack/*.py; do scripts+=("pack:$s"); done
 for s in "$HERE"/export/*.py; do scripts+=("export:$s"); done
+for s in "$HERE"/energy/*.py; do scripts+=("energy:$s"); done
 [[ ${#scripts[@]} -gt 0 ]] || { echo "error: no scripts under $HERE/{micro,meso}" >&2; exit 1; }
 
 run_one() {  # kind:path
@@ -69,7 +70,7 @@ for item in "${scripts[@]}"; do
         fail=1
         echo "---- FAILED: $kind/$name.py (rc=$rc), log tail:" >&2
         tail -n 25 "$LOGDIR/$kind.$name.log" >&2 || true
-    elif [[ "$kind" != pack && "$kind" != export && ! -s "$OUT/$kind/$name.scene.json" ]]; then
+    elif [[ "$kind" != pack && "$kind" != export && "$kind" != energy && ! -s "$OUT/$kind/$name.scene.json" ]]; then
         fail=1
         echo "---- FAILED: $kind/$name.py wrote no $name.scene.json" >&2
     fi

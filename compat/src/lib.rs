@@ -26,6 +26,9 @@ fn vec(t: V3) -> Vec3 {
     Vec3::new(t.0, t.1, t.2)
 }
 
+/// Steps run between two checks for a Python signal (Ctrl-C, SIGTERM) in `run_steps`.
+const SIGNAL_CHECK_STEPS: u64 = 256;
+
 fn err<E: std::fmt::Display>(e: E) -> PyErr {
     PyRuntimeError::new_err(format!("{:#}", e))
 }
@@ -864,17 +867,26 @@ impl Sim {
     fn set_track_energy(&mut self, on: bool) {
         self.scene.track_energy = on;
     }
-    /// Energy terms tracked by the laws (YADE names).
-    fn energy(&self) -> HashMap<String, f64> {
-        let mut m = HashMap::new();
-        if self.scene.track_energy {
-            m.insert("plastDissip".into(), self.scene.energy.plast_dissip);
-            m.insert("elastPotential".into(), self.scene.energy.elast_potential);
-            if let Some(w) = self.scene.energy.vel_grad_work {
-                m.insert("velGradWork".into(), w);
-            }
-        }
-        m
+    /// `O.energy.items()`: (name, value) in name order (YADE's EnergyTracker; filled while
+    /// `O.trackEnergy`, readable at any time).
+    fn energy_items(&self) -> Vec<(String, f64)> {
+        self.scene.energy.items()
+    }
+    /// `O.energy.total()`: the values summed in creation order.
+    fn energy_total(&self) -> f64 {
+        self.scene.energy.total()
+    }
+    /// `O.energy[name]`; None for an unknown name.
+    fn energy_get(&self, name: &str) -> Option<f64> {
+        self.scene.energy.get_item(name)
+    }
+    /// `O.energy[name] = value` (a new name is not reset every step).
+    fn energy_set(&mut self, name: &str, value: f64) {
+        self.scene.energy.set_item(name, value)
+    }
+    /// `O.energy.clear()`.
+    fn energy_clear(&mut self) {
+        self.scene.energy.clear()
     }
 
     // ---- materials ----
@@ -1336,6 +1348,14 @@ impl Sim {
                 serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
             }
             (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
+            (Engine::Newton(n), "prevVelGrad") => {
+                let m = &n.prev_vel_grad;
+                serde_json::json!([
+                    [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+                    [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+                    [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
+                ])
+            }
             (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
             (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
             (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
@@ -1470,16 +1490,28 @@ impl Sim {
         // an engine may end the run after a step (`RyadePistonController`: `O.stopAtIter = O.iter + 1`
         // in a PyRunner); a request left from an earlier O.step() does not count
         scene.stop_requested = false;
-        py.allow_threads(|| {
-            for _ in 0..n {
-                scene.step().map_err(|e| e.to_string())?;
-                if std::mem::take(&mut scene.stop_requested) {
-                    break;
-                }
+        // in chunks, with Python's signal check between them: Ctrl-C and SIGTERM stop a long run
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(SIGNAL_CHECK_STEPS);
+            left -= k;
+            let stopped = py
+                .allow_threads(|| {
+                    for _ in 0..k {
+                        scene.step().map_err(|e| e.to_string())?;
+                        if std::mem::take(&mut scene.stop_requested) {
+                            return Ok(true);
+                        }
+                    }
+                    Ok::<bool, String>(false)
+                })
+                .map_err(PyRuntimeError::new_err)?;
+            if stopped {
+                break;
             }
-            Ok::<(), String>(())
-        })
-        .map_err(PyRuntimeError::new_err)
+            py.check_signals()?;
+        }
+        Ok(())
     }
 
     /// Run `n` whole steps on the fast path (`ryade::fast`, `O.ryadeFastPath = True`): the state goes
@@ -1496,13 +1528,26 @@ impl Sim {
                 threads: threads.max(1),
                 ..Default::default()
             };
-            let mut f = ryade::fast::FastSim::from_scene(scene, opt)
-                .map_err(|e| format!("O.ryadeFastPath: {}", e))?;
-            f.run(n);
-            f.write_back(scene);
-            Ok::<(), String>(())
+            ryade::fast::FastSim::from_scene(scene, opt)
+                .map_err(|e| format!("O.ryadeFastPath: {}", e))
         })
         .map_err(PyRuntimeError::new_err)
+        .and_then(|mut f| {
+            // in chunks, with Python's signal check between them (the state goes back either way)
+            let mut left = n;
+            let mut r = Ok(());
+            while left > 0 {
+                let k = left.min(SIGNAL_CHECK_STEPS);
+                left -= k;
+                py.allow_threads(|| f.run(k));
+                r = py.check_signals();
+                if r.is_err() {
+                    break;
+                }
+            }
+            py.allow_threads(|| f.write_back(scene));
+            r
+        })
     }
 
     // ---- forces ----

@@ -21,7 +21,14 @@ def run(*args, cwd=None, env_extra=None):
 
 
 def test_unsupported_class_fails_with_name_file_and_line():
+    # refused by the check before the first line runs
     p = run('run', os.path.join(SCRIPTS, 'unsupported_class.py'))
+    assert p.returncode == 1
+    assert 'before' not in p.stdout
+    assert 'ryade does not support class HydroForceEngine yet' in p.stderr
+    assert 'unsupported_class.py, line 4' in p.stderr
+    # without the check, the run stops where it reaches the class
+    p = run('run', '--no-check', os.path.join(SCRIPTS, 'unsupported_class.py'))
     assert p.returncode == 1
     assert 'before' in p.stdout and 'never printed' not in p.stdout
     assert 'ryade does not support class HydroForceEngine yet' in p.stderr
@@ -29,9 +36,90 @@ def test_unsupported_class_fails_with_name_file_and_line():
 
 
 def test_unsupported_method_fails_clearly():
-    p = run('run', os.path.join(SCRIPTS, 'unsupported_method.py'))
+    for flags in ((), ('--no-check',)):
+        p = run('run', *flags, os.path.join(SCRIPTS, 'unsupported_method.py'))
+        assert p.returncode == 1
+        assert 'O.bodies.erase' in p.stderr and 'unsupported_method.py, line 2' in p.stderr
+
+
+def test_late_unsupported_call_refused_before_the_first_step(tmp_path):
+    """Issue 18: a 20,000-step script whose last line is O.save() used to run every step and then die,
+    writing nothing; `compat run` now refuses it before step 1, naming the call and its line."""
+    script = os.path.join(SCRIPTS, 'late_unsupported.py')
+    p = run('run', script, cwd=tmp_path)
     assert p.returncode == 1
-    assert 'O.bodies.erase' in p.stderr and 'unsupported_method.py, line 2' in p.stderr
+    assert 'started' not in p.stdout and 'step' not in p.stdout
+    assert 'ryade does not support O.save (YADE .xml/.yade files) yet (late_unsupported.py, line 18)' in p.stderr
+    assert 'refused before the first step' in p.stderr and '--no-check' in p.stderr
+    # --check only lists; --no-check runs every step and then stops at the call, as before
+    p = run('run', '--check', script, cwd=tmp_path)
+    assert p.returncode == 1 and 'started' not in p.stdout and 'late_unsupported.py, line 18' in p.stderr
+    p = run('run', '--no-check', script, cwd=tmp_path)
+    assert p.returncode == 1 and 'step 15000' in p.stdout
+    assert 'O.save' in p.stderr and 'line 18' in p.stderr
+
+
+def test_check_finds_every_kind_of_unsupported_name(tmp_path):
+    """Each kind the static check resolves, and what it must not report."""
+    script = tmp_path / 's.py'
+    script.write_text("""from yade import utils, export
+import yade.polyhedra_utils
+from yade.export import gmshGeo
+O.engines = [NewtonIntegrator(kinSplit=True), PyRunner(command='O.bodies.erase(3)', iterPeriod=1)]
+x = utils.sumTorques
+facetBox((0, 0, 0), (1, 1, 1))
+O.interactions.clear()
+Omega().load('a.xml')
+try:
+    HydroForceEngine()
+except NotImplementedError:
+    pass
+if False:  # YADE only
+    O.save('b.xml')
+def sumForces(*a):  # the script's own definitions are not YADE's
+    return 0
+sumForces()
+y = undefined_in_both_engines
+print(O.energy.total(), utils.getStress(), export.VTKExporter)
+""")
+    p = run('run', '--check', str(script))
+    assert p.returncode == 1
+    lines = [l for l in p.stderr.splitlines() if l.startswith('compat run: ryade')]
+    want = ['the module yade.polyhedra_utils yet (s.py, line 2)',
+            'yade.export.gmshGeo yet (s.py, line 3)',
+            'NewtonIntegrator.kinSplit yet (s.py, line 4)',
+            'O.bodies.erase yet (s.py, line 4)',
+            'utils.sumTorques yet (s.py, line 5)',
+            "the name 'facetBox' of YADE's script namespace yet (s.py, line 6)",
+            'O.interactions.clear yet (s.py, line 7)',
+            'O.load (YADE .xml/.yade files) yet (s.py, line 8)',
+            'class HydroForceEngine yet (s.py, line 10)',
+            'O.save (YADE .xml/.yade files) yet (s.py, line 14)']
+    assert len(lines) == len(want), p.stderr
+    for l, w in zip(lines, want):
+        assert w in l, (l, w)
+    assert 'not refused' in lines[-2] and 'not refused' in lines[-1]
+    assert '8 unsupported name(s)' in p.stderr
+
+
+def test_check_passes_the_scripts_that_run_today():
+    """No yade_ref script, test script or listed YADE example is refused (study.py's YADE-only branch is
+    marked `# YADE only`)."""
+    import glob
+    sys.path.insert(0, os.path.join(ROOT, 'compat', 'python'))
+    from yade import _check
+    files = glob.glob(os.path.join(ROOT, 'yade_ref', '**', '*.py'), recursive=True)
+    files += glob.glob(os.path.join(SCRIPTS, '*.py'))
+    files += glob.glob(os.path.join(ROOT, 'calibration', '**', '*.py'), recursive=True)
+    ex = os.environ.get('YADE_EXAMPLES', '/usr/share/doc/yade/examples')
+    for l in open(os.path.join(ROOT, 'yade_ref', 'examples', 'list.txt')):
+        if l.strip() and not l.startswith('#') and os.path.isdir(ex):
+            files.append(os.path.join(ex, l.split()[0]))
+    expected = {'unsupported_class.py', 'unsupported_method.py', 'late_unsupported.py',  # on purpose
+                'make_dense.py'}  # yade_ref/bench: a YADE-only script (PeriIsoCompressor)
+    refused = sorted(os.path.basename(f) for f in files if any(not x.guarded for x in _check.check_file(f)))
+    assert set(refused) <= expected, refused
+    assert 'study.py' not in refused
 
 
 def test_live_references_and_argv(tmp_path):

@@ -44,7 +44,7 @@ enum Cmd {
         /// rXX: number of seeds (YADE's band needs >= 2)
         #[arg(long, default_value_t = 3)]
         seeds: u32,
-        /// rXX: first seed
+        /// rXX: first seed (seeds FIRST..FIRST+SEEDS-1)
         #[arg(long, default_value_t = 1)]
         first_seed: u32,
         /// rXX: load cycles (default: the size's, 5 for tiny)
@@ -82,8 +82,10 @@ enum Cmd {
         /// Cases (N,G,F or all)
         #[arg(long, default_value = "all")]
         cases: String,
+        /// Seeds per ratio and case (specimens; each seed rebuilds the same specimen in both engines)
         #[arg(long, default_value_t = 1)]
         seeds: u32,
+        /// First seed (the runs use seeds FIRST..FIRST+SEEDS-1)
         #[arg(long, default_value_t = 1)]
         first_seed: u32,
         /// Load cycles (default: the size's)
@@ -107,18 +109,34 @@ enum Cmd {
         preset: Option<String>,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
+    ///
+    /// The script gets YADE's startup namespace (O, every YADE class, utils, pack, geom, math...) and
+    /// its arguments in sys.argv. Before its first line runs, it is checked for YADE names ryade does
+    /// not provide (classes, functions, O's methods, refused keywords, also inside PyRunner command
+    /// strings): if it uses any, each is listed with its line and the run is refused (exit code 1), so
+    /// a long run cannot die at its last line. Code inside try/except, or an `if` marked with a
+    /// `# YADE only` comment, is not refused. What depends on run-time values is still found when
+    /// reached (exit code 1, naming it and the line).
     #[command(trailing_var_arg = true)]
     Run {
         /// Threads of the YADE-order path (like `yade -jN`; the results have the same bits for any
         /// count)
         #[arg(short = 'j', long = "threads", default_value_t = 1)]
         threads: usize,
+        /// Only check: list every unsupported name the script can reach, run nothing (exit 0 when
+        /// none refuses the run, 1 otherwise)
+        #[arg(long)]
+        check: bool,
+        /// Run without the check (the run stops at the first unsupported name it reaches)
+        #[arg(long, conflicts_with = "check")]
+        no_check: bool,
         /// Run every `O.run` the fast path can take on it (spheres, FrictMat, Cundall-Strack; results
         /// agree with YADE statistically, not bit for bit); any other run says why in one line and takes
         /// the YADE-order path. `--fast=strict` makes that an error. Also: env RYADE_FAST=on|strict
         #[arg(long, num_args = 0..=1, default_missing_value = "on", require_equals = true,
               value_parser = ["on", "strict"])]
         fast: Option<String>,
+        /// The YADE script
         script: PathBuf,
         /// Arguments passed to the script in sys.argv
         #[arg(allow_hyphen_values = true)]
@@ -209,7 +227,8 @@ enum Cmd {
         /// Diagnose every case of a blind dataset DIR (cases/ and, read only after diagnosing, truth/)
         #[arg(long)]
         validate: Option<PathBuf>,
-        /// Build the library of simulated runs (baseline seeds + each effect at its strengths)
+        /// Build (or complete) the library of simulated runs in --library (baseline seeds + each
+        /// effect at its strengths); without it a missing library is an error
         #[arg(long)]
         make_library: bool,
         /// Make blind datasets with Debian YADE in DIR (hidden effects, truth stored apart)
@@ -219,10 +238,13 @@ enum Cmd {
         /// detectability floor of the blind-dataset design
         #[arg(long)]
         detectability: bool,
+        /// The study scenario of the library runs (r03 | r05 | r07)
         #[arg(long, default_value = "r07")]
         scenario: String,
+        /// The study case of the library runs (N | G | F)
         #[arg(long, default_value = "G")]
         case: String,
+        /// Specimen size of the library runs (tiny | small | medium | full)
         #[arg(long, default_value = "medium")]
         size: String,
         /// Load cycles of every library / dataset run
@@ -231,11 +253,14 @@ enum Cmd {
         /// Cycles 1..K are fitted, the later ones held out
         #[arg(long, default_value_t = 4)]
         fit_cycles: usize,
-        /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>)
+        /// Library directory (default gap_lib/<scenario>_<case>_<size>_c<cycles>); it must hold a
+        /// library (library.json) unless --make-library builds it there
         #[arg(long)]
         library: Option<PathBuf>,
+        /// Library building: baseline runs (seeds 1..N) of today's model
         #[arg(long, default_value_t = 12)]
         baseline_seeds: u32,
+        /// Library building: runs (seeds 1..N) of each effect at each strength
         #[arg(long, default_value_t = 4)]
         effect_seeds: u32,
         /// Blind datasets to make
@@ -250,6 +275,8 @@ enum Cmd {
         /// Report directory for --observed
         #[arg(long, default_value = "gap_out")]
         out: PathBuf,
+        /// Simulation runs at the same time while building a library or blind datasets (default:
+        /// number of cores)
         #[arg(short = 'j', long)]
         jobs: Option<usize>,
     },
@@ -267,7 +294,13 @@ enum Cmd {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli) {
+    // SIGINT/SIGTERM/SIGHUP stop every process this command starts (`compat run` and `compat batch`
+    // become Python, which handles them itself)
+    ryade::harness::proc::install();
+    let r = run(cli);
+    // stopped by a signal: the watcher thread reports what was kept and exits
+    ryade::harness::proc::wait_if_stopping();
+    match r {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {:#}", e);
@@ -276,8 +309,11 @@ fn main() -> ExitCode {
     }
 }
 
-/// The Python that has the `yade` compat package installed (`RYADE_PYTHON`, default `python3`).
+/// Replace this process with `python -m module args` (the Python that has the `yade` compat package:
+/// `RYADE_PYTHON`, default `python3`): the script's exit code and the signals sent to `compat run` /
+/// `compat batch` (SIGINT, SIGTERM) are Python's own, and no process is left behind.
 fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<ExitCode> {
+    use std::os::unix::process::CommandExt;
     let py = ryade::harness::env::python();
     let mut cmd = std::process::Command::new(&py);
     // read by the yade package when it makes the scene (O.numThreads)
@@ -287,22 +323,80 @@ fn python(module: &str, args: &[std::ffi::OsString], threads: usize) -> Result<E
     if std::env::var_os("OPENBLAS_NUM_THREADS").is_none() {
         cmd.env("OPENBLAS_NUM_THREADS", "1");
     }
-    let status = cmd
-        .arg("-m")
-        .arg(module)
-        .args(args)
-        .status()
-        .with_context(|| {
-            format!(
-                "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
-                py
-            )
-        })?;
-    Ok(match status.code() {
-        Some(0) => ExitCode::SUCCESS,
-        Some(c) => ExitCode::from(c.clamp(1, 255) as u8),
-        None => ExitCode::from(1),
-    })
+    let e = cmd.arg("-m").arg(module).args(args).exec();
+    Err(anyhow::Error::new(e).context(format!(
+        "starting {:?} (set RYADE_PYTHON to the Python that has the yade package)",
+        py
+    )))
+}
+
+/// `--cycles 0` would run no load cycle and write empty histories and figures.
+fn check_cycles(cycles: Option<u32>) -> Result<()> {
+    if cycles == Some(0) {
+        bail!("--cycles must be at least 1 (0 load cycles give empty histories and figures)");
+    }
+    Ok(())
+}
+
+/// A bench scene: the path if it exists, else a scene of bench/scenes (the checkout's or the built-in
+/// copy) named by its file name or stem (`dense8000`, `r05_G_medium.study.json`,
+/// `bench/scenes/dense8000.scene.json`).
+fn bench_scene(root: &std::path::Path, p: &std::path::Path) -> Result<PathBuf> {
+    if p.is_file() {
+        return Ok(p.to_path_buf());
+    }
+    let name = p
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let dir = root.join("bench/scenes");
+    for cand in [
+        name.clone(),
+        format!("{}.scene.json", name),
+        format!("{}.study.json", name),
+    ] {
+        if dir.join(&cand).is_file() {
+            return Ok(dir.join(cand));
+        }
+    }
+    let known: Vec<String> = std::fs::read_dir(&dir)
+        .map(|d| {
+            d.filter_map(|e| e.ok()?.file_name().into_string().ok())
+                .filter(|n| n.ends_with(".scene.json") || n.ends_with(".study.json"))
+                .collect()
+        })
+        .unwrap_or_default();
+    bail!(
+        "{}: no such scene file, nor a built-in scene of that name (built in: {})",
+        p.display(),
+        known.join(", ")
+    )
+}
+
+/// `--golden DIR`, else golden/<target> of the working directory, else of the checkout
+/// (`checkout_root`); an error that says how to point the command at one otherwise.
+fn golden_dir(given: Option<PathBuf>, target: &str) -> Result<PathBuf> {
+    if let Some(d) = given {
+        if !d.is_dir() {
+            bail!("--golden {}: no such folder", d.display());
+        }
+        return Ok(d);
+    }
+    let here = PathBuf::from("golden").join(target);
+    if here.is_dir() {
+        return Ok(here);
+    }
+    match ryade::harness::env::checkout_root() {
+        Some(r) if r.join("golden").join(target).is_dir() => Ok(r.join("golden").join(target)),
+        _ => bail!(
+            "golden/{} not found here ({}): {}",
+            target,
+            std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_default(),
+            ryade::harness::env::GOLDEN_HINT
+        ),
+    }
 }
 
 fn cores() -> usize {
@@ -315,6 +409,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.cmd {
         Cmd::Run {
             threads,
+            check,
+            no_check,
             fast,
             script,
             args,
@@ -326,7 +422,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 // read by the yade package (O's fast-path mode); a child process inherits it
                 std::env::set_var("RYADE_FAST", mode);
             }
-            let mut a: Vec<std::ffi::OsString> = vec![script.into_os_string()];
+            let mut a: Vec<std::ffi::OsString> = Vec::new();
+            if check {
+                a.push("--check".into());
+            } else if no_check {
+                a.push("--no-check".into());
+            }
+            a.push(script.into_os_string());
             a.extend(args.into_iter().map(Into::into));
             python("yade.runner", &a, threads)
         }
@@ -411,6 +513,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             preset,
         } => {
             if target.starts_with('r') && target.len() == 3 {
+                check_cycles(cycles)?;
                 use ryade::harness::{study, study_run};
                 let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &[])?;
                 let o = study_run::DiffOptions {
@@ -430,7 +533,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ryade_extra: ryade_arg,
                     quiet: false,
                 };
-                let rep = study_run::diff(&study_run::repo_root(), &o)?;
+                let out = o.out.clone();
+                ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));
+                let rep = study_run::diff(&study_run::repo_root()?, &o)?;
                 print!("{}", study_run::format_diff(&rep));
                 println!(
                     "outputs: {}/diff_{}_{}.{{csv,json,png}}",
@@ -444,7 +549,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     ExitCode::from(1)
                 });
             }
-            let dir = golden.unwrap_or_else(|| PathBuf::from("golden").join(&target));
+            if !matches!(target.as_str(), "micro" | "micro_grid" | "meso") {
+                bail!(
+                    "unknown diff target '{}': available targets are: micro, micro_grid, meso, r03, r05, r07",
+                    target
+                );
+            }
+            let dir = golden_dir(golden, &target)?;
             if target == "meso" {
                 let rep = ryade::harness::meso::diff_meso(&dir)?;
                 print!("{}", ryade::harness::meso::format_report(&rep));
@@ -457,12 +568,6 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 } else {
                     ExitCode::from(1)
                 });
-            }
-            if target != "micro" && target != "micro_grid" {
-                bail!(
-                    "unknown diff target '{}': available targets are: micro, micro_grid, meso, r03, r05, r07",
-                    target
-                );
             }
             let mut reps = Vec::new();
             for p in micro::scene_files(&dir)? {
@@ -538,8 +643,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if !matches!(path.as_str(), "yade" | "fast" | "all") {
                 bail!("--path: yade, fast or all, not '{}'", path);
             }
-            let root = ryade::harness::env::repo_root();
+            let root = ryade::harness::env::repo_root()?;
             for sc in &scenes {
+                let sc = &bench_scene(&root, sc)?;
                 let r = ryade::bench::bench(&root, sc, steps, warmup, reps, &variants)?;
                 print!("{}", ryade::bench::format_report(&r));
                 if let Some(l) = &log {
@@ -579,6 +685,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             if seeds == 0 {
                 bail!("--seeds must be at least 1");
             }
+            check_cycles(cycles)?;
             let o = study_run::StudyOptions {
                 out: out.unwrap_or_else(|| PathBuf::from("study_out").join(&size)),
                 size,
@@ -592,7 +699,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 extra,
                 quiet: false,
             };
-            let r = study_run::study_sweep(&study_run::repo_root(), &o)?;
+            let out = o.out.clone();
+            ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));
+            let r = study_run::study_sweep(&study_run::repo_root()?, &o)?;
             let failed: Vec<String> = r
                 .runs
                 .iter()
@@ -641,7 +750,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 bail!("--case takes one case (N, G or F)");
             }
             study::check_size(&size)?;
-            let root = study_run::repo_root();
+            check_cycles(Some(cycles))?;
+            let root = study_run::repo_root()?;
             let jobs = jobs.unwrap_or_else(cores);
             let sc = gap_run::Scenario {
                 ratio,
@@ -653,10 +763,29 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 PathBuf::from("gap_lib")
                     .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
             });
-            if make_library || !lib_dir.join("library.json").is_file() {
+            if make_library {
                 let b: Vec<u32> = (1..=baseline_seeds).collect();
                 let e: Vec<u32> = (1..=effect_seeds).collect();
+                let (dir, cmd) = (
+                    lib_dir.clone(),
+                    std::env::args().collect::<Vec<_>>().join(" "),
+                );
+                ryade::harness::proc::set_kept(move || {
+                    format!(
+                        "the library runs finished so far are kept in {}; `{}` completes it",
+                        dir.display(),
+                        cmd
+                    )
+                });
                 gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
+            } else if !lib_dir.join("library.json").is_file() {
+                bail!(
+                    "no gap library at {} ({} missing): give --library with the folder of an existing one \
+                     (a checkout has results/gap/library_r07_G_medium_c6), or build it there with --make-library \
+                     (r07 G medium, 6 cycles: about 11 min on 2 cores)",
+                    lib_dir.display(),
+                    lib_dir.join("library.json").display()
+                );
             }
             let (_, lib) = gap_run::load_library(&lib_dir)?;
             if detectability {

@@ -51,7 +51,7 @@ fn study_script(root: &Path) -> Result<PathBuf> {
     let p = root.join("yade_ref/study/study.py");
     if !p.is_file() {
         bail!(
-            "{} not found: run from a ryade checkout or set RYADE_ROOT to one",
+            "{} not found (RYADE_ROOT names a folder without the ryade scripts; unset it to use the built-in ones)",
             p.display()
         );
     }
@@ -151,14 +151,14 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
     let log_path = run.out.join(format!("{}.log", run.engine.name()));
     let mut log = std::fs::File::create(&log_path)
         .with_context(|| format!("creating {}", log_path.display()))?;
-    let mut child = cmd.spawn().with_context(|| match run.engine {
+    let mut tracked = super::proc::spawn(&mut cmd).with_context(|| match run.engine {
         Engine::Yade => {
             "starting yade (install it: apt-get install -y --no-install-recommends yade)"
                 .to_string()
         }
         Engine::Ryade => "starting `compat run`".to_string(),
     })?;
-    let stderr = child.stderr.take().unwrap();
+    let stderr = tracked.child.stderr.take().unwrap();
     let err_thread = std::thread::spawn(move || {
         let mut s = String::new();
         for l in BufReader::new(stderr).lines().map_while(Result::ok) {
@@ -167,7 +167,7 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
         }
         s
     });
-    let stdout = child.stdout.take().unwrap();
+    let stdout = tracked.child.stdout.take().unwrap();
     for line in BufReader::new(stdout).lines() {
         let line = line.unwrap_or_default();
         writeln!(log, "{}", line).ok();
@@ -190,7 +190,7 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
             }
         }
     }
-    let status = child.wait()?;
+    let status = tracked.wait()?;
     let err = err_thread.join().unwrap_or_default();
     log.write_all(err.as_bytes()).ok();
     if !status.success() {
@@ -216,6 +216,25 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// What a stopped `compat study` / `diff rXX` keeps in `out`: its finished runs (each marked by its
+/// `.<engine>_run.json`), which the same command reuses.
+pub fn kept_summary(out: &Path) -> String {
+    let mut done = 0;
+    for case in std::fs::read_dir(out).into_iter().flatten().flatten() {
+        for e in ["ryade", "yade"] {
+            let d = case.path().join(e);
+            if d.join(format!(".{}_run.json", e)).is_file() && d.join("history.csv").is_file() {
+                done += 1;
+            }
+        }
+    }
+    format!(
+        "kept {} finished run(s) in {}; the same command again reuses them and runs the rest",
+        done,
+        out.display()
+    )
 }
 
 /// (chain index, index in the chain, run, outcome)
@@ -370,6 +389,13 @@ pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
         })
         .collect();
     if let Some(d) = &o.yade_from {
+        if !d.is_dir() {
+            bail!(
+                "--yade-from {}: no such folder ({})",
+                d.display(),
+                super::env::GOLDEN_HINT.replace("--golden DIR", "--yade-from DIR")
+            );
+        }
         for s in &specs {
             let sp = d.join(s.name()).join("specimen.json");
             if !sp.is_file() {
@@ -591,12 +617,12 @@ fn write_diff_outputs(rep: &DiffReport, out: &Path) -> Result<()> {
 /// Figures are a convenience: a missing matplotlib is reported, never fatal.
 pub fn figures(args: &[&str]) -> bool {
     let py = super::env::python();
-    match Command::new(&py)
-        .arg("-m")
-        .arg("yade._ryade_figures")
-        .args(args)
-        .status()
-    {
+    match super::proc::status(
+        Command::new(&py)
+            .arg("-m")
+            .arg("yade._ryade_figures")
+            .args(args),
+    ) {
         Ok(s) if s.success() => true,
         Ok(s) => {
             eprintln!(
@@ -1116,7 +1142,8 @@ mod tests {
 
     #[test]
     fn presets_listed_here_exist_in_study_py() {
-        let py = std::fs::read_to_string(repo_root().join("yade_ref/study/study.py")).unwrap();
+        let py =
+            std::fs::read_to_string(repo_root().unwrap().join("yade_ref/study/study.py")).unwrap();
         for (name, cycles) in PRESETS {
             let at = py
                 .find(&format!("'{}': {{", name))

@@ -57,7 +57,7 @@ pub fn go(
     id2: usize,
     b: &Bodies2,
     forces: &mut Forces,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> Result<bool, String> {
     if fresh {
         ph.shear_force = Vec3::zeros();
@@ -106,7 +106,7 @@ pub fn go(
         if let Some(e) = energy.as_mut() {
             let d = dot(&((trial - ph.shear_force) * (1.0 / ph.ks)), &ph.shear_force);
             if d > 0.0 {
-                e.shear_dissip += d;
+                e.add(d, "shearDissip", false);
             }
         }
         if fn_ < 0.0 {
@@ -161,7 +161,7 @@ pub fn go(
                 if let Some(e) = energy.as_mut() {
                     let d = (1.0 / cp.kr) * (scalar_roll - roll_max) * roll_max;
                     if d > 0.0 {
-                        e.bending_dissip += d;
+                        e.add(d, "bendingDissip", false);
                     }
                 }
             }
@@ -175,7 +175,7 @@ pub fn go(
                 if let Some(e) = energy.as_mut() {
                     let d = (1.0 / cp.ktw) * (scalar_twist - twist_max) * twist_max;
                     if d > 0.0 {
-                        e.twist_dissip += d;
+                        e.add(d, "twistDissip", false);
                     }
                 }
             }

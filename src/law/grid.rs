@@ -25,7 +25,7 @@ pub fn scgridco_frict(
     id1: usize,
     id2: usize,
     forces: &mut Forces,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> bool {
     if g.pen < 0.0 {
         if p.never_erase {
@@ -79,7 +79,7 @@ pub fn scgridco_cohfrict(
     id1: usize,
     id2: usize,
     forces: &mut Forces,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> bool {
     if x.is_duplicate != 0 && id2 as i32 != x.true_int {
         return x.is_duplicate != 2;
@@ -119,7 +119,7 @@ pub fn scgridco_cohfrict(
         if let Some(e) = energy {
             let d = dot(&((trial - ph.shear_force) * (1.0 / ph.ks)), &ph.shear_force);
             if d > 0.0 {
-                e.plast_dissip += d;
+                e.add(d, "plastDissip", false);
             }
         }
         if fn_ < 0.0 {
@@ -153,7 +153,7 @@ pub fn gridco_gridco_frict(
     n1: (usize, usize),
     n2: (usize, usize),
     forces: &mut Forces,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> bool {
     if g.pen < 0.0 {
         if p.never_erase {
@@ -164,14 +164,9 @@ pub fn gridco_gridco_frict(
         }
     }
     ph.normal_force = g.normal * (ph.kn * cxx_max(g.pen, 0.0));
-    // traceEnergy alone also takes the energy branch; its accumulator is not recorded
-    let mut scratch = LawEnergy::default();
-    let e = match energy {
-        Some(e) => Some(e),
-        None if p.trace_energy => Some(&mut scratch),
-        None => None,
-    };
-    cundall_shear(g, ph, e);
+    // with traceEnergy the dispatch passes the energy too: the slip dissipation then goes to the
+    // functor's own plasticDissipation (not in O.energy), elastPotential still to O.energy
+    cundall_shear(g, ph, energy);
     let force = -ph.normal_force - ph.shear_force;
     let nf = cross(&g.normal, &force);
     let torque1 = nf * (g.radius1 - 0.5 * g.pen);

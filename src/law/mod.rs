@@ -6,6 +6,7 @@
 pub mod cohesion_moment;
 pub mod grid;
 
+use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
 use crate::geom::ScGeom;
 use crate::math::{cross, norm, norm2, Vec3};
@@ -26,14 +27,24 @@ impl Default for Params {
     }
 }
 
-/// Energy terms a law may add (YADE `O.energy` names).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LawEnergy {
-    pub plast_dissip: f64,
-    pub elast_potential: f64,
-    pub shear_dissip: f64,
-    pub bending_dissip: f64,
-    pub twist_dissip: f64,
+/// Where a law adds its energy terms while `O.trackEnergy` (YADE `scene->energy->add`): the scene's
+/// tracker and the index caches of the InteractionLoop's law functors (one per `LawFunctor`, as each
+/// YADE functor instance caches its own `plastDissipIx`, `elastPotentialIx`, ...).
+pub struct LawEnergy<'a> {
+    pub tracker: &'a mut EnergyTracker,
+    pub caches: &'a mut [IdCache; LawFunctor::COUNT],
+    /// The functor running now (set by the dispatch before it calls the law).
+    pub functor: LawFunctor,
+    /// Its `traceEnergy` (GridCoGridCo only): slip dissipation to the functor's own counter.
+    pub trace: bool,
+}
+
+impl LawEnergy<'_> {
+    #[inline]
+    pub fn add(&mut self, val: f64, name: &'static str, reset: bool) {
+        let c = &mut self.caches[self.functor as usize];
+        self.tracker.add(val, name, c, reset);
+    }
 }
 
 /// Which Law2 functor handles an interaction (resolved from its geometry and physics classes).
@@ -52,6 +63,9 @@ pub enum LawFunctor {
 }
 
 impl LawFunctor {
+    /// Number of law functors (the size of `LawEnergy::caches`).
+    pub const COUNT: usize = 5;
+
     pub fn class_name(&self) -> &'static str {
         match self {
             LawFunctor::CundallStrack => "Law2_ScGeom_FrictPhys_CundallStrack",
@@ -98,7 +112,7 @@ pub fn go(
     id2: usize,
     bodies: &LawBodies,
     forces: &mut Forces,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> bool {
     match load(p, g, ph, bodies, energy) {
         Some(l) => {
@@ -118,7 +132,7 @@ pub fn load(
     g: &ScGeom,
     ph: &mut FrictPhys,
     bodies: &LawBodies,
-    energy: Option<&mut LawEnergy>,
+    energy: Option<&mut LawEnergy<'_>>,
 ) -> Option<Load> {
     if g.pen < 0.0 {
         if p.never_erase {
@@ -160,7 +174,7 @@ pub fn apply(forces: &mut Forces, id1: usize, id2: usize, l: &Load) {
 
 /// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
 #[inline(always)]
-pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy>) {
+pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy<'_>>) {
     let mut fs = ph.shear_force;
     g.rotate(&mut fs);
     fs -= g.shear_inc * ph.ks;
@@ -174,18 +188,23 @@ pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut 
             ph.shear_force = fs;
         }
         Some(e) => {
+            // Law2_ScGeom_FrictPhys_CundallStrack::go (ElasticContactLaw.cpp), trackEnergy branch
             if norm2(&fs) > max_fs {
                 let ratio = max_fs.sqrt() / norm(&fs);
                 let trial = fs;
                 fs *= ratio;
                 let dissip = crate::math::dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
-                if dissip > 0.0 {
-                    e.plast_dissip += dissip;
+                // (traceEnergy: to the functor's plasticDissipation, which ryade does not expose)
+                if !e.trace && dissip > 0.0 {
+                    e.add(dissip, "plastDissip", false);
                 }
             }
             ph.shear_force = fs;
-            e.elast_potential +=
-                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&ph.shear_force) / ph.ks);
+            e.add(
+                0.5 * (norm2(&ph.normal_force) / ph.kn + norm2(&ph.shear_force) / ph.ks),
+                "elastPotential",
+                true,
+            );
         }
     }
 }

@@ -10,7 +10,7 @@ import os
 import sys
 
 from . import _ryade
-from ._errors import unsupported
+from ._errors import bridge_json, unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, Vector3i, to_vec3
 from .wrapper import Engine, FrictMat, Material, Serializable, YADE_CLASSES
 
@@ -390,7 +390,7 @@ class BodyContainer(object):
             unsupported('material class %s' % type(mat).__name__)
         if o._sim.in_step():
             unsupported('adding bodies from inside a PyRunner during a step', 'add them between O.run calls')
-        bid = o._sim.add_body(json.dumps(b._json(mat._json())))
+        bid = o._sim.add_body(bridge_json(b._json(mat._json()), 'O.bodies.append: body #%d' % len(self._objs)))
         object.__setattr__(b, '_id', bid)
         b._bind_all(o, bid) if hasattr(b, '_bind_all') else None
         object.__setattr__(b, '_owner', (o, bid))
@@ -496,7 +496,7 @@ class MaterialContainer(object):
             unsupported('material class %s' % type(m).__name__)
         mid = len(self._mats)
         m._values['id'] = mid
-        idx = self._o._sim.add_material(json.dumps(m._json()))
+        idx = self._o._sim.add_material(bridge_json(m._json(), 'O.materials.append(%s)' % type(m).__name__))
         m._bind(self._o, idx)
         self._mats.append(m)
         return mid
@@ -834,26 +834,40 @@ class Cell(object):
 
 
 class EnergyTracker(object):
+    """`O.energy` (YADE's EnergyTracker, kept by the Rust core): filled while `O.trackEnergy` by
+    NewtonIntegrator (nonviscDamp, kinetic, gravWork), the laws (elastPotential, plastDissip, shearDissip,
+    bendingDissip, twistDissip) and PeriTriaxController (velGradWork), in YADE's arithmetic and order."""
+
     def __init__(self, omega):
         self._o = omega
 
-    def _d(self):
-        return self._o._sim.energy()
-
     def keys(self):
-        return list(self._d().keys())
+        return [k for k, _ in self._o._sim.energy_items()]
 
     def items(self):
-        return list(self._d().items())
+        return list(self._o._sim.energy_items())
 
     def __getitem__(self, k):
-        return self._d()[k]
+        v = self._o._sim.energy_get(str(k))
+        if v is None:
+            raise KeyError("Unknown energy name '%s'." % k)
+        return v
+
+    def __setitem__(self, k, v):
+        self._o._sim.energy_set(str(k), float(v))
 
     def total(self):
-        return sum(self._d().values())
+        return self._o._sim.energy_total()
 
     def clear(self):
-        pass
+        self._o._sim.energy_clear()
+
+    def __getattr__(self, k):
+        if k.startswith('__') or k == '_o':
+            raise AttributeError(k)
+        if k in ('energies', 'dict', 'updateAttrs', 'dispHierarchy', '_perThreadData'):
+            unsupported('O.energy.%s' % k)
+        raise AttributeError("'EnergyTracker' object has no attribute '%s'" % k)
 
 
 # ---------------------------------------------------------------- Omega
@@ -1000,6 +1014,8 @@ class Omega(_ryade.OmegaBase):
             else:
                 reuse.append(old.pop(id(e), None))
             specs.append(d)
+        for k, d in enumerate(specs):
+            bridge_json(d, 'O.engines[%d] (%s)' % (k, d.get('class')))
         self._sim.set_engines(json.dumps(specs), reuse)
         self._external = external
         self._engines = lst

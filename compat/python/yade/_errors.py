@@ -34,7 +34,44 @@ def unsupported(what, hint=None):
     msg = 'ryade does not support %s yet %s' % (what, script_location())
     if hint:
         msg += ': ' + hint
-    raise UnsupportedError(msg.rstrip())
+    e = UnsupportedError(msg.rstrip())
+    e.what, e.hint = what, hint
+    raise e
+
+
+def _non_finite(v, path):
+    """(path, value) of the first NaN/inf in `v` (a vector of numbers is reported whole)."""
+    if isinstance(v, float):
+        return None if v == v and v not in (float('inf'), float('-inf')) else (path, v)
+    if isinstance(v, dict):
+        for k, x in v.items():
+            r = _non_finite(x, '%s.%s' % (path, k) if path else str(k))
+            if r:
+                return r
+    elif isinstance(v, (list, tuple)):
+        for i, x in enumerate(v):
+            r = _non_finite(x, '%s[%d]' % (path, i))
+            if r:
+                if all(isinstance(y, (int, float)) for y in v):
+                    return (path, tuple(v))
+                return r
+    return None
+
+
+def bridge_json(obj, what):
+    """JSON for the Rust core. JSON has no NaN or infinity: a non-finite number stops here, naming
+    `what` (e.g. 'O.bodies.append(body)'), the attribute and its value, instead of a parse error
+    about a column of a JSON text the user never wrote."""
+    import json
+    try:
+        return json.dumps(obj, allow_nan=False)
+    except ValueError:
+        found = _non_finite(obj, '')
+        if not found:
+            raise
+        where = '%s: %s' % (what, found[0]) if found[0] else what
+        raise ValueError('%s = %r is not finite; ryade cannot take NaN or infinity into the simulation %s'
+                         % (where, found[1], script_location()))
 
 
 import os as _os  # noqa: E402

@@ -124,6 +124,13 @@ def study(hist_csv, sdr_csv, outdir):
         plt.close(fig)
     sd = _rows(sdr_csv)
     fig, ax = plt.subplots(figsize=(6, 4))
+    # Eq 1 is undefined where F and N rut alike: such points (|F-N| under 5 % of N's rut, or off the
+    # [-1.5, 2.5] axis) are masked, not drawn off-scale, and the figure says how many
+    lo, hi, tol = -1.5, 2.5, 0.05
+    mean_rut = {}
+    for r in rows:
+        mean_rut.setdefault((r['engine'], r['ratio'], r['case'], int(r['cycle'])), []).append(_f(r['rut_mm']))
+    info = {'points': 0, 'masked': 0}
     for ra in sorted({r['ratio'] for r in sd}, key=float):
         for eng, ls in (('ryade', 'o-'), ('yade', 's:')):
             rr = [r for r in sd if r['ratio'] == ra and r['engine'] == eng]
@@ -134,14 +141,31 @@ def study(hist_csv, sdr_csv, outdir):
             # several seeds: Eq 1 on the seed-mean ruts, bars = sd of the per-seed ratios
             mean = [_f(r['sdr_of_mean_ruts'] if several else r['sdr_mean']) for r in rr]
             err = [_f(r['sdr_sd']) for r in rr] if several else None
+            for k, c in enumerate(cyc):
+                ruts = [mean_rut.get((eng, ra, x, c)) for x in 'NF']
+                n, f = [sum(v) / len(v) if v else None for v in ruts]
+                undefined = n is not None and f is not None and abs(f - n) < tol * abs(n)
+                info['points'] += 1
+                if undefined or not (lo <= mean[k] <= hi):
+                    mean[k] = float('nan')
+                    if err:
+                        err[k] = float('nan')
+                    info['masked'] += 1
             ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2,
                         label='d/a = %s (%s%s)' % (ra, eng, ', %s seeds' % rr[0]['n_seeds'] if several else ''))
     ax.axhline(0, color='0.6', lw=0.8)
     ax.axhline(1, color='0.6', lw=0.8)
-    # the ratio explodes where F and N rut alike (small denominators): show the meaningful range
-    ax.set_ylim(-1.5, 2.5)
-    ax.text(0.01, 0.01, 'axis clipped to [-1.5, 2.5]; values in sdr.csv', transform=ax.transAxes, fontsize=7,
-            color='0.4')
+    ax.set_ylim(lo, hi)
+    if not sd:
+        cases = ''.join(sorted({r['case'] for r in rows}, key='NGF'.index))
+        info['note'] = ('no surface displacement ratio: Eq 1 needs the N, G and F runs of one ratio and seed '
+                        '(this study ran case%s %s)' % ('s' if len(cases) > 1 else '', ', '.join(cases)))
+        ax.text(0.5, 0.5, info['note'].replace(': ', ':\n', 1), transform=ax.transAxes, ha='center', va='center',
+                fontsize=9, wrap=True)
+    else:
+        info['note'] = ('%d of %d points masked: undefined where F and N rut alike (|F-N| < %g %% of N)\nor off '
+                        '[%g, %g]; every value in sdr.csv' % (info['masked'], info['points'], tol * 100, lo, hi))
+        ax.text(0.01, 0.01, info['note'], transform=ax.transAxes, fontsize=6.5, color='0.3')
     last = max([int(r['cycle']) for r in sd] or [0])
     if last >= 150:  # the paper reads the ratio over cycles 100-200
         ax.set_xlim(100, last)
@@ -149,9 +173,12 @@ def study(hist_csv, sdr_csv, outdir):
     ax.set_ylabel('surface displacement ratio (G-N)/(F-N)')
     ax.set_title('Surface displacement ratio (paper Eq 1, Fig 6)')
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    if sd:
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, 'fig_sdr.png'), dpi=110)
+    plt.close(fig)
+    return info
 
 
 def profiles(index_csv, png):

@@ -246,20 +246,32 @@ class _Progress:
 
 
 def _start(job, nice):
-    os.makedirs(os.path.dirname(job.log) or '.', exist_ok=True)
-    env = dict(os.environ)
-    env.update(job.env_add)
-    job.logf = open(job.log, 'wb')
-    pre = (lambda: os.nice(nice)) if nice else None
-    job.started = time.time()
-    job.status = 'RUNNING'
+    import signal
+    stops = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
+    # a stop signal is held until the job is recorded as running, so that it is stopped with the
+    # others; the job itself starts with them unblocked
+    signal.pthread_sigmask(signal.SIG_BLOCK, stops)
+
+    def pre():
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
+        if nice:
+            os.nice(nice)
     try:
-        job.proc = subprocess.Popen(job.argv, env=env, stdin=subprocess.DEVNULL, stdout=job.logf,
-                                    stderr=subprocess.STDOUT, preexec_fn=pre, start_new_session=True)
-    except OSError as e:
-        job.logf.write(('compat batch: cannot start %s: %s\n' % (shlex.join(job.argv), e)).encode())
-        job.proc = None
-        _finish(job, 127)
+        os.makedirs(os.path.dirname(job.log) or '.', exist_ok=True)
+        env = dict(os.environ)
+        env.update(job.env_add)
+        job.logf = open(job.log, 'wb')
+        job.started = time.time()
+        job.status = 'RUNNING'
+        try:
+            job.proc = subprocess.Popen(job.argv, env=env, stdin=subprocess.DEVNULL, stdout=job.logf,
+                                        stderr=subprocess.STDOUT, preexec_fn=pre, start_new_session=True)
+        except OSError as e:
+            job.logf.write(('compat batch: cannot start %s: %s\n' % (shlex.join(job.argv), e)).encode())
+            job.proc = None
+            _finish(job, 127)
+    finally:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
 
 
 def _log_says_normal_exit(path):
@@ -285,6 +297,16 @@ def _finish(job, rc):
                 (job.line, job.description, job.exit, 'OK' if job.exit == 0 else 'FAILED', _hms(job.wall),
                  ' '.join('%s=%s' % (k, shlex.quote(v)) for k, v in job.env_add.items()) + ' ' + shlex.join(job.argv),
                  time.asctime(time.localtime(job.started)), time.asctime(time.localtime(job.finished))))
+
+
+#: the signal that stopped the batch (SIGINT arrives as KeyboardInterrupt; SIGTERM and SIGHUP are made one)
+_STOP_SIGNAL = ['SIGINT', 2]
+
+
+def _on_stop_signal(signum, frame):
+    import signal
+    _STOP_SIGNAL[:] = [signal.Signals(signum).name, signum]
+    raise KeyboardInterrupt
 
 
 def _stop(job):
@@ -335,15 +357,25 @@ def run_jobs(jobs, max_cores, nice=10, timeout=None, progress=None):
             if progress.tty and time.time() - progress.last_draw > 0.5:
                 progress.update()
     except KeyboardInterrupt:
+        stopped = []
         for j in jobs:
             if j.status == 'RUNNING':
                 _stop(j)
-                rc = j.proc.wait()
-                _finish(j, rc if rc >= 0 else 128 - rc)
+                stopped.append(j)
             elif j.status == 'PENDING':
                 j.status = 'NOT RUN'
+        for j in stopped:
+            try:
+                rc = j.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                os.killpg(j.proc.pid, 9)
+                rc = j.proc.wait()
+            _finish(j, rc if rc >= 0 else 128 - rc)
         progress.close()
-        print('compat batch: interrupted', file=sys.stderr)
+        done = [j for j in jobs if j.status == 'DONE' and j not in stopped]
+        print('compat batch: stopped by %s: %d job(s) had finished (their logs and outputs are kept), %d stopped, '
+              '%d not started' % (_STOP_SIGNAL[0], len(done), len(stopped), sum(1 for j in jobs if j.status == 'NOT RUN')),
+              file=sys.stderr)
         return False
     progress.close()
     return True
@@ -470,9 +502,14 @@ def main(argv=None):
             print('#%d line %d (%s):\n    %s %s > %s 2>&1' % (j.num, j.line, j.description, env,
                                                           shlex.join(j.argv), j.log))
         return 0
+    import signal
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, _on_stop_signal)
     completed = run_jobs(jobs, max_cores, nice=args.nice, timeout=args.timeout)
     write_summary(jobs, logdir)
-    return 0 if completed and all(j.ok for j in jobs) else 1
+    if not completed:
+        return 128 + _STOP_SIGNAL[1]
+    return 0 if all(j.ok for j in jobs) else 1
 
 
 if __name__ == '__main__':

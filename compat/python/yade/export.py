@@ -171,11 +171,12 @@ class VTKExporter(object):
 
 
 class VTKRecorder(PeriodicEngine):
-    """`VTKRecorder(fileName, recorders, iterPeriod)`: every period, writes `<fileName>spheres.<iter>.vtu`
-    (and `facets`) as VTK XML unstructured grids (ASCII) that ParaView opens. Recorders: 'spheres',
-    'facets', 'velocity', 'all' (= spheres, facets, velocity); others fail loudly."""
+    """`VTKRecorder(fileName, recorders, iterPeriod)`: at iteration 0 and every period (YADE's initRun),
+    writes `<fileName>spheres.<iter>.vtu` (and `facets`) as VTK XML unstructured grids (ASCII) that
+    ParaView opens, with YADE's arrays (radii; linVelVec, angVelVec, linVelLen, angVelLen for 'velocity').
+    Recorders: 'spheres', 'facets', 'velocity', 'all' (= spheres, facets, velocity); others fail loudly."""
     _attrs = {'fileName': '', 'recorders': ['all'], 'ascii': False, 'compress': False, 'mask': 0,
-              'skipFacetIntr': True, 'skipNondynamic': False, 'multiblock': False}
+              'skipFacetIntr': True, 'skipNondynamic': False, 'multiblock': False, 'initRun': True}
     _supported = {'all', 'spheres', 'facets', 'velocity', 'id', 'mass'}
 
     def _json(self):
@@ -200,8 +201,11 @@ class VTKRecorder(PeriodicEngine):
             if 'mass' in rec:
                 fields.append(('mass', 1, [[b.state.mass] for b in bodies]))
             if 'velocity' in rec:
-                fields.append(('linVelVec', 3, [list(b.state.vel) for b in bodies]))
-                fields.append(('angVelVec', 3, [list(b.state.angVel) for b in bodies]))
+                lin, ang = [b.state.vel for b in bodies], [b.state.angVel for b in bodies]
+                fields.append(('linVelVec', 3, [list(v) for v in lin]))
+                fields.append(('angVelVec', 3, [list(v) for v in ang]))
+                fields.append(('linVelLen', 1, [[_norm(v)] for v in lin]))
+                fields.append(('angVelLen', 1, [[_norm(v)] for v in ang]))
             _write_vtu('%sspheres.%d.vtu' % (base, omega.iter), [list(b.state.pos) for b in bodies], None, fields)
         if 'facets' in rec:
             bodies = [b for b in omega.bodies if isinstance(b.shape, Facet)]
@@ -211,6 +215,12 @@ class VTKRecorder(PeriodicEngine):
                 cells.append([len(pts), len(pts) + 1, len(pts) + 2])
                 pts.extend(list(p + o * v) for v in b.shape.vertices)
             _write_vtu('%sfacets.%d.vtu' % (base, omega.iter), pts, cells, [])
+
+
+def _norm(v):
+    """Eigen's norm(): sqrt(x*x + (y*y + z*z))."""
+    import math
+    return math.sqrt(v[0] * v[0] + (v[1] * v[1] + v[2] * v[2]))
 
 
 def _write_vtu(path, points, triangles, point_fields):

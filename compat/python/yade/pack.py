@@ -108,6 +108,8 @@ class SpherePack(object):
                     continue
                 if t[0].startswith('#'):
                     continue
+                if len(t) > 4 and int(t[4]) >= 0:
+                    unsupported('SpherePack.load of clumped spheres (clumpId %s in %s)' % (t[4], fileName))
                 self._sp.append(((float(t[0]), float(t[1]), float(t[2])), float(t[3])))
 
     def toList(self):

@@ -1,9 +1,20 @@
-"""`compat run script.py [args]`: run an unmodified YADE script as `yade -n -x script.py args` would.
+"""usage: compat run [-j N] [--check | --no-check] SCRIPT.py [ARGS...]
+
+Run an unmodified YADE script as `yade -n -x SCRIPT.py ARGS` would (headless).
 
 The script runs as `__main__` with YADE's startup namespace (`from yade import *`, `utils`, `pack`,
 `geom`, `from yade.utils import *`, `from yade.pack import *`, `from math import *`), `O`/`Omega` in
-builtins and the script arguments in `sys.argv`. Anything ryade lacks stops the run with exit code 1
-and a message naming it and the script line.
+builtins and ARGS in `sys.argv`.
+
+Before the first line runs, the script is checked for YADE names ryade does not provide (classes,
+functions, O's methods, refused keywords; also in PyRunner command strings): if it uses any, every one
+is listed with its line and the run is refused with exit code 1, so that a long run cannot die at its
+last line. Anything the check cannot see (it depends on run-time values) still stops the run with exit
+code 1 and a message naming it and the script line when it is reached.
+
+  --check      only check: list what ryade lacks, run nothing (exit 0: nothing found, 1: found)
+  --no-check   run without checking first (stops at the first unsupported name it reaches)
+  -j N         threads (as `yade -jN`; the results have the same bits for any N)
 """
 
 import os
@@ -42,12 +53,40 @@ def _namespace(mod):
     ns['__ryade_script__'] = True
 
 
-def run(script, args):
+def check(path, script, show_guarded):
+    """List the script's unsupported names on stderr (the guarded ones only if `show_guarded`); the
+    number of those that refuse the run (not inside a try/except or a `# YADE only` branch)."""
+    from yade import _check
+    try:
+        findings = _check.check_file(path)
+    except SyntaxError:
+        return 0  # Python reports it, with its line, when the script is compiled
+    for f in findings:
+        if show_guarded or not f.guarded:
+            sys.stderr.write('compat run: %s\n' % f.message(script))
+    return sum(1 for f in findings if not f.guarded)
+
+
+def run(script, args, mode='check'):
     from yade import _errors
     path = os.path.abspath(script)
     if not os.path.isfile(path):
         sys.stderr.write("compat run: no such script: %s\n" % script)
         return 2
+    if mode in ('check', 'only'):
+        bad = check(path, script, show_guarded=(mode == 'only'))
+        if mode == 'only':
+            if not bad:
+                sys.stderr.write('compat run --check: nothing in %s refuses the run (the static check sees names, '
+                                 'not run-time values)\n' % script)
+            else:
+                sys.stderr.write('compat run --check: %d unsupported name(s) in %s\n' % (bad, script))
+            return 1 if bad else 0
+        if bad:
+            sys.stderr.write('compat run: refused before the first step: %s uses %d name(s) ryade does not support '
+                             '(listed above); `compat run --no-check` runs it anyway, until the first of them\n'
+                             % (script, bad))
+            return 1
     _errors.SCRIPT = path
     sys.argv = [script] + list(args)
     sys.path.insert(0, os.path.dirname(path))
@@ -58,8 +97,21 @@ def run(script, args):
     _namespace(mod)
     with open(path, 'rb') as f:
         code = compile(f.read(), path, 'exec')
+    import signal
+    stop = ['SIGINT', 2]
+
+    def on_stop(signum, frame):
+        stop[:] = [signal.Signals(signum).name, signum]
+        raise KeyboardInterrupt
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, on_stop)
     try:
         exec(code, mod.__dict__)
+    except KeyboardInterrupt:
+        import yade
+        sys.stderr.write('compat run: stopped by %s at iteration %d; what %s wrote so far is kept\n'
+                         % (stop[0], yade.O.iter, script))
+        return 128 + stop[1]
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except _errors.UnsupportedError as e:
@@ -76,11 +128,14 @@ def run(script, args):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
+    argv = list(sys.argv[1:] if argv is None else argv)
+    mode = 'check'
+    while argv and argv[0] in ('--check', '--no-check'):
+        mode = 'only' if argv.pop(0) == '--check' else 'none'
     if not argv or argv[0] in ('-h', '--help'):
         print(__doc__)
         return 0 if argv else 2
-    rc = run(argv[0], argv[1:])
+    rc = run(argv[0], argv[1:], mode)
     sys.stdout.flush()
     sys.stderr.flush()
     return rc

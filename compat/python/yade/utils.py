@@ -52,6 +52,20 @@ def _material(material):
                     "int (for shared material id) or Material instance.")
 
 
+def _require_finite(fn, **args):
+    """A NaN or infinite argument of a body builder stops here, naming the argument and its value
+    (YADE would build the body and the run would fail later; ryade cannot carry it to the core)."""
+    from ._errors import script_location
+    for name, v in args.items():
+        try:
+            vals = [float(x) for x in v] if hasattr(v, '__len__') else [float(v)]
+        except (TypeError, ValueError):
+            continue
+        if not all(x == x and x not in (float('inf'), float('-inf')) for x in vals):
+            raise ValueError('utils.%s: %s = %r is not finite (ryade cannot take NaN or infinity into the simulation) %s'
+                             % (fn, name, v, script_location()))
+
+
 def _commonBodySetup(b, volume, geomInertia, material, pos, noBound=False, resetState=True, dynamic=None, fixed=False,
                      blockedDOFs='xyzXYZ'):
     """py/utils.py::_commonBodySetup: mass = V·ρ, inertia = geomInertia·ρ (Python arithmetic, as YADE)."""
@@ -69,6 +83,7 @@ def _commonBodySetup(b, volume, geomInertia, material, pos, noBound=False, reset
 
 
 def sphere(center, radius, dynamic=None, fixed=False, wire=False, color=None, highlight=False, material=-1, mask=1):
+    _require_finite('sphere', center=center, radius=radius)
     b = Body()
     b.shape = Sphere(radius=radius, color=color if color else randomColor(), wire=wire, highlight=highlight)
     V = (4. / 3) * math.pi * radius**3
@@ -81,6 +96,7 @@ def sphere(center, radius, dynamic=None, fixed=False, wire=False, color=None, hi
 
 def box(center, extents, orientation=Quaternion(1, 0, 0, 0), dynamic=None, fixed=False, wire=False, color=None,
         highlight=False, material=-1, mask=1):
+    _require_finite('box', center=center, extents=extents)
     b = Body()
     b.shape = Box(extents=extents, color=color if color else randomColor(), wire=wire, highlight=highlight)
     V = 8 * extents[0] * extents[1] * extents[2]
@@ -93,6 +109,7 @@ def box(center, extents, orientation=Quaternion(1, 0, 0, 0), dynamic=None, fixed
 
 
 def wall(position, axis, sense=0, color=None, material=-1, mask=1):
+    _require_finite('wall', position=position)
     b = Body()
     b.shape = Wall(sense=sense, axis=axis, color=color if color else randomColor())
     if isinstance(position, (int, float)):
@@ -112,6 +129,8 @@ def inscribedCircleCenter(v0, v1, v2):
 
 
 def facet(vertices, dynamic=None, fixed=True, wire=True, color=None, highlight=False, noBound=False, material=-1, mask=1):
+    for k in range(3):
+        _require_finite('facet', **{'vertices[%d]' % k: vertices[k]})
     b = Body()
     center = inscribedCircleCenter(vertices[0], vertices[1], vertices[2])
     vertices = Vector3(*vertices[0]) - center, Vector3(*vertices[1]) - center, Vector3(*vertices[2]) - center

@@ -13,7 +13,7 @@ import os
 import sys
 import time as _time
 
-from ._errors import unsupported
+from ._errors import bridge_json, unsupported
 
 with open(os.path.join(os.path.dirname(__file__), '_yade_classes.json')) as _f:
     YADE_CLASSES = json.load(_f)
@@ -84,6 +84,8 @@ class Serializable(object):
         name = type(self).__name__
         if k in _yade_attrs(name) or any(k in _yade_attrs(b) for b in YADE_CLASSES.get(name, {}).get('bases', ())):
             unsupported('the attribute %s.%s' % (name, k))
+        if k in YADE_CLASSES.get(name, {}).get('methods', ()):
+            unsupported('the method %s.%s' % (name, k))
         raise AttributeError("'%s' object has no attribute '%s'" % (name, k))
 
     def _convert(self, k, v):
@@ -272,7 +274,7 @@ class Engine(Serializable):
         elif k in ('label', 'ompThreads'):
             pass
         elif k in self._live:
-            omega._sim.engine_set(index, k, json.dumps(_jsonable(self._values[k])))
+            omega._sim.engine_set(index, k, bridge_json(_jsonable(self._values[k]), '%s.%s' % (type(self).__name__, k)))
         elif self._is_builtin():
             unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k))
 
@@ -457,8 +459,14 @@ class NewtonIntegrator(GlobalEngine):
 
     @property
     def prevVelGrad(self):
+        """The cell's velGrad of the previous step (zero until a periodic step ran), read from the
+        integrator in O.engines; a copy, as YADE returns."""
         from .minieigen import Matrix3
-        return Matrix3.Zero
+        if self._owner is None:
+            return Matrix3.Zero
+        omega, index = self._owner
+        m = json.loads(omega._sim.engine_get(index, 'prevVelGrad'))
+        return Matrix3(*[x for row in m for x in row])
 
     def _read(self, k):
         if k == 'gravity':
@@ -925,7 +933,8 @@ def _jsonable(v):
 def _make_unsupported(name):
     def __init__(self, *args, **kw):
         unsupported('class %s' % name)
-    return type(name, (Serializable,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+    return type(name, (Serializable,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.',
+                                        '_ryade_unsupported': 'class %s' % name})
 
 
 _IMPLEMENTED = {c.__name__: c for c in [
@@ -968,7 +977,8 @@ def all_classes():
         else:
             def __init__(self, *args, **kw):
                 unsupported('class %s' % name)
-            cls = type(name, (base,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.'})
+            cls = type(name, (base,), {'__init__': __init__, '__doc__': 'YADE class not implemented by ryade.',
+                                       '_ryade_unsupported': 'class %s' % name})
         out[name] = cls
         return cls
 

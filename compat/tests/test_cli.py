@@ -1,0 +1,47 @@
+"""The command line explains itself and refuses what would write nothing useful (issue 18): help text for
+`compat run` and for the options that had none (--seeds, --first-seed, gap -j); `--cycles 0` refused."""
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+COMPAT = os.environ.get('COMPAT', os.path.join(ROOT, 'target', 'release', 'compat'))
+
+pytestmark = pytest.mark.skipif(not os.path.exists(COMPAT), reason='build the compat binary first (cargo build --release)')
+
+
+def run(*args, cwd=None):
+    return subprocess.run([COMPAT] + list(args), capture_output=True, text=True, timeout=120, cwd=cwd,
+                          env=dict(os.environ, RYADE_PYTHON=sys.executable))
+
+
+def option_help(text, opt):
+    """The help text clap prints under `opt` (empty if none)."""
+    m = re.search(r'^\s*(?:-\w, )?%s(?![\w-])(?: <\w+>)?([^\n]*)\n((?:\s{10,}\S[^\n]*\n)*)' % re.escape(opt), text, re.M)
+    return (m.group(1) + ' ' + m.group(2)).strip() if m else ''
+
+
+def test_help_texts():
+    p = run('run', '--help')
+    assert p.returncode == 0
+    assert 'Run an unmodified YADE script' in p.stdout and '--no-check' in p.stdout and '--check' in p.stdout
+    assert option_help(p.stdout, '<SCRIPT>')
+    study = run('study', '--help').stdout
+    assert 'Seeds per ratio and case' in option_help(study, '--seeds')
+    assert 'First seed' in option_help(study, '--first-seed')
+    gap = run('gap', '--help').stdout
+    assert 'at the same time' in option_help(gap, '--jobs')
+    for o in ('--scenario', '--case', '--size', '--baseline-seeds', '--effect-seeds'):
+        assert option_help(gap, o), o
+
+
+def test_zero_cycles_refused(tmp_path):
+    for args in (('study', '--size', 'tiny', '--cycles', '0'), ('diff', 'r05', '--cycles', '0'),
+                 ('gap', '--make-library', '--cycles', '0')):
+        p = run(*args, cwd=tmp_path)
+        assert p.returncode != 0 and '--cycles must be at least 1' in p.stderr, (args, p.stderr)
+    assert os.listdir(tmp_path) == []
