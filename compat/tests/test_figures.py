@@ -32,11 +32,12 @@ def test_sdr_figure_without_f_says_why(tmp_path):
 
 def test_sdr_figure_masks_the_undefined_ratio(tmp_path):
     # cycle 1: F - N = 2 (defined, ratio 0.5); cycle 2: F and N rut alike (0.1 of 6): ratio 20, masked;
-    # cycle 3: defined but off the axis (-3), masked
+    # cycle 3: defined and outside [0, 1] (-3): drawn, the axis widened to show it (the r07 study's values)
     n, g, f = [0, 4, 6, 6], [0, 5, 7, 3], [0, 6, 6.1, 7]
     write(tmp_path / 'h.csv', HEAD, hist({'N': n, 'G': g, 'F': f}))
     sdr = [['ryade', '0.7', k, 1, (g[k] - n[k]) / (f[k] - n[k]), 0, (g[k] - n[k]) / (f[k] - n[k]), ''] for k in (1, 2, 3)]
     write(tmp_path / 's.csv', ['engine', 'ratio', 'cycle', 'n_seeds', 'sdr_mean', 'sdr_sd', 'sdr_of_mean_ruts', 'values'], sdr)
     info = figs.study(str(tmp_path / 'h.csv'), str(tmp_path / 's.csv'), str(tmp_path))
-    assert (info['points'], info['masked']) == (3, 2)
-    assert info['note'].startswith('2 of 3 points masked: undefined where F and N rut alike')
+    assert (info['points'], info['masked']) == (3, 1)
+    assert info['note'].startswith('1 of 3 points masked: undefined where F and N rut alike')
+    assert info['ylim'][0] < -3 and 1.5 < info['ylim'][1] < 2

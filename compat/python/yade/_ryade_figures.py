@@ -124,13 +124,15 @@ def study(hist_csv, sdr_csv, outdir):
         plt.close(fig)
     sd = _rows(sdr_csv)
     fig, ax = plt.subplots(figsize=(6, 4))
-    # Eq 1 is undefined where F and N rut alike: such points (|F-N| under 5 % of N's rut, or off the
-    # [-1.5, 2.5] axis) are masked, not drawn off-scale, and the figure says how many
-    lo, hi, tol = -1.5, 2.5, 0.05
+    # Eq 1 is undefined where F and N rut alike: such points (|F-N| under 5 % of N's rut) are masked, not
+    # drawn off-scale, and the figure says how many; the axis spans the defined values (at least [-0.5, 1.5],
+    # the paper's [0, 1] shaded), with values beyond +-15 (F within a few % of N) masked as well
+    lo, hi, tol = -15.0, 15.0, 0.05
     mean_rut = {}
     for r in rows:
         mean_rut.setdefault((r['engine'], r['ratio'], r['case'], int(r['cycle'])), []).append(_f(r['rut_mm']))
     info = {'points': 0, 'masked': 0}
+    shown = []
     for ra in sorted({r['ratio'] for r in sd}, key=float):
         for eng, ls in (('ryade', 'o-'), ('yade', 's:')):
             rr = [r for r in sd if r['ratio'] == ra and r['engine'] == eng]
@@ -151,11 +153,20 @@ def study(hist_csv, sdr_csv, outdir):
                     if err:
                         err[k] = float('nan')
                     info['masked'] += 1
-            ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2,
+            shown.extend((c, v, e) for c, v, e in zip(cyc, mean, err or [0.0] * len(cyc)) if v == v)
+            every = max(1, len(cyc) // 40)
+            ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2, markevery=every, errorevery=every, ms=4,
                         label='d/a = %s (%s%s)' % (ra, eng, ', %s seeds' % rr[0]['n_seeds'] if several else ''))
     ax.axhline(0, color='0.6', lw=0.8)
     ax.axhline(1, color='0.6', lw=0.8)
-    ax.set_ylim(lo, hi)
+    ax.axhspan(0, 1, color='tab:green', alpha=0.08, lw=0, label="the paper's range [0, 1]")
+    last = max([int(r['cycle']) for r in sd] or [0])
+    first = 100 if last >= 150 else 0  # the paper reads the ratio over cycles 100-200
+    inside = [(v - (e if e == e else 0), v + (e if e == e else 0)) for c, v, e in shown if c >= first]
+    y0, y1 = min([a for a, _ in inside] + [-0.5]), max([b for _, b in inside] + [1.5])
+    pad = 0.05 * (y1 - y0)
+    info['ylim'] = (y0 - pad, y1 + pad)
+    ax.set_ylim(*info['ylim'])
     if not sd:
         cases = ''.join(sorted({r['case'] for r in rows}, key='NGF'.index))
         info['note'] = ('no surface displacement ratio: Eq 1 needs the N, G and F runs of one ratio and seed '
@@ -163,12 +174,11 @@ def study(hist_csv, sdr_csv, outdir):
         ax.text(0.5, 0.5, info['note'].replace(': ', ':\n', 1), transform=ax.transAxes, ha='center', va='center',
                 fontsize=9, wrap=True)
     else:
-        info['note'] = ('%d of %d points masked: undefined where F and N rut alike (|F-N| < %g %% of N)\nor off '
-                        '[%g, %g]; every value in sdr.csv' % (info['masked'], info['points'], tol * 100, lo, hi))
-        ax.text(0.01, 0.01, info['note'], transform=ax.transAxes, fontsize=6.5, color='0.3')
-    last = max([int(r['cycle']) for r in sd] or [0])
-    if last >= 150:  # the paper reads the ratio over cycles 100-200
-        ax.set_xlim(100, last)
+        info['note'] = ('%d of %d points masked: undefined where F and N rut alike (|F-N| < %g %% of N)\nor '
+                        'beyond +-%g; every value in sdr.csv' % (info['masked'], info['points'], tol * 100, hi))
+        ax.text(0.0, -0.17, info['note'], transform=ax.transAxes, fontsize=6.5, color='0.3', va='top')
+    if first:
+        ax.set_xlim(first, last)
     ax.set_xlabel('cycle')
     ax.set_ylabel('surface displacement ratio (G-N)/(F-N)')
     ax.set_title('Surface displacement ratio (paper Eq 1, Fig 6)')
