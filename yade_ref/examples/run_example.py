@@ -23,7 +23,11 @@ except ImportError:
         def __getattr__(self, k): return _RxNoGui()
         def __call__(self, *a, **k): return _RxNoGui()
     _rx_stub = _rx_types.ModuleType('yade.qt')
-    _rx_stub.__getattr__ = lambda name: _RxNoGui()
+    def _rx_stub_attr(name):
+        if name.startswith('__'):  # __file__, __path__...: what inspect.stack() (yade.mpy) asks of every module
+            raise AttributeError(name)
+        return _RxNoGui()
+    _rx_stub.__getattr__ = _rx_stub_attr
     _rx_stub.View = _rx_stub.Controller = _rx_stub.Renderer = _RxNoGui
     _rx_stub.views = lambda: []
     _rx_sys.modules['yade.qt'] = _rx_stub
