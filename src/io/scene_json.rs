@@ -268,11 +268,22 @@ pub fn interaction(i: &Value, nbodies: usize) -> Result<Interaction> {
                     moment_bending: v3o("moment_bending")?,
                 })
             }
+            "ViscElPhys" => None,
             other => bail!(
                 "interaction physics class '{}' is not supported by ryade yet",
                 other
             ),
         };
+        if class(p)? == "ViscElPhys" {
+            ext.viscel = Some(crate::phys::ViscElPhys {
+                cn: f(p, "cn")?,
+                cs: f(p, "cs")?,
+                fn_el: fo(p, "Fn", 0.0)?,
+                fv: fo(p, "Fv", 0.0)?,
+                m_r: fo(p, "mR", 0.0)?,
+                m_r_type: p.get("mRtype").and_then(Value::as_u64).unwrap_or(1) as u32,
+            });
+        }
     }
     if ext != IntrExt::default() {
         it.ext = Some(Box::new(ext));
@@ -414,10 +425,40 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
+        "ViscElMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat)",
             cls
         ),
+    };
+    let viscel = if cls == "ViscElMat" {
+        // NaN (not given) travels as null
+        let d = crate::material::ViscElParams::default();
+        let nf = |k: &str| -> Result<f64> {
+            match m.get(k) {
+                None | Some(Value::Null) => Ok(f64::NAN),
+                Some(_) => f(m, k),
+            }
+        };
+        if bo(m, "lubrication", false)? {
+            bail!("ViscElMat.lubrication=True is not supported by ryade yet");
+        }
+        Some(Box::new(crate::material::ViscElParams {
+            tc: nf("tc")?,
+            en: nf("en")?,
+            et: nf("et")?,
+            kn: nf("kn")?,
+            cn: nf("cn")?,
+            ks: nf("ks")?,
+            cs: nf("cs")?,
+            m_r: fo(m, "mR", d.m_r)?,
+            m_r_type: m
+                .get("mRtype")
+                .and_then(Value::as_u64)
+                .unwrap_or(d.m_r_type as u64) as u32,
+        }))
+    } else {
+        None
     };
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
@@ -431,6 +472,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         friction_angle: f(m, "frictionAngle")?,
         density: f(m, "density")?,
         coh,
+        viscel,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -752,6 +794,14 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             cohesion_definition_iteration: -1,
                         })
                     }
+                    "Ip2_ViscElMat_ViscElMat_ViscElPhys" => {
+                        for mm in ["tc", "en", "et", "frictAngle"] {
+                            if p.get(mm).is_some_and(|x| !x.is_null()) {
+                                bail!("Ip2_ViscElMat_ViscElMat_ViscElPhys.{} (MatchMaker) is not supported by ryade yet", mm);
+                            }
+                        }
+                        il.viscel_phys = true
+                    }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -791,6 +841,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             trace_energy: bo(&l, "traceEnergy", false)?,
                         })
                     }
+                    "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
                     other => bail!("law functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -1063,6 +1114,22 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
+            if let Some(v) = &m.viscel {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, x) in [
+                    ("tc", v.tc),
+                    ("en", v.en),
+                    ("et", v.et),
+                    ("kn", v.kn),
+                    ("cn", v.cn),
+                    ("ks", v.ks),
+                    ("cs", v.cs),
+                ] {
+                    mat[k] = nn(x);
+                }
+                mat["mR"] = json!(v.m_r);
+                mat["mRtype"] = json!(v.m_r_type);
+            }
             let mut body = json!({
                 "id": id, "shape": shape,
                 "material": mat,
@@ -1153,6 +1220,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.frict_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"}));
                 }
+                if il.viscel_phys {
+                    phys.push(json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"}));
+                }
                 let mut law: Vec<Value> = Vec::new();
                 if let Some(l) = &il.cohesion_moment {
                     law.push(json!({"class": "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "neverErase": l.never_erase,
@@ -1172,6 +1242,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if let Some(l) = &il.gridco_gridco_frict {
                     law.push(json!({"class": "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase,
                         "sphericalBodies": l.spherical_bodies, "traceEnergy": l.trace_energy}));
+                }
+                if il.viscel_basic {
+                    law.push(json!({"class": "Law2_ScGeom_ViscElPhys_Basic"}));
                 }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
@@ -1294,7 +1367,14 @@ pub fn interaction_to_value(it: &Interaction) -> Value {
     let phys = match &it.phys {
         None => Value::Null,
         Some(p) => {
-            let mut d = json!({"class": if it.coh().is_some() { "CohFrictPhys" } else { "FrictPhys" },
+            let cls = if it.coh().is_some() {
+                "CohFrictPhys"
+            } else if it.viscel().is_some() {
+                "ViscElPhys"
+            } else {
+                "FrictPhys"
+            };
+            let mut d = json!({"class": cls,
                 "kn": p.kn, "ks": p.ks, "tangensOfFrictionAngle": p.tan_phi,
                 "normalForce": v3(&p.normal_force), "shearForce": v3(&p.shear_force)});
             if let Some(c) = it.coh() {
@@ -1320,6 +1400,18 @@ pub fn interaction_to_value(it: &Interaction) -> Value {
                     ("creep_viscosity", json!(c.creep_viscosity)),
                 ] {
                     d[k] = v;
+                }
+            }
+            if let Some(v) = it.viscel() {
+                for (k, x) in [
+                    ("cn", json!(v.cn)),
+                    ("cs", json!(v.cs)),
+                    ("Fn", json!(v.fn_el)),
+                    ("Fv", json!(v.fv)),
+                    ("mR", json!(v.m_r)),
+                    ("mRtype", json!(v.m_r_type)),
+                ] {
+                    d[k] = x;
                 }
             }
             d
