@@ -26,7 +26,8 @@ pub struct FrictMat {
 }
 
 /// The fields `ViscElMat` adds to `FrictMat` (NaN: not given), with YADE's class defaults in `Default`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// Equality is bitwise, so that two copies of a material with NaN fields are equal.
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ViscElParams {
     pub tc: f64,
     pub en: f64,
@@ -37,6 +38,14 @@ pub struct ViscElParams {
     pub cs: f64,
     pub m_r: f64,
     pub m_r_type: u32,
+}
+
+impl PartialEq for ViscElParams {
+    fn eq(&self, o: &Self) -> bool {
+        let a = [self.tc, self.en, self.et, self.kn, self.cn, self.ks, self.cs, self.m_r];
+        let b = [o.tc, o.en, o.et, o.kn, o.cn, o.ks, o.cs, o.m_r];
+        a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()) && self.m_r_type == o.m_r_type
+    }
 }
 
 impl Default for ViscElParams {

@@ -1800,6 +1800,8 @@ impl Sim {
         };
         let p = if ext.and_then(|e| e.coh.as_ref()).is_some() {
             "CohFrictPhys"
+        } else if ext.and_then(|e| e.viscel.as_ref()).is_some() {
+            "ViscElPhys"
         } else {
             "FrictPhys"
         };

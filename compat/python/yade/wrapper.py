@@ -226,8 +226,23 @@ class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
         return {'class': 'Ip2_FrictMat_FrictMat_FrictPhys'}
 
 
+class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
+    _attrs = {'tc': None, 'en': None, 'et': None, 'frictAngle': None}
+
+    def _json(self):
+        for k in ('tc', 'en', 'et', 'frictAngle'):
+            if self._values[k] is not None:
+                unsupported('Ip2_ViscElMat_ViscElMat_ViscElPhys.%s (MatchMaker)' % k)
+        return {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_ViscElPhys_Basic(LawFunctor):
+    def _json(self):
+        return {'class': 'Law2_ScGeom_ViscElPhys_Basic'}
 
 
 class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
@@ -906,6 +921,29 @@ class CohFrictMat(FrictMat):
         FrictMat._changed(self, k)
 
 
+class ViscElMat(FrictMat):
+    _attrs = {'tc': float('nan'), 'en': float('nan'), 'et': float('nan'), 'kn': float('nan'), 'cn': float('nan'),
+              'ks': float('nan'), 'cs': float('nan'), 'mR': 0.0, 'mRtype': 1, 'lubrication': False,
+              'viscoDyn': 1e-3, 'roughnessScale': 1e-3}
+
+    def _json(self):
+        v = self._values
+        if v['lubrication']:
+            unsupported('ViscElMat.lubrication=True')
+        d = FrictMat._json(self)
+        d['class'] = 'ViscElMat'
+        for k in ('tc', 'en', 'et', 'kn', 'cn', 'ks', 'cs'):
+            x = float(v[k])
+            d[k] = None if x != x else x  # NaN (not given) as null
+        d['mR'], d['mRtype'] = float(v['mR']), int(v['mRtype'])
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in ViscElMat._attrs:
+            unsupported('changing ViscElMat.%s after the material is in use' % k)
+        FrictMat._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -950,7 +988,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
-    ElastMat, FrictMat]}
+    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
