@@ -282,6 +282,7 @@ pub enum Engine {
     Newton(Box<Newton>),
     TimeStepper(Box<crate::timestepper::GlobalStiffnessTimeStepper>),
     Translation(Box<crate::kinematic::TranslationEngine>),
+    Rotation(Box<crate::kinematic::RotationEngine>),
     ServoPid(Box<crate::kinematic::ServoPid>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
@@ -300,6 +301,7 @@ impl Engine {
             Engine::Newton(_) => "NewtonIntegrator",
             Engine::TimeStepper(_) => "GlobalStiffnessTimeStepper",
             Engine::Translation(_) => "TranslationEngine",
+            Engine::Rotation(_) => "RotationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
@@ -566,6 +568,10 @@ impl Scene {
             }
             Engine::Translation(t) => {
                 t.action(&mut self.bodies);
+                Ok(())
+            }
+            Engine::Rotation(r) => {
+                r.action(&mut self.bodies, self.dt);
                 Ok(())
             }
             Engine::ServoPid(s) => {

@@ -874,6 +874,14 @@ pub fn engine(e: &Value) -> Result<Engine> {
             // taken as stored: YADE's postLoad normalisation already happened where the file was written
             translation_axis: vec3_or(e, "translationAxis", Vec3::zeros())?,
         })),
+        "RotationEngine" => Engine::Rotation(Box::new(crate::kinematic::RotationEngine {
+            ids: ids(e)?,
+            angular_velocity: fo(e, "angularVelocity", 0.0)?,
+            // taken as stored (normalised where the file was written, as for TranslationEngine)
+            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+            rotate_around_zero: bo(e, "rotateAroundZero", false)?,
+            zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
+        })),
         "ServoPIDController" => Engine::ServoPid(Box::new(crate::kinematic::ServoPid {
             ids: ids(e)?,
             axis: vec3_or(e, "axis", Vec3::zeros())?,
@@ -895,7 +903,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
     })
 }
 
@@ -1258,6 +1266,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
+            Engine::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
+                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
+                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
             Engine::Translation(t) => json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
                 "translationAxis": v3(&t.translation_axis)}),
             Engine::ServoPid(p) => json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,

@@ -313,6 +313,10 @@ def _engine(e, grid=False):
     if c == 'TranslationEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'velocity': float(e.velocity),
                 'translationAxis': _v3(e.translationAxis)}
+    if c == 'RotationEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint)}
     if c == 'ServoPIDController':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'axis': _v3(e.axis), 'target': float(e.target),
                 'kP': float(e.kP), 'kI': float(e.kI), 'kD': float(e.kD), 'iTerm': float(e.iTerm),
