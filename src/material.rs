@@ -42,7 +42,9 @@ pub struct ViscElParams {
 
 impl PartialEq for ViscElParams {
     fn eq(&self, o: &Self) -> bool {
-        let a = [self.tc, self.en, self.et, self.kn, self.cn, self.ks, self.cs, self.m_r];
+        let a = [
+            self.tc, self.en, self.et, self.kn, self.cn, self.ks, self.cs, self.m_r,
+        ];
         let b = [o.tc, o.en, o.et, o.kn, o.cn, o.ks, o.cs, o.m_r];
         a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()) && self.m_r_type == o.m_r_type
     }

@@ -356,8 +356,8 @@ pub fn viscel_cn_from_en(en: f64, m: f64, kn: f64, ids: (usize, usize)) -> f64 {
             break;
         }
         i += 1;
-        let mut slope = (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn))
-            / (-2. * eps);
+        let mut slope =
+            (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn)) / (-2. * eps);
         if slope.abs() <= 1e-15 {
             slope = 1e-15;
         }
@@ -397,7 +397,9 @@ pub fn ip2_viscel(
     .iter()
     .all(|(a, b)| a.is_finite() == b.is_finite());
     if !same_set {
-        return Err("Both materials should have the same defined set of variables e.g. tc, ks etc.!".into());
+        return Err(
+            "Both materials should have the same defined set of variables e.g. tc, ks etc.!".into(),
+        );
     }
     let (mut ma, mut mb) = (mass1, mass2);
     if ma == 0.0 && mb > 0.0 {
@@ -406,8 +408,16 @@ pub fn ip2_viscel(
         mb = ma;
     }
     let mass_r = ma * mb / (ma + mb);
-    let r1 = if g.radius1 > 0.0 { g.radius1 } else { g.radius2 };
-    let r2 = if g.radius2 > 0.0 { g.radius2 } else { g.radius1 };
+    let r1 = if g.radius1 > 0.0 {
+        g.radius1
+    } else {
+        g.radius2
+    };
+    let r2 = if g.radius2 > 0.0 {
+        g.radius2
+    } else {
+        g.radius1
+    };
     let pi = std::f64::consts::PI;
     let (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2);
     if v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite() {
@@ -436,7 +446,9 @@ pub fn ip2_viscel(
             let cn = 2.0 * viscel_cn_from_en(en, mass_r, viscel_series(kn1, kn2), ids);
             (cn1, cn2, cs1, cs2) = (cn, cn, 0.0, 0.0);
         } else {
-            return Err("Inconsistent material constants for ViscElMat's, please check input".into());
+            return Err(
+                "Inconsistent material constants for ViscElMat's, please check input".into(),
+            );
         }
     }
     let m_r = if v1.m_r > 0.0 || v2.m_r > 0.0 {

@@ -1471,7 +1471,8 @@ impl Scene {
                     m2.class_name(),
                     if m1.class() == MatClass::CohFrictMat && m2.class() == MatClass::CohFrictMat {
                         "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys()"
-                    } else if m1.class() == MatClass::ViscElMat && m2.class() == MatClass::ViscElMat {
+                    } else if m1.class() == MatClass::ViscElMat && m2.class() == MatClass::ViscElMat
+                    {
                         "Ip2_ViscElMat_ViscElMat_ViscElPhys()"
                     } else {
                         "Ip2_FrictMat_FrictMat_FrictPhys()"
