@@ -78,16 +78,7 @@ pub fn frict_stiffness(m1: &FrictConsts, m2: &FrictConsts, ra: f64, rb: f64) -> 
 
 /// `Ip2_FrictMat_FrictMat_FrictPhys::go`: harmonic means of E·R and E·R·ν, friction of the weaker.
 pub fn ip2_frict(m1: &FrictMat, m2: &FrictMat, g: &ScGeom) -> FrictPhys {
-    let ra = if g.radius1 > 0.0 {
-        g.radius1
-    } else {
-        g.radius2
-    };
-    let rb = if g.radius2 > 0.0 {
-        g.radius2
-    } else {
-        g.radius1
-    };
+    let (ra, rb) = g.ref_radii();
     let (kn, ks, tan_phi) = frict_stiffness(&m1.consts(), &m2.consts(), ra, rb);
     FrictPhys {
         kn,
@@ -408,16 +399,7 @@ pub fn ip2_viscel(
         mb = ma;
     }
     let mass_r = ma * mb / (ma + mb);
-    let r1 = if g.radius1 > 0.0 {
-        g.radius1
-    } else {
-        g.radius2
-    };
-    let r2 = if g.radius2 > 0.0 {
-        g.radius2
-    } else {
-        g.radius1
-    };
+    let (r1, r2) = g.ref_radii();
     let pi = std::f64::consts::PI;
     let (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2);
     if v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite() {

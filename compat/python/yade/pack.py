@@ -188,14 +188,18 @@ class _PredicateBoolean(Predicate):
     def __init__(self, A, B):
         self.A, self.B = A, B
 
+    def _boxes(self, lo, hi):
+        """(lo of the two minima, hi of the two maxima), per coordinate."""
+        (a0, a1), (b0, b1) = self.A.aabb(), self.B.aabb()
+        return _cwise(lo, a0, b0), _cwise(hi, a1, b1)
+
 
 class PredicateUnion(_PredicateBoolean):
     def __call__(self, pt, pad=0.):
         return self.A(pt, pad) or self.B(pt, pad)
 
     def aabb(self):
-        (a0, a1), (b0, b1) = self.A.aabb(), self.B.aabb()
-        return _cwise(_min, a0, b0), _cwise(_max, a1, b1)
+        return self._boxes(_min, _max)
 
 
 class PredicateIntersection(_PredicateBoolean):
@@ -203,8 +207,7 @@ class PredicateIntersection(_PredicateBoolean):
         return self.A(pt, pad) and self.B(pt, pad)
 
     def aabb(self):
-        (a0, a1), (b0, b1) = self.A.aabb(), self.B.aabb()
-        return _cwise(_max, a0, b0), _cwise(_min, a1, b1)
+        return self._boxes(_max, _min)
 
 
 class PredicateDifference(_PredicateBoolean):
@@ -221,8 +224,7 @@ class PredicateSymmetricDifference(_PredicateBoolean):
         return a != b
 
     def aabb(self):
-        (a0, a1), (b0, b1) = self.A.aabb(), self.B.aabb()
-        return _cwise(_min, a0, b0), _cwise(_max, a1, b1)
+        return self._boxes(_min, _max)
 
 
 class inSphere(Predicate):
