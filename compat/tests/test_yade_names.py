@@ -49,3 +49,15 @@ def test_name_yade_lacks_too_stays_a_name_error(tmp_path):
     assert p.returncode == 1 and 'before' in p.stdout
     assert "NameError: name 'notAYadeNameAtAll' is not defined" in p.stderr
     assert 'does not support' not in p.stderr
+
+
+@needs_compat
+def test_default_engines_have_yades_labels():
+    lines = tagged_lines('ryade', 'default_labels.py', tags='L')
+    assert lines == ["L -0.5 0.2 ['', 'collider', 'interactionLoop', 'timeStepper', 'newton']", 'L 0.25 0.1 True']
+
+
+@needs_compat
+@needs_yade
+def test_default_engines_labels_as_yade():
+    assert tagged_lines('ryade', 'default_labels.py', tags='L') == tagged_lines('yade', 'default_labels.py', tags='L')

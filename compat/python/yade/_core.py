@@ -916,11 +916,12 @@ class Omega(_ryade.OmegaBase):
         self._default_engines()
 
     def _default_engines(self):
-        """A fresh YADE `O` has a default engine list (core.md §1); `O.reset()` empties it."""
+        """A fresh YADE `O` has a default engine list (core.md §1), labelled as YADE labels it (scripts use
+        `collider`, `newton`... without defining them); `O.reset()` empties it."""
         from .wrapper import (ForceResetter, GlobalStiffnessTimeStepper, InsertionSortCollider, InteractionLoop,
                               NewtonIntegrator)
-        self.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop(), GlobalStiffnessTimeStepper(),
-                        NewtonIntegrator(damping=0.2)]
+        self.engines = [ForceResetter(), InsertionSortCollider(label='collider'), InteractionLoop(label='interactionLoop'),
+                        GlobalStiffnessTimeStepper(label='timeStepper'), NewtonIntegrator(damping=0.2, label='newton')]
 
     # ---- time ----
     # O.iter and O.time: OmegaBase
