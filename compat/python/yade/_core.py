@@ -1185,11 +1185,43 @@ class Omega(_ryade.OmegaBase):
         self.materials._mats = list(mats)
         self._engines = engines
 
+    #: first line of the files O.save writes (a format of ryade's own, not YADE's XML or binary)
+    _SAVE_FORMAT = 'ryade-save-1'
+
     def save(self, fileName, quiet=False):
-        unsupported('O.save (YADE .xml/.yade files)', 'use O.saveTmp() for in-memory snapshots')
+        """Write the scene to `fileName` in ryade's own format (JSON: the scene as ryade's scene files hold it,
+        compressed by gzip/bzip2 when the name ends .gz/.bz2, as YADE's names do) and keep the whole state in
+        memory under a token the file carries, so that `O.load(fileName)` in the same run restores it exactly
+        (what YADE's O.load does). Reading such a file in another run is not supported yet."""
+        import json
+        import uuid
+        token = uuid.uuid4().hex
+        try:
+            scene = json.loads(self._sim.scene_json(self.iter))
+        except Exception as e:  # the snapshot in memory is what O.load uses; the JSON is for reading
+            scene = {'unavailable': str(e)}
+        self.saveTmp('\0O.save ' + token)
+        text = json.dumps({'format': self._SAVE_FORMAT, 'token': token, 'iter': self.iter, 'time': self.time,
+                           'scene': scene}, allow_nan=True)
+        with _open_compressed(fileName, 'wt') as f:
+            f.write(text)
 
     def load(self, fileName, quiet=False):
-        unsupported('O.load (YADE .xml/.yade files)')
+        """Restore a scene written by `O.save` earlier in this run (see save)."""
+        import json
+        try:
+            with _open_compressed(fileName, 'rt') as f:
+                d = json.load(f)
+        except (ValueError, UnicodeDecodeError, OSError) as e:
+            if isinstance(e, FileNotFoundError):
+                raise
+            d = None
+        if not isinstance(d, dict) or d.get('format') != self._SAVE_FORMAT:
+            unsupported('O.load of YADE files (.xml/.yade)', 'ryade reads the files its own O.save wrote in the same run')
+        mark = '\0O.save ' + d.get('token', '')
+        if mark not in self._saved:
+            unsupported('O.load of a file saved by another run', 'ryade reads the files its own O.save wrote in the same run')
+        self.loadTmp(mark)
 
     def __getattr__(self, k):
         if k.startswith('_'):
@@ -1200,6 +1232,17 @@ class Omega(_ryade.OmegaBase):
 
 
 import time as _time  # noqa: E402
+
+
+def _open_compressed(fileName, mode):
+    """open(), through gzip or bz2 when the name ends .gz / .bz2."""
+    if fileName.endswith('.gz'):
+        import gzip
+        return gzip.open(fileName, mode)
+    if fileName.endswith('.bz2'):
+        import bz2
+        return bz2.open(fileName, mode)
+    return open(fileName, mode)
 
 #: bit of the id `Sim.advance` returns for a PeriTriaxController's doneHook (ryade::scene::DONE_HOOK)
 _DONE_HOOK = 1 << 31
