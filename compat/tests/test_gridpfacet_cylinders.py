@@ -8,9 +8,9 @@ def test_cylinders_numbers():
     lines = tagged_lines('ryade', 'grid_cylinders.py', tags='G')
     # YADE's order: a cylinder's two nodes then its connection; a chain's nodes first, then its connections
     assert lines[0] == 'G [0, 1, 3, 4, 5, 6] [2, 7, 8, 9]'
-    # a node of radius 0.1, density 1000: the sphere's mass 4/3 pi r^3 rho and inertia 2/5 m r^2
+    # a node carries half of its connection's mass: pi r^2 L rho / 2 (r 0.1, L 1, density 1000)
     assert lines[1] == 'G 0 GridNode [0.0, 0.0, 0.0] 15.707963267948967 [0.06283185307179588, 0.06283185307179588, 0.06283185307179588]'
-    assert abs(15.707963267948967 - 4 / 3. * 3.141592653589793 * 0.1 ** 3 * 1000) < 1e-12
+    assert abs(15.707963267948967 - 3.141592653589793 * 0.1 ** 2 * 1.0 * 1000 / 2) < 1e-12
     assert len(lines) == 21
 
 
