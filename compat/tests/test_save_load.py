@@ -46,3 +46,19 @@ def test_load_of_foreign_files_is_refused(tmp_path):
     assert p.returncode == 0 and (tmp_path / 'b.yade').exists(), p.stderr
     p = subprocess.run([COMPAT, 'run', 'r.py'], capture_output=True, text=True, cwd=tmp_path, timeout=300, env=env)
     assert p.returncode == 1 and 'O.load of a file saved by another run' in p.stderr
+
+
+@needs_compat
+def test_reload_and_filename(tmp_path):
+    lines = tagged_lines('ryade', 'reload.py', args=[str(tmp_path)], tags='R')
+    assert lines[:4] == ['R None', "R ':memory:'", "R 0 ':memory:'", 'R True']
+    assert lines[4].startswith("R 400 'r.xml' [")
+
+
+@needs_compat
+@needs_yade
+def test_reload_as_yade(tmp_path):
+    (tmp_path / 'r').mkdir()
+    (tmp_path / 'y').mkdir()
+    assert (tagged_lines('ryade', 'reload.py', args=[str(tmp_path / 'r')], tags='R')
+            == tagged_lines('yade', 'reload.py', args=[str(tmp_path / 'y')], tags='R'))

@@ -1172,11 +1172,13 @@ class Omega(_ryade.OmegaBase):
         self._sim.iter = 0
         self._sim.time = 0.0
 
-    def saveTmp(self, mark=''):
+    def saveTmp(self, mark='', quiet=False):
         self._sim.save_tmp(mark)
         self._saved[mark] = (list(self.bodies._objs), list(self.materials._mats), self._engines)
+        if not mark.startswith('\0'):
+            self._scene_file = ':memory:' + mark
 
-    def loadTmp(self, mark=''):
+    def loadTmp(self, mark='', quiet=False):
         if mark not in self._saved:
             raise RuntimeError("No memory-saved simulation named '%s'" % mark)
         self._sim.load_tmp(mark)
@@ -1184,6 +1186,25 @@ class Omega(_ryade.OmegaBase):
         self.bodies._objs = list(bodies)
         self.materials._mats = list(mats)
         self._engines = engines
+        if not mark.startswith('\0'):
+            self._scene_file = ':memory:' + mark
+
+    #: the name of the scene last saved or loaded (O.filename; ':memory:MARK' for saveTmp/loadTmp)
+    _scene_file = None
+
+    @property
+    def filename(self):
+        return self._scene_file
+
+    def reload(self, quiet=False):
+        """Load again the scene last saved or loaded (YADE's O.reload: O.load(O.filename))."""
+        f = self._scene_file
+        if f is None:
+            raise RuntimeError('O.reload: no scene was saved or loaded yet (O.filename is None)')
+        if f.startswith(':memory:'):
+            self.loadTmp(f[len(':memory:'):], quiet)
+        else:
+            self.load(f, quiet)
 
     #: first line of the files O.save writes (a format of ryade's own, not YADE's XML or binary)
     _SAVE_FORMAT = 'ryade-save-1'
@@ -1205,6 +1226,7 @@ class Omega(_ryade.OmegaBase):
                            'scene': scene}, allow_nan=True)
         with _open_compressed(fileName, 'wt') as f:
             f.write(text)
+        self._scene_file = fileName
 
     def load(self, fileName, quiet=False):
         """Restore a scene written by `O.save` earlier in this run (see save)."""
@@ -1222,6 +1244,7 @@ class Omega(_ryade.OmegaBase):
         if mark not in self._saved:
             unsupported('O.load of a file saved by another run', 'ryade reads the files its own O.save wrote in the same run')
         self.loadTmp(mark)
+        self._scene_file = fileName
 
     def __getattr__(self, k):
         if k.startswith('_'):
@@ -1251,7 +1274,7 @@ _START = _time.time()
 
 #: Omega attributes YADE has (used to tell "unsupported" from "no such attribute")
 _OMEGA_ATTRS = {'addScene', 'bexSyncCount', 'childClassesNonrecursive', 'dynDt', 'dynDtAvailable', 'exitNoBacktrace',
-                'filename', 'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
-                'miscParams', 'numSubSteps', 'plugins', 'realtime', 'reload', 'resetAllScenes', 'resetCurrentScene',
+                'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
+                'miscParams', 'numSubSteps', 'plugins', 'realtime', 'resetAllScenes', 'resetCurrentScene',
                 'resetThisScene', 'runEngine', 'sceneToString', 'speed', 'stringToScene', 'subD', 'subStep', 'subStepping',
                 'switchScene', 'switchToScene', 'tmpFilename', 'tmpToFile', 'tmpToString', 'thisScene'}
