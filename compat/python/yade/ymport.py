@@ -6,9 +6,9 @@ import struct
 from . import utils
 from ._core import Body, Facet
 from ._errors import unsupported
-from .minieigen import Vector3
+from .minieigen import Quaternion, Vector3
 
-__all__ = ['text', 'textExt', 'stl']
+__all__ = ['text', 'textExt', 'stl', 'gmsh']
 
 
 def textExt(fileName, format='x_y_z_r', shift=Vector3(0, 0, 0), scale=1.0, attrs=[], **kw):
@@ -101,6 +101,33 @@ def stl(file, dynamic=None, fixed=True, wire=True, color=None, highlight=False, 
                                dynamic=dynamic, fixed=fixed)
         b.aspherical = False
         ret.append(b)
+    return ret
+
+
+def gmsh(meshfile="file.mesh", shift=Vector3(0, 0, 0), scale=1.0, orientation=Quaternion((0, 1, 0), 0.0), **kw):
+    """Facets from the triangles of a GMSH/MEDIT `.mesh` file: vertices scaled, rotated by `orientation` and
+    shifted; `kw` goes to utils.facet."""
+    with open(meshfile, "r") as f:
+        lines = f.readlines()
+
+    def section(start, name):
+        k = start
+        while lines[k].split()[0] != name:
+            k += 1
+        return k + 1  # the line with the count
+
+    kv = section(0, 'Vertices')
+    nv = int(lines[kv].split()[0])
+    nodes = []
+    for line in lines[kv + 1:kv + 1 + nv]:
+        x = line.split()
+        nodes.append(orientation * Vector3(float(x[0]) * scale, float(x[1]) * scale, float(x[2]) * scale) + shift)
+    kt = section(kv + nv, 'Triangles')
+    nt = int(lines[kt].split()[0])
+    ret = []
+    for line in lines[kt + 1:kt + 1 + nt]:
+        x = line.split()
+        ret.append(utils.facet((nodes[int(x[0]) - 1], nodes[int(x[1]) - 1], nodes[int(x[2]) - 1]), **kw))
     return ret
 
 
