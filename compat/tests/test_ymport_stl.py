@@ -1,4 +1,5 @@
-"""ymport.stl (YADE's STLImporter + py/ymport.py): ASCII and binary files give YADE's facets bit for bit."""
+"""ymport.stl (YADE's STLImporter + py/ymport.py): ASCII and binary files give YADE's facets bit for bit; so does
+ymport.gmsh on a .mesh file."""
 import os
 
 from _scripts import needs_compat, needs_yade, tagged_lines
@@ -28,3 +29,22 @@ def test_stl_as_yade(tmp_path):
     (tmp_path / 'y').mkdir()
     assert (tagged_lines('ryade', 'stl_import.py', args=[str(tmp_path / 'r')], tags='AB')
             == tagged_lines('yade', 'stl_import.py', args=[str(tmp_path / 'y')], tags='AB'))
+
+
+@needs_compat
+def test_gmsh_numbers(tmp_path):
+    lines = tagged_lines('ryade', 'gmsh_import.py', args=[str(tmp_path)], tags='M')
+    assert lines[0] == 'M 4' and lines[5] == 'M 4' and len(lines) == 10
+    # the first triangle (0,0,0), (1.5,0,0), (0.7,0.6,0.9) unscaled: its incircle centre lies in its plane
+    # y = 2/3 z (the plane through the x axis and the apex)
+    pos = [float(x) for x in lines[1].split('[')[1].split(']')[0].split(',')]
+    assert abs(pos[1] - pos[2] * 0.6 / 0.9) < 1e-15 and 0 < pos[0] < 1.5
+
+
+@needs_compat
+@needs_yade
+def test_gmsh_as_yade(tmp_path):
+    (tmp_path / 'r').mkdir()
+    (tmp_path / 'y').mkdir()
+    assert (tagged_lines('ryade', 'gmsh_import.py', args=[str(tmp_path / 'r')], tags='M')
+            == tagged_lines('yade', 'gmsh_import.py', args=[str(tmp_path / 'y')], tags='M'))
