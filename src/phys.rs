@@ -349,9 +349,8 @@ pub fn viscel_cn_from_en(en: f64, m: f64, kn: f64, ids: (usize, usize)) -> f64 {
         i += 1;
         let mut slope =
             (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn)) / (-2. * eps);
-        if slope.abs() <= 1e-15 {
-            slope = 1e-15;
-        }
+        // (a NaN slope is replaced too, as YADE's `fabs(deriv) > 1e-15 ? deriv : 1e-15`)
+        slope = if slope.abs() > 1e-15 { slope } else { 1e-15 };
         cn -= (en_now - en) / slope;
         en_now = viscel_en_from_cn(cn, m, kn);
         error = (en_now - en).abs() / en;
@@ -459,4 +458,41 @@ pub fn ip2_viscel(
             m_r_type: v1.m_r_type,
         },
     ))
+}
+
+#[cfg(test)]
+mod viscel_tests {
+    use super::*;
+
+    /// Springs (or dashpots) in series; a zero one is left out, as YADE's contactParameterCalculation.
+    #[test]
+    fn series_rule() {
+        assert_eq!(viscel_series(2.0, 2.0), 1.0);
+        assert_eq!(viscel_series(3.0, 6.0), 2.0);
+        assert_eq!(viscel_series(2.0, 0.0), 2.0);
+        assert_eq!(viscel_series(0.0, 0.0), 0.0);
+    }
+
+    /// Restitution of the damped oscillator: none lost without damping, less for more damping, and the
+    /// Newton iteration finds a damping whose restitution is within its 1 % tolerance of the target.
+    #[test]
+    fn restitution_and_its_inverse() {
+        let (m, k) = (0.01, 1e5);
+        assert_eq!(viscel_en_from_cn(0.0, m, k), 1.0);
+        let (e1, e2) = (viscel_en_from_cn(1.0, m, k), viscel_en_from_cn(5.0, m, k));
+        assert!(1.0 > e1 && e1 > e2 && e2 > 0.0, "{} {}", e1, e2);
+        // light damping: close to the linear dashpot's exp(-beta pi / omega)
+        let (beta, omega) = (0.5 * 0.1 / m, (k / m - (0.5 * 0.1 / m).powi(2)).sqrt());
+        let e = viscel_en_from_cn(0.1, m, k);
+        assert!(
+            (e - (-beta * std::f64::consts::PI / omega).exp()).abs() < 1e-3,
+            "{}",
+            e
+        );
+        for en in [0.3, 0.5, 0.9] {
+            let cn = viscel_cn_from_en(en, m, k, (0, 1));
+            assert!(cn > 0.0);
+            assert!((viscel_en_from_cn(cn, m, k) - en).abs() / en <= 1e-2);
+        }
+    }
 }
