@@ -4,7 +4,7 @@ import os
 import subprocess
 import sys
 
-from _scripts import COMPAT, needs_compat, needs_yade, tagged_lines
+from _scripts import COMPAT, needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 
 @needs_compat
@@ -24,10 +24,8 @@ def test_save_then_load_continues_exactly(tmp_path):
 @needs_compat
 @needs_yade
 def test_save_load_as_yade(tmp_path):
-    (tmp_path / 'r').mkdir()
-    (tmp_path / 'y').mkdir()
-    assert (tagged_lines('ryade', 'save_load.py', args=[str(tmp_path / 'r')], tags='ABC')
-            == tagged_lines('yade', 'save_load.py', args=[str(tmp_path / 'y')], tags='ABC'))
+    ryade, yade = tagged_lines_both('save_load.py', tmp_path, 'ABC')
+    assert ryade == yade
 
 
 @needs_compat
@@ -58,7 +56,5 @@ def test_reload_and_filename(tmp_path):
 @needs_compat
 @needs_yade
 def test_reload_as_yade(tmp_path):
-    (tmp_path / 'r').mkdir()
-    (tmp_path / 'y').mkdir()
-    assert (tagged_lines('ryade', 'reload.py', args=[str(tmp_path / 'r')], tags='R')
-            == tagged_lines('yade', 'reload.py', args=[str(tmp_path / 'y')], tags='R'))
+    ryade, yade = tagged_lines_both('reload.py', tmp_path, 'R')
+    assert ryade == yade

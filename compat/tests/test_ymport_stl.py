@@ -1,8 +1,7 @@
 """ymport.stl (YADE's STLImporter + py/ymport.py): ASCII and binary files give YADE's facets bit for bit; so does
 ymport.gmsh on a .mesh file."""
-import os
 
-from _scripts import needs_compat, needs_yade, tagged_lines
+from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 
 @needs_compat
@@ -25,10 +24,8 @@ def test_stl_numbers(tmp_path):
 @needs_compat
 @needs_yade
 def test_stl_as_yade(tmp_path):
-    (tmp_path / 'r').mkdir()
-    (tmp_path / 'y').mkdir()
-    assert (tagged_lines('ryade', 'stl_import.py', args=[str(tmp_path / 'r')], tags='AB')
-            == tagged_lines('yade', 'stl_import.py', args=[str(tmp_path / 'y')], tags='AB'))
+    ryade, yade = tagged_lines_both('stl_import.py', tmp_path, 'AB')
+    assert ryade == yade
 
 
 @needs_compat
@@ -44,7 +41,5 @@ def test_gmsh_numbers(tmp_path):
 @needs_compat
 @needs_yade
 def test_gmsh_as_yade(tmp_path):
-    (tmp_path / 'r').mkdir()
-    (tmp_path / 'y').mkdir()
-    assert (tagged_lines('ryade', 'gmsh_import.py', args=[str(tmp_path / 'r')], tags='M')
-            == tagged_lines('yade', 'gmsh_import.py', args=[str(tmp_path / 'y')], tags='M'))
+    ryade, yade = tagged_lines_both('gmsh_import.py', tmp_path, 'M')
+    assert ryade == yade
