@@ -6,7 +6,7 @@
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
 use crate::geom::{GeomClass, GeomExt, ScGeom};
-use crate::phys::{CohFrictPhys, FrictPhys};
+use crate::phys::{CohFrictPhys, FrictPhys, ViscElPhys};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -34,6 +34,8 @@ pub struct IntrExt {
     pub geom: Option<GeomExt>,
     /// `Some` when the physics is a `CohFrictPhys`.
     pub coh: Option<CohFrictPhys>,
+    /// `Some` when the physics is a `ViscElPhys`.
+    pub viscel: Option<ViscElPhys>,
 }
 
 #[derive(Clone, Debug)]
@@ -80,6 +82,12 @@ impl Interaction {
         self.ext = None;
         self.functor = GeomFunctor::Unresolved;
         self.iter_made_real = -1;
+    }
+
+    /// The viscoelastic physics part, if the physics is a `ViscElPhys`.
+    #[inline(always)]
+    pub fn viscel(&self) -> Option<&ViscElPhys> {
+        self.ext.as_ref().and_then(|e| e.viscel.as_ref())
     }
 
     /// The geometry extension, if any.

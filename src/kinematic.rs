@@ -1,13 +1,14 @@
 //! Kinematic engines: prescribed velocities on a list of bodies (YADE `pkg/common/KinematicEngines.cpp`).
 //!
 //! `KinematicEngine::action` zeroes `vel` and `angVel` of every listed body, then `apply` adds the
-//! engine's contribution. Two engines are mirrored: `TranslationEngine` (constant `velocity` along
-//! `translationAxis`) and `ServoPIDController` (a PID law on the summed force of the bodies, which then
-//! acts as a `TranslationEngine`).
+//! engine's contribution. Three engines are mirrored: `TranslationEngine` (constant `velocity` along
+//! `translationAxis`), `RotationEngine` (constant `angularVelocity` about `rotationAxis`, optionally
+//! carrying the bodies round `zeroPoint`) and `ServoPIDController` (a PID law on the summed force of the
+//! bodies, which then acts as a `TranslationEngine`).
 
 use crate::body::Bodies;
 use crate::forces::Forces;
-use crate::math::{norm, normalized, Vec3};
+use crate::math::{norm, normalized, Quat, Vec3};
 
 /// `KinematicEngine::action`: reset the velocities of the listed bodies (ids past the container are
 /// skipped, as YADE's `Body::byId` returns null for erased bodies).
@@ -48,6 +49,56 @@ impl TranslationEngine {
         }
         reset_velocities(&self.ids, bodies);
         translate(&self.ids, bodies, self.velocity, &self.translation_axis);
+        true
+    }
+}
+
+/// YADE `RotationEngine`: every step, the listed bodies spin at `angular_velocity` about
+/// `rotation_axis` (normalised when set, as its postLoad does) and, with `rotate_around_zero`, also move
+/// round `zero_point` at the velocity that takes them to their rotated place in one step.
+#[derive(Clone, Debug)]
+pub struct RotationEngine {
+    pub ids: Vec<usize>,
+    pub angular_velocity: f64,
+    pub rotation_axis: Vec3,
+    pub rotate_around_zero: bool,
+    pub zero_point: Vec3,
+}
+
+impl Default for RotationEngine {
+    /// YADE's defaults: axis x, no angular velocity, no displacement about the zero point.
+    fn default() -> Self {
+        RotationEngine {
+            ids: Vec::new(),
+            angular_velocity: 0.0,
+            rotation_axis: Vec3::new(1.0, 0.0, 0.0),
+            rotate_around_zero: false,
+            zero_point: Vec3::zeros(),
+        }
+    }
+}
+
+impl RotationEngine {
+    /// `KinematicEngine::action` + `RotationEngine::apply` (pkg/common/KinematicEngines.cpp). Returns
+    /// false when `ids` is empty (YADE logs "The list of ids is empty!" and moves nothing).
+    pub fn action(&self, bodies: &mut Bodies, dt: f64) -> bool {
+        if self.ids.is_empty() {
+            return false;
+        }
+        reset_velocities(&self.ids, bodies);
+        let spin = self.rotation_axis * self.angular_velocity;
+        for &id in &self.ids {
+            if id >= bodies.len() {
+                continue;
+            }
+            bodies.ang_vel[id] += spin;
+            if self.rotate_around_zero {
+                let arm = bodies.pos[id] - self.zero_point;
+                let q = Quat::from_angle_axis(self.angular_velocity * dt, &self.rotation_axis);
+                let new_pos = q.rotate(&arm) + self.zero_point;
+                bodies.vel[id] += (new_pos - bodies.pos[id]) / dt;
+            }
+        }
         true
     }
 }

@@ -1,7 +1,8 @@
 //! Materials. `FrictMat` mirrors YADE `pkg/common/ElastMat.hpp` (young, poisson, frictionAngle) on top
 //! of `core/Material.hpp` (density). A `CohFrictMat` (pkg/dem/CohesiveFrictionalContactLaw.hpp) is a
-//! FrictMat whose `coh` holds the cohesive and rotational parameters; plain FrictMat scenes carry a
-//! null pointer there and nothing else.
+//! FrictMat whose `coh` holds the cohesive and rotational parameters, a `ViscElMat`
+//! (pkg/dem/ViscoelasticPM.hpp) one whose `viscel` holds the viscoelastic ones; plain FrictMat scenes
+//! carry null pointers there and nothing else.
 
 use serde::{Deserialize, Serialize};
 
@@ -19,6 +20,50 @@ pub struct FrictMat {
     /// `Some` for a `CohFrictMat`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coh: Option<Box<CohFrictParams>>,
+    /// `Some` for a `ViscElMat`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscel: Option<Box<ViscElParams>>,
+}
+
+/// The fields `ViscElMat` adds to `FrictMat` (NaN: not given), with YADE's class defaults in `Default`.
+/// Equality is bitwise, so that two copies of a material with NaN fields are equal.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ViscElParams {
+    pub tc: f64,
+    pub en: f64,
+    pub et: f64,
+    pub kn: f64,
+    pub cn: f64,
+    pub ks: f64,
+    pub cs: f64,
+    pub m_r: f64,
+    pub m_r_type: u32,
+}
+
+impl PartialEq for ViscElParams {
+    fn eq(&self, o: &Self) -> bool {
+        let a = [
+            self.tc, self.en, self.et, self.kn, self.cn, self.ks, self.cs, self.m_r,
+        ];
+        let b = [o.tc, o.en, o.et, o.kn, o.cn, o.ks, o.cs, o.m_r];
+        a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()) && self.m_r_type == o.m_r_type
+    }
+}
+
+impl Default for ViscElParams {
+    fn default() -> Self {
+        ViscElParams {
+            tc: f64::NAN,
+            en: f64::NAN,
+            et: f64::NAN,
+            kn: f64::NAN,
+            cn: f64::NAN,
+            ks: f64::NAN,
+            cs: f64::NAN,
+            m_r: 0.0,
+            m_r_type: 1,
+        }
+    }
 }
 
 /// The fields `CohFrictMat` adds to `FrictMat`, with YADE's class defaults in `Default`.
@@ -62,6 +107,7 @@ impl Default for FrictMat {
             friction_angle: 0.5,
             density: 1000.0,
             coh: None,
+            viscel: None,
         }
     }
 }
@@ -87,6 +133,8 @@ impl FrictMat {
     pub fn class(&self) -> MatClass {
         if self.coh.is_some() {
             MatClass::CohFrictMat
+        } else if self.viscel.is_some() {
+            MatClass::ViscElMat
         } else {
             MatClass::FrictMat
         }
@@ -95,19 +143,22 @@ impl FrictMat {
     pub fn class_name(&self) -> &'static str {
         if self.coh.is_some() {
             "CohFrictMat"
+        } else if self.viscel.is_some() {
+            "ViscElMat"
         } else {
             "FrictMat"
         }
     }
 }
 
-/// Material classes for physics dispatch (Material <- ElastMat <- FrictMat <- CohFrictMat).
+/// Material classes for physics dispatch (Material <- ElastMat <- FrictMat <- CohFrictMat, ViscElMat).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MatClass {
     Material,
     ElastMat,
     FrictMat,
     CohFrictMat,
+    ViscElMat,
 }
 
 impl crate::dispatch::Hierarchy for MatClass {
@@ -116,7 +167,7 @@ impl crate::dispatch::Hierarchy for MatClass {
             MatClass::Material => None,
             MatClass::ElastMat => Some(MatClass::Material),
             MatClass::FrictMat => Some(MatClass::ElastMat),
-            MatClass::CohFrictMat => Some(MatClass::FrictMat),
+            MatClass::CohFrictMat | MatClass::ViscElMat => Some(MatClass::FrictMat),
         }
     }
 }

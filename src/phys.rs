@@ -1,12 +1,13 @@
 //! Contact physics: `Ip2_FrictMat_FrictMat_FrictPhys` (pkg/dem/FrictPhys.cpp) and
-//! `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` (pkg/dem/CohesiveFrictionalContactLaw.cpp).
+//! `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` (pkg/dem/CohesiveFrictionalContactLaw.cpp),
+//! `Ip2_ViscElMat_ViscElMat_ViscElPhys` (pkg/dem/ViscoelasticPM.cpp).
 
 use crate::geom::ScGeom;
 use crate::material::FrictMat;
 use crate::math::Vec3;
 
 /// Physics classes for law dispatch (IPhys <- NormPhys <- NormShearPhys <- FrictPhys <-
-/// RotStiffFrictPhys <- CohFrictPhys).
+/// RotStiffFrictPhys <- CohFrictPhys; FrictPhys <- ViscElPhys).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PhysClass {
     IPhys,
@@ -15,6 +16,7 @@ pub enum PhysClass {
     FrictPhys,
     RotStiffFrictPhys,
     CohFrictPhys,
+    ViscElPhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -25,6 +27,7 @@ impl crate::dispatch::Hierarchy for PhysClass {
             NormPhys => Some(IPhys),
             NormShearPhys => Some(NormPhys),
             FrictPhys => Some(NormShearPhys),
+            ViscElPhys => Some(FrictPhys),
             RotStiffFrictPhys => Some(FrictPhys),
             CohFrictPhys => Some(RotStiffFrictPhys),
         }
@@ -75,16 +78,7 @@ pub fn frict_stiffness(m1: &FrictConsts, m2: &FrictConsts, ra: f64, rb: f64) -> 
 
 /// `Ip2_FrictMat_FrictMat_FrictPhys::go`: harmonic means of E·R and E·R·ν, friction of the weaker.
 pub fn ip2_frict(m1: &FrictMat, m2: &FrictMat, g: &ScGeom) -> FrictPhys {
-    let ra = if g.radius1 > 0.0 {
-        g.radius1
-    } else {
-        g.radius2
-    };
-    let rb = if g.radius2 > 0.0 {
-        g.radius2
-    } else {
-        g.radius1
-    };
+    let (ra, rb) = g.ref_radii();
     let (kn, ks, tan_phi) = frict_stiffness(&m1.consts(), &m2.consts(), ra, rb);
     FrictPhys {
         kn,
@@ -280,5 +274,225 @@ pub(crate) fn cxx_min(a: f64, b: f64) -> f64 {
         b
     } else {
         a
+    }
+}
+
+/// What `ViscElPhys` (pkg/dem/ViscoelasticPM.hpp) adds to `FrictPhys` (kn, ks, tanφ and the forces
+/// are there): the viscous constants, the last normal force parts and the rolling resistance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViscElPhys {
+    pub cn: f64,
+    pub cs: f64,
+    /// `Fn`: elastic part of the normal force.
+    pub fn_el: f64,
+    /// `Fv`: viscous part of the normal force.
+    pub fv: f64,
+    pub m_r: f64,
+    pub m_r_type: u32,
+}
+
+/// `contactParameterCalculation` (pkg/dem/ViscoelasticPM.cpp): the two values in series (1 / (1/l1 +
+/// 1/l2)), a zero value left out, 0 when both are zero.
+pub fn viscel_series(l1: f64, l2: f64) -> f64 {
+    let inv = |l: f64| if l != 0.0 { 1.0 / l } else { 0.0 };
+    let a = inv(l1) + inv(l2);
+    if a != 0.0 {
+        1.0 / a
+    } else {
+        0.0
+    }
+}
+
+/// `Ip2_ViscElMat_ViscElMat_ViscElPhys::epsilon` (pkg/dem/ViscoelasticPM.cpp).
+const VISCEL_EPSILON: f64 = 1.0e-8;
+
+/// `get_en_from_cn` (pkg/dem/ViscoelasticPM.cpp): the restitution coefficient of a damped oscillator
+/// of mass m, stiffness kn and damping cn (under-, over- and critically damped branches).
+pub fn viscel_en_from_cn(cn: f64, m: f64, kn: f64) -> f64 {
+    let beta = 0.5 * cn / m;
+    let omega0 = (kn / m).sqrt();
+    let omega = (omega0 * omega0 - beta * beta).sqrt();
+    let big_omega = (beta * beta - omega0 * omega0).sqrt();
+    let half = omega0 / 2f64.sqrt();
+    let pi = std::f64::consts::PI;
+    if beta < half {
+        (-beta / omega * (pi - (2. * beta * omega / (omega * omega - beta * beta)).atan())).exp()
+    } else if beta > half && beta < omega0 {
+        (-beta / omega * (-2. * beta * omega / (omega * omega - beta * beta)).atan()).exp()
+    } else if beta > omega0 {
+        (-beta / big_omega * ((beta + big_omega) / (beta - big_omega)).ln()).exp()
+    } else if beta == half || beta == omega0 {
+        viscel_en_from_cn(cn + VISCEL_EPSILON, m, kn)
+    } else {
+        0.0
+    }
+}
+
+/// `find_cn_from_en` (pkg/dem/ViscoelasticPM.cpp): Newton-Raphson (central-difference slope) for the
+/// damping cn whose restitution coefficient is `en`; gives up after 15 iterations with cn = 0.
+pub fn viscel_cn_from_en(en: f64, m: f64, kn: f64, ids: (usize, usize)) -> f64 {
+    let eps = VISCEL_EPSILON;
+    let mut cn = eps;
+    let mut en_now = viscel_en_from_cn(cn, m, kn);
+    let mut i = 0;
+    let mut error = 1.0 / eps;
+    while error > 1.0e-2 || error.is_nan() {
+        if i > 15 {
+            cn = 0.;
+            eprintln!(
+                "Warning (Ip2_ViscElMat_ViscElMat_ViscElPhys): no convergence of cn for the restitution \
+                 coefficient within 15 iterations, contact {}-{}: continuing with cn=0 en=1",
+                ids.0, ids.1
+            );
+            break;
+        }
+        i += 1;
+        let mut slope =
+            (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn)) / (-2. * eps);
+        // (a NaN slope is replaced too, as YADE's `fabs(deriv) > 1e-15 ? deriv : 1e-15`)
+        slope = if slope.abs() > 1e-15 { slope } else { 1e-15 };
+        cn -= (en_now - en) / slope;
+        en_now = viscel_en_from_cn(cn, m, kn);
+        error = (en_now - en).abs() / en;
+    }
+    cn
+}
+
+/// `Ip2_ViscElMat_ViscElMat_ViscElPhys::Calculate_ViscElMat_ViscElMat_ViscElPhys`
+/// (pkg/dem/ViscoelasticPM.cpp) without MatchMakers or lubrication: the per-body constants from contact
+/// time and restitution (Pournin), or given kn/ks/cn/cs, or E·d and ν·kn with cn/cs given or cn from
+/// the normal restitution; then the two bodies in series. `mass1/2` are the bodies' masses (a massless
+/// body takes the other's), `ids` only name the contact in messages.
+pub fn ip2_viscel(
+    m1: &FrictMat,
+    m2: &FrictMat,
+    mass1: f64,
+    mass2: f64,
+    g: &ScGeom,
+    ids: (usize, usize),
+) -> Result<(FrictPhys, ViscElPhys), String> {
+    let (v1, v2) = (
+        m1.viscel.as_deref().ok_or("ViscElMat expected")?,
+        m2.viscel.as_deref().ok_or("ViscElMat expected")?,
+    );
+    let same_set = [
+        (v1.kn, v2.kn),
+        (v1.ks, v2.ks),
+        (v1.cn, v2.cn),
+        (v1.cs, v2.cs),
+        (v1.tc, v2.tc),
+        (v1.en, v2.en),
+        (v1.et, v2.et),
+    ]
+    .iter()
+    .all(|(a, b)| a.is_finite() == b.is_finite());
+    if !same_set {
+        return Err(
+            "Both materials should have the same defined set of variables e.g. tc, ks etc.!".into(),
+        );
+    }
+    let (mut ma, mut mb) = (mass1, mass2);
+    if ma == 0.0 && mb > 0.0 {
+        ma = mb;
+    } else if mb == 0.0 && ma > 0.0 {
+        mb = ma;
+    }
+    let mass_r = ma * mb / (ma + mb);
+    let (r1, r2) = g.ref_radii();
+    let pi = std::f64::consts::PI;
+    let (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2);
+    if v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite() {
+        let tc = (v1.tc + v2.tc) / 2.0;
+        let ln_en = ((v1.en + v2.en) / 2.0).ln();
+        let ln_et = ((v1.et + v2.et) / 2.0).ln();
+        // per body twice the contact's value, so that the two in series give it
+        let kn = 1. / tc / tc * (pi * pi + ln_en * ln_en) * mass_r * 2.;
+        let ks = 2.0 / 7.0 / tc / tc * (pi * pi + ln_et * ln_et) * mass_r * 2.;
+        let zero_small = |c: f64| if c.abs() <= 1e-20 { 0.0 } else { c };
+        let cn = zero_small(-2.0 / tc * ln_en * mass_r * 2.);
+        let cs = zero_small(-4.0 / 7.0 / tc * ln_et * mass_r * 2.);
+        (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2) = (kn, kn, ks, ks, cn, cn, cs, cs);
+    } else if v1.kn.is_finite() && v1.ks.is_finite() && v1.cn.is_finite() && v1.cs.is_finite() {
+        (kn1, kn2, ks1, ks2) = (v1.kn, v2.kn, v1.ks, v2.ks);
+        (cn1, cn2, cs1, cs2) = (v1.cn, v2.cn, v1.cs, v2.cs);
+    } else {
+        kn1 = 2. * m1.young * r1;
+        kn2 = 2. * m2.young * r2;
+        ks1 = kn1 * m1.poisson;
+        ks2 = kn2 * m2.poisson;
+        if v1.cn.is_finite() && v1.cs.is_finite() {
+            (cn1, cn2, cs1, cs2) = (v1.cn, v2.cn, v1.cs, v2.cs);
+        } else if v1.en.is_finite() {
+            let en = (v1.en + v2.en) / 2.0;
+            let cn = 2.0 * viscel_cn_from_en(en, mass_r, viscel_series(kn1, kn2), ids);
+            (cn1, cn2, cs1, cs2) = (cn, cn, 0.0, 0.0);
+        } else {
+            return Err(
+                "Inconsistent material constants for ViscElMat's, please check input".into(),
+            );
+        }
+    }
+    let m_r = if v1.m_r > 0.0 || v2.m_r > 0.0 {
+        let inv = |m: f64| if m > 0.0 { 1. / m } else { 0. };
+        2.0 / (inv(v1.m_r) + inv(v2.m_r))
+    } else {
+        0.0
+    };
+    if v1.m_r_type != v2.m_r_type || !(1..=2).contains(&v1.m_r_type) {
+        return Err("mRtype should be equal for both materials and have the values 1 or 2!".into());
+    }
+    Ok((
+        FrictPhys {
+            kn: viscel_series(kn1, kn2),
+            ks: viscel_series(ks1, ks2),
+            tan_phi: cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            normal_force: Vec3::zeros(),
+            shear_force: Vec3::zeros(),
+        },
+        ViscElPhys {
+            cn: viscel_series(cn1, cn2),
+            cs: viscel_series(cs1, cs2),
+            fn_el: 0.0,
+            fv: 0.0,
+            m_r,
+            m_r_type: v1.m_r_type,
+        },
+    ))
+}
+
+#[cfg(test)]
+mod viscel_tests {
+    use super::*;
+
+    /// Springs (or dashpots) in series; a zero one is left out, as YADE's contactParameterCalculation.
+    #[test]
+    fn series_rule() {
+        assert_eq!(viscel_series(2.0, 2.0), 1.0);
+        assert_eq!(viscel_series(3.0, 6.0), 2.0);
+        assert_eq!(viscel_series(2.0, 0.0), 2.0);
+        assert_eq!(viscel_series(0.0, 0.0), 0.0);
+    }
+
+    /// Restitution of the damped oscillator: none lost without damping, less for more damping, and the
+    /// Newton iteration finds a damping whose restitution is within its 1 % tolerance of the target.
+    #[test]
+    fn restitution_and_its_inverse() {
+        let (m, k) = (0.01, 1e5);
+        assert_eq!(viscel_en_from_cn(0.0, m, k), 1.0);
+        let (e1, e2) = (viscel_en_from_cn(1.0, m, k), viscel_en_from_cn(5.0, m, k));
+        assert!(1.0 > e1 && e1 > e2 && e2 > 0.0, "{} {}", e1, e2);
+        // light damping: close to the linear dashpot's exp(-beta pi / omega)
+        let (beta, omega) = (0.5 * 0.1 / m, (k / m - (0.5 * 0.1 / m).powi(2)).sqrt());
+        let e = viscel_en_from_cn(0.1, m, k);
+        assert!(
+            (e - (-beta * std::f64::consts::PI / omega).exp()).abs() < 1e-3,
+            "{}",
+            e
+        );
+        for en in [0.3, 0.5, 0.9] {
+            let cn = viscel_cn_from_en(en, m, k, (0, 1));
+            assert!(cn > 0.0);
+            assert!((viscel_en_from_cn(cn, m, k) - en).abs() / en <= 1e-2);
+        }
     }
 }

@@ -40,6 +40,8 @@ pub struct InteractionLoop {
     pub frict_phys: bool,
     /// `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` and its state.
     pub cohfrict_phys: Option<phys::CohFrictIp2>,
+    /// `Ip2_ViscElMat_ViscElMat_ViscElPhys` present.
+    pub viscel_phys: bool,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
     pub cundall_strack: Option<law::Params>,
     /// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`
@@ -50,6 +52,8 @@ pub struct InteractionLoop {
     pub scgridco_cohfrict: Option<law::grid::ScGridCoParams>,
     /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
     pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
+    /// `Law2_ScGeom_ViscElPhys_Basic` present.
+    pub viscel_basic: bool,
     /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
     pub energy_caches: [IdCache; LawFunctor::COUNT],
 }
@@ -110,11 +114,13 @@ impl InteractionLoop {
             gridco_gridco: false,
             frict_phys: false,
             cohfrict_phys: None,
+            viscel_phys: false,
             cundall_strack: None,
             cohesion_moment: None,
             scgridco_frict: None,
             scgridco_cohfrict: None,
             gridco_gridco_frict: None,
+            viscel_basic: false,
             energy_caches: Default::default(),
         }
     }
@@ -199,6 +205,13 @@ impl InteractionLoop {
                 f: PhysFunctor::CohFrict,
             });
         }
+        if self.viscel_phys {
+            v.push(Entry {
+                a: MatClass::ViscElMat,
+                b: MatClass::ViscElMat,
+                f: PhysFunctor::ViscEl,
+            });
+        }
         Ok(dispatch::resolve(&v, true, a, b, Some, Some)?.map(|(f, _)| f))
     }
 
@@ -207,7 +220,7 @@ impl InteractionLoop {
         if g == GeomClass::ScGeom && p == PhysClass::FrictPhys && self.cundall_strack.is_some() {
             return Ok(Some(LawFunctor::CundallStrack));
         }
-        let mut v = Vec::with_capacity(5);
+        let mut v = Vec::with_capacity(6);
         let mut add = |on: bool, a, b, f| {
             if on {
                 v.push(Entry { a, b, f });
@@ -243,6 +256,12 @@ impl InteractionLoop {
             PhysClass::FrictPhys,
             LawFunctor::GridCoGridCoFrict,
         );
+        add(
+            self.viscel_basic,
+            GeomClass::ScGeom,
+            PhysClass::ViscElPhys,
+            LawFunctor::ViscElBasic,
+        );
         Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
     }
 }
@@ -252,6 +271,7 @@ impl InteractionLoop {
 enum PhysFunctor {
     Frict,
     CohFrict,
+    ViscEl,
 }
 
 #[derive(Clone, Debug)]
@@ -262,6 +282,7 @@ pub enum Engine {
     Newton(Box<Newton>),
     TimeStepper(Box<crate::timestepper::GlobalStiffnessTimeStepper>),
     Translation(Box<crate::kinematic::TranslationEngine>),
+    Rotation(Box<crate::kinematic::RotationEngine>),
     ServoPid(Box<crate::kinematic::ServoPid>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
@@ -280,6 +301,7 @@ impl Engine {
             Engine::Newton(_) => "NewtonIntegrator",
             Engine::TimeStepper(_) => "GlobalStiffnessTimeStepper",
             Engine::Translation(_) => "TranslationEngine",
+            Engine::Rotation(_) => "RotationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
@@ -546,6 +568,10 @@ impl Scene {
             }
             Engine::Translation(t) => {
                 t.action(&mut self.bodies);
+                Ok(())
+            }
+            Engine::Rotation(r) => {
+                r.action(&mut self.bodies, self.dt);
                 Ok(())
             }
             Engine::ServoPid(s) => {
@@ -1422,6 +1448,20 @@ impl Scene {
                     }
                 }
             }
+            Some(PhysFunctor::ViscEl) => {
+                if it.phys.is_none() {
+                    let (fp, vp) = phys::ip2_viscel(
+                        m1,
+                        m2,
+                        b.mass[id1],
+                        b.mass[id2],
+                        it.geom.as_ref().unwrap(),
+                        (id1, id2),
+                    )?;
+                    it.phys = Some(fp);
+                    it.ext_mut().viscel = Some(vp);
+                }
+            }
             None => {
                 return Err(format!(
                     "Undefined IPhys dispatch for materials of #{} and #{} ({} and {}): add {}",
@@ -1431,6 +1471,9 @@ impl Scene {
                     m2.class_name(),
                     if m1.class() == MatClass::CohFrictMat && m2.class() == MatClass::CohFrictMat {
                         "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys()"
+                    } else if m1.class() == MatClass::ViscElMat && m2.class() == MatClass::ViscElMat
+                    {
+                        "Ip2_ViscElMat_ViscElMat_ViscElPhys()"
                     } else {
                         "Ip2_FrictMat_FrictMat_FrictPhys()"
                     }
@@ -1457,6 +1500,8 @@ impl Scene {
         let gc = it.geom_class().unwrap();
         let pc = if it.coh().is_some() {
             PhysClass::CohFrictPhys
+        } else if it.viscel().is_some() {
+            PhysClass::ViscElPhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1473,6 +1518,7 @@ impl Scene {
                     (GeomClass::GridCoGridCoGeom, _) =>
                         "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack()",
                     (_, PhysClass::CohFrictPhys) => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment()",
+                    (_, PhysClass::ViscElPhys) => "Law2_ScGeom_ViscElPhys_Basic()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1567,6 +1613,34 @@ impl Scene {
                         &mut self.forces,
                         energy,
                     )
+                }
+            }
+            LawFunctor::ViscElBasic => {
+                let vp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.viscel.as_mut())
+                    .ok_or_else(|| bad("ViscElPhys"))?;
+                let (shift_vel, shift2) = match &self.cell {
+                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
+                    None => (Vec3::zeros(), Vec3::zeros()),
+                };
+                let vb = law::viscel::Bodies {
+                    pos1: b.pos[id1],
+                    pos2: b.pos[id2],
+                    vel1: b.vel[id1],
+                    vel2: b.vel[id2],
+                    ang_vel1: b.ang_vel[id1],
+                    ang_vel2: b.ang_vel[id2],
+                    shift2,
+                    shift_vel,
+                };
+                match law::viscel::load(self.dt, fresh, &g, ph, vp, &vb) {
+                    Some(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
                 }
             }
             LawFunctor::GridCoGridCoFrict => {
@@ -1798,5 +1872,32 @@ mod tests {
         );
         let bare = InteractionLoop::empty();
         assert_eq!(bare.law_functor(G::ScGeom, P::FrictPhys).unwrap(), None);
+        // ViscElMat is a FrictMat: a ViscElMat pair gets its own Ip2 only when given, a mixed pair
+        // the FrictMat one; a ViscElPhys without its law falls back to Cundall-Strack (a FrictPhys)
+        let ve = InteractionLoop {
+            viscel_phys: true,
+            viscel_basic: true,
+            ..InteractionLoop::default()
+        };
+        assert_eq!(
+            ve.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            Some(PhysFunctor::ViscEl)
+        );
+        assert_eq!(
+            ve.phys_functor(ViscElMat, FrictMat).unwrap(),
+            Some(PhysFunctor::Frict)
+        );
+        assert_eq!(
+            il.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            Some(PhysFunctor::Frict)
+        );
+        assert_eq!(
+            ve.law_functor(G::ScGeom, P::ViscElPhys).unwrap(),
+            Some(LawFunctor::ViscElBasic)
+        );
+        assert_eq!(
+            il.law_functor(G::ScGeom, P::ViscElPhys).unwrap(),
+            Some(LawFunctor::CundallStrack)
+        );
     }
 }

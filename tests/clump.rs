@@ -140,6 +140,7 @@ fn unsupported_clumps_are_refused_clearly() {
         friction_angle: 0.5,
         density: 2600.0,
         coh: None,
+        viscel: None,
     }];
     let mut b = Bodies::default();
     for x in [0.0, 0.015, 0.5] {

@@ -1295,6 +1295,20 @@ impl Sim {
                 }
                 _ => return Err(unsupported("TranslationEngine")),
             },
+            Engine::Rotation(r) => match key {
+                "ids" => r.ids = serde_json::from_value(v.clone()).map_err(err)?,
+                "angularVelocity" => r.angular_velocity = num()?,
+                "rotateAroundZero" => r.rotate_around_zero = boolean()?,
+                "rotationAxis" | "zeroPoint" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    if key == "rotationAxis" {
+                        r.rotation_axis = vec(a) // normalised on the Python side
+                    } else {
+                        r.zero_point = vec(a)
+                    }
+                }
+                _ => return Err(unsupported("RotationEngine")),
+            },
             Engine::ServoPid(s) => match key {
                 "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
                 "axis" | "current" | "translationAxis" => {
@@ -1364,6 +1378,11 @@ impl Sim {
             (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
             (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
             (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
+            (Engine::Rotation(r), "ids") => serde_json::json!(r.ids),
+            (Engine::Rotation(r), "angularVelocity") => serde_json::json!(r.angular_velocity),
+            (Engine::Rotation(r), "rotationAxis") => v3json(&r.rotation_axis),
+            (Engine::Rotation(r), "rotateAroundZero") => serde_json::json!(r.rotate_around_zero),
+            (Engine::Rotation(r), "zeroPoint") => v3json(&r.zero_point),
             (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
             (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
                 PyKeyError::new_err(format!(
@@ -1800,6 +1819,8 @@ impl Sim {
         };
         let p = if ext.and_then(|e| e.coh.as_ref()).is_some() {
             "CohFrictPhys"
+        } else if ext.and_then(|e| e.viscel.as_ref()).is_some() {
+            "ViscElPhys"
         } else {
             "FrictPhys"
         };

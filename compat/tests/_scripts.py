@@ -25,3 +25,14 @@ def tagged_lines(engine, script, args=(), tags='ABCDEFRS'):
                        env=dict(os.environ, RYADE_PYTHON=sys.executable, OMP_NUM_THREADS='1'))
     assert p.returncode == 0, p.stderr
     return [ln for ln in p.stdout.splitlines() if len(ln) > 1 and ln[0] in tags and ln[1] == ' ']
+
+
+def tagged_lines_both(script, tmp_path, tags):
+    """(ryade's, YADE's) tagged lines of data/scripts/SCRIPT, each run given its own empty folder (under
+    `tmp_path`) as its first argument."""
+    out = []
+    for engine in ('ryade', 'yade'):
+        d = tmp_path / engine
+        d.mkdir()
+        out.append(tagged_lines(engine, script, args=[str(d)], tags=tags))
+    return tuple(out)

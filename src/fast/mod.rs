@@ -357,8 +357,8 @@ impl FastSim {
         }
         let mut mats = Vec::with_capacity(scene.materials.len());
         for m in &scene.materials {
-            if m.coh.is_some() {
-                return unsupported("CohFrictMat".into());
+            if m.coh.is_some() || m.viscel.is_some() {
+                return unsupported(m.class_name().into());
             }
             mats.push(Mat {
                 young: m.young,

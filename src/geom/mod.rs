@@ -238,6 +238,23 @@ pub struct ScGeom {
 }
 
 impl ScGeom {
+    /// The radii the Ip2 functors use (`GenericSpheresContact::refR1/refR2`), each standing in for the
+    /// other when not positive (a facet's or wall's side).
+    #[inline]
+    pub fn ref_radii(&self) -> (f64, f64) {
+        let r1 = if self.radius1 > 0.0 {
+            self.radius1
+        } else {
+            self.radius2
+        };
+        let r2 = if self.radius2 > 0.0 {
+            self.radius2
+        } else {
+            self.radius1
+        };
+        (r1, r2)
+    }
+
     /// `ScGeom::precompute` (pkg/dem/ScGeom.cpp): rotation of the contact frame since the last step,
     /// then the tangential relative velocity times dt.
     #[allow(clippy::too_many_arguments)]

@@ -268,11 +268,22 @@ pub fn interaction(i: &Value, nbodies: usize) -> Result<Interaction> {
                     moment_bending: v3o("moment_bending")?,
                 })
             }
+            "ViscElPhys" => None,
             other => bail!(
                 "interaction physics class '{}' is not supported by ryade yet",
                 other
             ),
         };
+        if class(p)? == "ViscElPhys" {
+            ext.viscel = Some(crate::phys::ViscElPhys {
+                cn: f(p, "cn")?,
+                cs: f(p, "cs")?,
+                fn_el: fo(p, "Fn", 0.0)?,
+                fv: fo(p, "Fv", 0.0)?,
+                m_r: fo(p, "mR", 0.0)?,
+                m_r_type: p.get("mRtype").and_then(Value::as_u64).unwrap_or(1) as u32,
+            });
+        }
     }
     if ext != IntrExt::default() {
         it.ext = Some(Box::new(ext));
@@ -414,10 +425,40 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
+        "ViscElMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat)",
             cls
         ),
+    };
+    let viscel = if cls == "ViscElMat" {
+        // NaN (not given) travels as null
+        let d = crate::material::ViscElParams::default();
+        let nf = |k: &str| -> Result<f64> {
+            match m.get(k) {
+                None | Some(Value::Null) => Ok(f64::NAN),
+                Some(_) => f(m, k),
+            }
+        };
+        if bo(m, "lubrication", false)? {
+            bail!("ViscElMat.lubrication=True is not supported by ryade yet");
+        }
+        Some(Box::new(crate::material::ViscElParams {
+            tc: nf("tc")?,
+            en: nf("en")?,
+            et: nf("et")?,
+            kn: nf("kn")?,
+            cn: nf("cn")?,
+            ks: nf("ks")?,
+            cs: nf("cs")?,
+            m_r: fo(m, "mR", d.m_r)?,
+            m_r_type: m
+                .get("mRtype")
+                .and_then(Value::as_u64)
+                .unwrap_or(d.m_r_type as u64) as u32,
+        }))
+    } else {
+        None
     };
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
@@ -431,6 +472,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         friction_angle: f(m, "frictionAngle")?,
         density: f(m, "density")?,
         coh,
+        viscel,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -752,6 +794,14 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             cohesion_definition_iteration: -1,
                         })
                     }
+                    "Ip2_ViscElMat_ViscElMat_ViscElPhys" => {
+                        for mm in ["tc", "en", "et", "frictAngle"] {
+                            if p.get(mm).is_some_and(|x| !x.is_null()) {
+                                bail!("Ip2_ViscElMat_ViscElMat_ViscElPhys.{} (MatchMaker) is not supported by ryade yet", mm);
+                            }
+                        }
+                        il.viscel_phys = true
+                    }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -791,6 +841,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             trace_energy: bo(&l, "traceEnergy", false)?,
                         })
                     }
+                    "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
                     other => bail!("law functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -823,6 +874,14 @@ pub fn engine(e: &Value) -> Result<Engine> {
             // taken as stored: YADE's postLoad normalisation already happened where the file was written
             translation_axis: vec3_or(e, "translationAxis", Vec3::zeros())?,
         })),
+        "RotationEngine" => Engine::Rotation(Box::new(crate::kinematic::RotationEngine {
+            ids: ids(e)?,
+            angular_velocity: fo(e, "angularVelocity", 0.0)?,
+            // taken as stored (normalised where the file was written, as for TranslationEngine)
+            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+            rotate_around_zero: bo(e, "rotateAroundZero", false)?,
+            zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
+        })),
         "ServoPIDController" => Engine::ServoPid(Box::new(crate::kinematic::ServoPid {
             ids: ids(e)?,
             axis: vec3_or(e, "axis", Vec3::zeros())?,
@@ -844,7 +903,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
     })
 }
 
@@ -1063,6 +1122,22 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
+            if let Some(v) = &m.viscel {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, x) in [
+                    ("tc", v.tc),
+                    ("en", v.en),
+                    ("et", v.et),
+                    ("kn", v.kn),
+                    ("cn", v.cn),
+                    ("ks", v.ks),
+                    ("cs", v.cs),
+                ] {
+                    mat[k] = nn(x);
+                }
+                mat["mR"] = json!(v.m_r);
+                mat["mRtype"] = json!(v.m_r_type);
+            }
             let mut body = json!({
                 "id": id, "shape": shape,
                 "material": mat,
@@ -1153,6 +1228,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.frict_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"}));
                 }
+                if il.viscel_phys {
+                    phys.push(json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"}));
+                }
                 let mut law: Vec<Value> = Vec::new();
                 if let Some(l) = &il.cohesion_moment {
                     law.push(json!({"class": "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "neverErase": l.never_erase,
@@ -1173,6 +1251,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     law.push(json!({"class": "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack", "neverErase": l.never_erase,
                         "sphericalBodies": l.spherical_bodies, "traceEnergy": l.trace_energy}));
                 }
+                if il.viscel_basic {
+                    law.push(json!({"class": "Law2_ScGeom_ViscElPhys_Basic"}));
+                }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
             Engine::Newton(n) => {
@@ -1185,6 +1266,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
+            Engine::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
+                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
+                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
             Engine::Translation(t) => json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
                 "translationAxis": v3(&t.translation_axis)}),
             Engine::ServoPid(p) => json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
@@ -1294,7 +1378,14 @@ pub fn interaction_to_value(it: &Interaction) -> Value {
     let phys = match &it.phys {
         None => Value::Null,
         Some(p) => {
-            let mut d = json!({"class": if it.coh().is_some() { "CohFrictPhys" } else { "FrictPhys" },
+            let cls = if it.coh().is_some() {
+                "CohFrictPhys"
+            } else if it.viscel().is_some() {
+                "ViscElPhys"
+            } else {
+                "FrictPhys"
+            };
+            let mut d = json!({"class": cls,
                 "kn": p.kn, "ks": p.ks, "tangensOfFrictionAngle": p.tan_phi,
                 "normalForce": v3(&p.normal_force), "shearForce": v3(&p.shear_force)});
             if let Some(c) = it.coh() {
@@ -1320,6 +1411,18 @@ pub fn interaction_to_value(it: &Interaction) -> Value {
                     ("creep_viscosity", json!(c.creep_viscosity)),
                 ] {
                     d[k] = v;
+                }
+            }
+            if let Some(v) = it.viscel() {
+                for (k, x) in [
+                    ("cn", json!(v.cn)),
+                    ("cs", json!(v.cs)),
+                    ("Fn", json!(v.fn_el)),
+                    ("Fv", json!(v.fv)),
+                    ("mR", json!(v.m_r)),
+                    ("mRtype", json!(v.m_r_type)),
+                ] {
+                    d[k] = x;
                 }
             }
             d

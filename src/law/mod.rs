@@ -1,10 +1,12 @@
 //! Constitutive laws (Law2 functors). This file: `Law2_ScGeom_FrictPhys_CundallStrack`
 //! (pkg/dem/ElasticContactLaw.cpp): linear normal spring, incremental shear spring with a Coulomb
 //! cap. `cohesion_moment`: the cohesive law with moments (grid bonds, rolling resistance); `grid`:
-//! the sphere-connection and connection-connection laws that put the force on the grid nodes.
+//! the sphere-connection and connection-connection laws that put the force on the grid nodes; `viscel`:
+//! the viscoelastic law of ViscElMat.
 
 pub mod cohesion_moment;
 pub mod grid;
+pub mod viscel;
 
 use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
@@ -60,11 +62,13 @@ pub enum LawFunctor {
     ScGridCoCohFrict,
     /// `Law2_GridCoGridCoGeom_FrictPhys_CundallStrack`
     GridCoGridCoFrict,
+    /// `Law2_ScGeom_ViscElPhys_Basic`
+    ViscElBasic,
 }
 
 impl LawFunctor {
     /// Number of law functors (the size of `LawEnergy::caches`).
-    pub const COUNT: usize = 5;
+    pub const COUNT: usize = 6;
 
     pub fn class_name(&self) -> &'static str {
         match self {
@@ -73,6 +77,7 @@ impl LawFunctor {
             LawFunctor::ScGridCoFrict => "Law2_ScGridCoGeom_FrictPhys_CundallStrack",
             LawFunctor::ScGridCoCohFrict => "Law2_ScGridCoGeom_CohFrictPhys_CundallStrack",
             LawFunctor::GridCoGridCoFrict => "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack",
+            LawFunctor::ViscElBasic => "Law2_ScGeom_ViscElPhys_Basic",
         }
     }
 }

@@ -1,15 +1,18 @@
 # Run one of YADE's own example scripts unchanged, then dump the final body states with full precision.
 #   yade -n -x yade_ref/examples/run_example.py EXAMPLE.py OUT.json [MAXSTEPS]
-#   compat run yade_ref/examples/run_example.py EXAMPLE.py OUT.json [MAXSTEPS]
+#   compat run yade_ref/examples/run_example.py EXAMPLE.py OUT.json [MAXSTEPS [EXTRA]]
 # Background runs (O.run() without wait) are made synchronous and capped at MAXSTEPS so that both
 # engines execute exactly the same steps (YADE's background thread would make the count racy). Under
 # headless YADE, `from yade import qt` fails ("Connecting to DISPLAY ... failed"), so a no-op qt
 # module is installed first, as ryade's compat layer provides one. A script that leaves the running to
 # the GUI (no O.run at all) is stepped MAXSTEPS times after it ends, as a user pressing "play" would.
+# EXTRA (the survey, survey.py): EXTRA more steps after the script in every case, and a script that ends
+# with sys.exit()/exit() is still dumped (the goldens of list.txt pass no EXTRA and keep the old rules).
 import builtins as _rx_builtins, json as _rx_json, os as _rx_os, sys as _rx_sys, types as _rx_types
 
 _rx_example, _rx_out = _rx_sys.argv[1], _rx_sys.argv[2]
 _rx_max = int(_rx_sys.argv[3]) if len(_rx_sys.argv) > 3 else 2000
+_rx_extra = int(_rx_sys.argv[4]) if len(_rx_sys.argv) > 4 else None
 _rx_O = O
 
 try:
@@ -20,7 +23,11 @@ except ImportError:
         def __getattr__(self, k): return _RxNoGui()
         def __call__(self, *a, **k): return _RxNoGui()
     _rx_stub = _rx_types.ModuleType('yade.qt')
-    _rx_stub.__getattr__ = lambda name: _RxNoGui()
+    def _rx_stub_attr(name):
+        if name.startswith('__'):  # __file__, __path__...: what inspect.stack() (yade.mpy) asks of every module
+            raise AttributeError(name)
+        return _RxNoGui()
+    _rx_stub.__getattr__ = _rx_stub_attr
     _rx_stub.View = _rx_stub.Controller = _rx_stub.Renderer = _RxNoGui
     _rx_stub.views = lambda: []
     _rx_sys.modules['yade.qt'] = _rx_stub
@@ -45,13 +52,23 @@ class _RxSyncO(object):
 
 
 _rx_builtins.O = O = _RxSyncO()
+try:  # ryade's compat layer: point its messages at the example's lines, not at this wrapper's
+    from yade import _errors as _rx_errors
+    _rx_errors.SCRIPT = _rx_os.path.abspath(_rx_example)
+except ImportError:
+    pass
 _rx_sys.argv = [_rx_example]
 try:
     exec(compile(open(_rx_example).read(), _rx_example, 'exec'), globals())
+except SystemExit:
+    if _rx_extra is None:
+        raise
 finally:
     _rx_builtins.O = O = _rx_O
 if _rx_O.iter == 0 and len(_rx_O.engines) > 0:
     _rx_O.run(_rx_max, True)
+if _rx_extra and len(_rx_O.engines) > 0:
+    _rx_O.run(_rx_extra, True)
 
 
 def _rx_v(x):

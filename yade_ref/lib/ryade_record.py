@@ -49,7 +49,7 @@ INTR6D_HEADER = ('step,ord,id1,id2,twist,bending_x,bending_y,bending_z,mtw_x,mtw
 # grid extension (golden/FORMAT_GRID.md): geometry / physics classes that may appear in interactions
 GEOM6D_CLASSES = ('ScGeom6D', 'GridNodeGeom6D', 'ScGridCoGeom')
 GEOM_CLASSES = ('ScGeom', 'GridCoGridCoGeom') + GEOM6D_CLASSES
-PHYS_CLASSES = ('FrictPhys', 'CohFrictPhys')
+PHYS_CLASSES = ('FrictPhys', 'CohFrictPhys', 'ViscElPhys')
 
 DOF_BITS = {'x': 1, 'y': 2, 'z': 4, 'X': 8, 'Y': 16, 'Z': 32}
 
@@ -155,6 +155,14 @@ def _material(b, grid=False):
                 'etaRoll': float(m.etaRoll), 'etaTwist': float(m.etaTwist),
                 'normalCohesion': float(m.normalCohesion), 'shearCohesion': float(m.shearCohesion),
                 'fragile': bool(m.fragile), 'momentRotationLaw': bool(m.momentRotationLaw), 'label': str(m.label)}
+    if c == 'ViscElMat':
+        _require(not m.lubrication, 'body %d: ViscElMat.lubrication=True is not supported' % b.id)
+        d = {'id': int(m.id), 'class': c, 'young': float(m.young), 'poisson': float(m.poisson),
+             'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label)}
+        for a in ('tc', 'en', 'et', 'kn', 'cn', 'ks', 'cs'):
+            d[a] = _num_or_null(getattr(m, a))
+        d['mR'], d['mRtype'] = float(m.mR), int(m.mRtype)
+        return d
     if c != 'FrictMat':
         raise UnsupportedScene('body %d: material class %s is not supported (only FrictMat)' % (b.id, c))
     return {'id': int(m.id), 'class': 'FrictMat', 'young': float(m.young), 'poisson': float(m.poisson),
@@ -241,6 +249,10 @@ def _phys_functor(f, grid=False):
             _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
         return {'class': c, 'setCohesionNow': bool(f.setCohesionNow),
                 'setCohesionOnNewContacts': bool(f.setCohesionOnNewContacts)}
+    if c == 'Ip2_ViscElMat_ViscElMat_ViscElPhys':
+        for a in ('tc', 'en', 'et', 'frictAngle'):
+            _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
+        return {'class': c}
     if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
         for a in ('kn', 'ks', 'frictAngle'):
             _require(getattr(f, a) is None, 'Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker) is not supported' % a)
@@ -262,6 +274,8 @@ def _law_functor(f, grid=False):
                 'traceEnergy': bool(f.traceEnergy)}
     if c == 'Law2_ScGeom_FrictPhys_CundallStrack':
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
+    if c == 'Law2_ScGeom_ViscElPhys_Basic':
+        return {'class': c}
     raise UnsupportedScene('law functor class %s is not supported' % c)
 
 
@@ -299,6 +313,10 @@ def _engine(e, grid=False):
     if c == 'TranslationEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'velocity': float(e.velocity),
                 'translationAxis': _v3(e.translationAxis)}
+    if c == 'RotationEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint)}
     if c == 'ServoPIDController':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'axis': _v3(e.axis), 'target': float(e.target),
                 'kP': float(e.kP), 'kI': float(e.kI), 'kD': float(e.kD), 'iTerm': float(e.iTerm),
@@ -404,6 +422,10 @@ def _phys_dict(p):
         d['moment_bending'] = _v3(p.moment_bending)
         d['cohesionDisablesFriction'] = bool(p.cohesionDisablesFriction)
         d['creep_viscosity'] = float(p.creep_viscosity)
+    if c == 'ViscElPhys':
+        for a in ('cn', 'cs', 'Fn', 'Fv', 'mR'):
+            d[a] = float(getattr(p, a))
+        d['mRtype'] = int(p.mRtype)
     return d
 
 

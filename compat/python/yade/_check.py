@@ -483,6 +483,22 @@ def check_source(src, filename='<script>'):
     return sorted(c.findings, key=lambda f: (f.line, f.what))
 
 
+def yade_name(name):
+    """What YADE calls `name` when a script that uses it is stopped by a NameError: "the name 'X' of
+    YADE's script namespace", 'yade.M.X' for a public name of YADE's module M (e.g. one `from yade.M
+    import *` brings), 'class X'; None for a name YADE does not define either (a plain NameError)."""
+    t = _tables()
+    if name in t['namespace']:
+        return "the name '%s' of YADE's script namespace" % name
+    for m in sorted(t['modules']):
+        if name in t['modules'][m].get('names', ()):
+            return 'yade.%s.%s' % (m, name)
+    from . import wrapper
+    if name in wrapper.YADE_CLASSES:
+        return 'class %s' % name
+    return None
+
+
 def check_file(path):
     with open(path, 'rb') as f:
         return check_source(f.read(), path)

@@ -916,11 +916,12 @@ class Omega(_ryade.OmegaBase):
         self._default_engines()
 
     def _default_engines(self):
-        """A fresh YADE `O` has a default engine list (core.md §1); `O.reset()` empties it."""
+        """A fresh YADE `O` has a default engine list (core.md §1), labelled as YADE labels it (scripts use
+        `collider`, `newton`... without defining them); `O.reset()` empties it."""
         from .wrapper import (ForceResetter, GlobalStiffnessTimeStepper, InsertionSortCollider, InteractionLoop,
                               NewtonIntegrator)
-        self.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop(), GlobalStiffnessTimeStepper(),
-                        NewtonIntegrator(damping=0.2)]
+        self.engines = [ForceResetter(), InsertionSortCollider(label='collider'), InteractionLoop(label='interactionLoop'),
+                        GlobalStiffnessTimeStepper(label='timeStepper'), NewtonIntegrator(damping=0.2, label='newton')]
 
     # ---- time ----
     # O.iter and O.time: OmegaBase
@@ -1171,11 +1172,13 @@ class Omega(_ryade.OmegaBase):
         self._sim.iter = 0
         self._sim.time = 0.0
 
-    def saveTmp(self, mark=''):
+    def saveTmp(self, mark='', quiet=False):
         self._sim.save_tmp(mark)
         self._saved[mark] = (list(self.bodies._objs), list(self.materials._mats), self._engines)
+        if not mark.startswith('\0'):
+            self._scene_file = ':memory:' + mark
 
-    def loadTmp(self, mark=''):
+    def loadTmp(self, mark='', quiet=False):
         if mark not in self._saved:
             raise RuntimeError("No memory-saved simulation named '%s'" % mark)
         self._sim.load_tmp(mark)
@@ -1183,12 +1186,65 @@ class Omega(_ryade.OmegaBase):
         self.bodies._objs = list(bodies)
         self.materials._mats = list(mats)
         self._engines = engines
+        if not mark.startswith('\0'):
+            self._scene_file = ':memory:' + mark
+
+    #: the name of the scene last saved or loaded (O.filename; ':memory:MARK' for saveTmp/loadTmp)
+    _scene_file = None
+
+    @property
+    def filename(self):
+        return self._scene_file
+
+    def reload(self, quiet=False):
+        """Load again the scene last saved or loaded (YADE's O.reload: O.load(O.filename))."""
+        f = self._scene_file
+        if f is None:
+            raise RuntimeError('O.reload: no scene was saved or loaded yet (O.filename is None)')
+        if f.startswith(':memory:'):
+            self.loadTmp(f[len(':memory:'):], quiet)
+        else:
+            self.load(f, quiet)
+
+    #: first line of the files O.save writes (a format of ryade's own, not YADE's XML or binary)
+    _SAVE_FORMAT = 'ryade-save-1'
 
     def save(self, fileName, quiet=False):
-        unsupported('O.save (YADE .xml/.yade files)', 'use O.saveTmp() for in-memory snapshots')
+        """Write the scene to `fileName` in ryade's own format (JSON: the scene as ryade's scene files hold it,
+        compressed by gzip/bzip2 when the name ends .gz/.bz2, as YADE's names do) and keep the whole state in
+        memory under a token the file carries, so that `O.load(fileName)` in the same run restores it exactly
+        (what YADE's O.load does). Reading such a file in another run is not supported yet."""
+        import json
+        import uuid
+        token = uuid.uuid4().hex
+        try:
+            scene = json.loads(self._sim.scene_json(self.iter))
+        except Exception as e:  # the snapshot in memory is what O.load uses; the JSON is for reading
+            scene = {'unavailable': str(e)}
+        self.saveTmp('\0O.save ' + token)
+        text = json.dumps({'format': self._SAVE_FORMAT, 'token': token, 'iter': self.iter, 'time': self.time,
+                           'scene': scene}, allow_nan=True)
+        with _open_compressed(fileName, 'wt') as f:
+            f.write(text)
+        self._scene_file = fileName
 
     def load(self, fileName, quiet=False):
-        unsupported('O.load (YADE .xml/.yade files)')
+        """Restore a scene written by `O.save` earlier in this run (see save)."""
+        import json
+        try:
+            with _open_compressed(fileName, 'rt') as f:
+                d = json.load(f)
+        except (ValueError, UnicodeDecodeError, OSError) as e:
+            if isinstance(e, FileNotFoundError):
+                raise
+            d = None
+        if not isinstance(d, dict) or d.get('format') != self._SAVE_FORMAT:
+            unsupported('O.load of YADE files (.xml/.yade)', 'ryade reads the files its own O.save wrote in the same run')
+        mark = '\0O.save ' + d.get('token', '')
+        if mark not in self._saved:
+            unsupported('O.load of a file saved by another run', 'ryade reads the files its own O.save wrote in the same run')
+        self.loadTmp(mark)
+        self._scene_file = fileName
 
     def __getattr__(self, k):
         if k.startswith('_'):
@@ -1200,6 +1256,17 @@ class Omega(_ryade.OmegaBase):
 
 import time as _time  # noqa: E402
 
+
+def _open_compressed(fileName, mode):
+    """open(), through gzip or bz2 when the name ends .gz / .bz2."""
+    if fileName.endswith('.gz'):
+        import gzip
+        return gzip.open(fileName, mode)
+    if fileName.endswith('.bz2'):
+        import bz2
+        return bz2.open(fileName, mode)
+    return open(fileName, mode)
+
 #: bit of the id `Sim.advance` returns for a PeriTriaxController's doneHook (ryade::scene::DONE_HOOK)
 _DONE_HOOK = 1 << 31
 
@@ -1207,7 +1274,7 @@ _START = _time.time()
 
 #: Omega attributes YADE has (used to tell "unsupported" from "no such attribute")
 _OMEGA_ATTRS = {'addScene', 'bexSyncCount', 'childClassesNonrecursive', 'dynDt', 'dynDtAvailable', 'exitNoBacktrace',
-                'filename', 'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
-                'miscParams', 'numSubSteps', 'plugins', 'realtime', 'reload', 'resetAllScenes', 'resetCurrentScene',
+                'forceSyncCount', 'interactionsFilter', 'isChildClassOf', 'labeledEngine', 'lsTmp',
+                'miscParams', 'numSubSteps', 'plugins', 'realtime', 'resetAllScenes', 'resetCurrentScene',
                 'resetThisScene', 'runEngine', 'sceneToString', 'speed', 'stringToScene', 'subD', 'subStep', 'subStepping',
                 'switchScene', 'switchToScene', 'tmpFilename', 'tmpToFile', 'tmpToString', 'thisScene'}

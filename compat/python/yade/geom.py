@@ -1,4 +1,4 @@
-"""`yade.geom` over ryade: facet boxes and cylinders built exactly as YADE's py/geom.py builds them
+"""`yade.geom` over ryade: facet boxes, cylinders, cones and bunkers built exactly as YADE's py/geom.py builds them
 (same vertex arithmetic and order, so the facets are the same doubles)."""
 
 import math
@@ -7,7 +7,7 @@ from . import utils
 from ._errors import unsupported
 from .minieigen import Quaternion, Vector3
 
-__all__ = ['facetBox', 'facetParallelepiped', 'facetCylinder']
+__all__ = ['facetBox', 'facetParallelepiped', 'facetCylinder', 'facetCone', 'facetBunker']
 
 
 def _linspace(start, stop, num):
@@ -93,6 +93,46 @@ def facetCylinder(center, radius, height, orientation=Quaternion((0, 1, 0), 0.0)
     if radiusTopInner > 0 or radiusBottomInner > 0:
         unsupported('geom.facetCylinder with inner radii')
     return _cylinder_cone(center, radius, height, orientation, segmentsNumber, wallMask, angleRange, -1, **kw)
+
+
+def facetCone(center, radiusTop, radiusBottom, height, orientation=Quaternion((0, 1, 0), 0.0), segmentsNumber=10,
+              wallMask=7, angleRange=None, closeGap=False, radiusTopInner=-1, radiusBottomInner=-1, **kw):
+    """A cone (frustum) of facets: top and bottom discs and the side, as facetCylinder with two radii."""
+    if radiusBottom <= 0 and radiusTop <= 0:
+        raise RuntimeError("The radiusBottom or radiusTop should have the positive value")
+    if closeGap:
+        unsupported('geom.facetCone(closeGap=True)')
+    if radiusTopInner > 0 or radiusBottomInner > 0:
+        unsupported('geom.facetCone with inner radii')
+    return _cylinder_cone(center, radiusTop, height, orientation, segmentsNumber, wallMask, angleRange, radiusBottom, **kw)
+
+
+def facetBunker(center, dBunker, dOutput, hBunker, hOutput, hPipe=0.0, orientation=Quaternion((0, 1, 0), 0.0),
+                segmentsNumber=10, wallMask=4, angleRange=None, closeGap=False, **kw):
+    """A bunker of facets: an outlet pipe (height hPipe, diameter dOutput), a cone up to dBunker (height hOutput)
+    and a cylinder above it (height hBunker), built about the origin, then rotated by `orientation` and moved
+    to `center` (each facet's position; its orientation set to `orientation`)."""
+    for v, what, strict in ((dBunker, 'The diameter dBunker', True), (dOutput, 'The diameter dOutput', True),
+                            (hBunker, 'The height hBunker', False), (hOutput, 'The height hOutput', True),
+                            (hPipe, 'The height hPipe', False)):
+        if v < 0 or (strict and v == 0):
+            raise RuntimeError('%s should have the positive value%s' % (what, '' if strict else ' or zero'))
+    ret = []
+    parts = []
+    if hPipe > 0 or wallMask & 2:
+        parts.append((facetCylinder, Vector3(0, 0, hPipe / 2.0), dict(radius=dOutput / 2.0, height=hPipe,
+                                                                       wallMask=wallMask & 6)))
+    parts.append((facetCone, Vector3(0.0, 0.0, hPipe + hOutput / 2.0),
+                  dict(radiusTop=dBunker / 2.0, radiusBottom=dOutput / 2.0, height=hOutput, wallMask=wallMask & 4)))
+    if hBunker > 0:
+        parts.append((facetCylinder, Vector3(0.0, 0.0, hPipe + hOutput + hBunker / 2.0),
+                      dict(radius=dBunker / 2.0, height=hBunker, wallMask=wallMask & 5)))
+    for make, c, args in parts:
+        ret += make(center=c, segmentsNumber=segmentsNumber, angleRange=angleRange, closeGap=closeGap, **args, **kw)
+    for b in ret:
+        b.state.pos = orientation * b.state.pos + Vector3(*center)
+        b.state.ori = orientation
+    return ret
 
 
 def _cylinder_cone(center, radiusTop, height, orientation, segmentsNumber, wallMask, angleRange, radiusBottom, **kw):

@@ -7,7 +7,7 @@ from ._core import GridConnection, GridNode, Omega
 from ._errors import unsupported
 from .minieigen import Vector3i
 
-__all__ = ['gridNode', 'gridConnection']
+__all__ = ['gridNode', 'gridConnection', 'cylinder', 'cylinderConnection']
 
 
 def gridNode(center, radius, dynamic=None, fixed=False, wire=False, color=None, highlight=False, material=-1):
@@ -34,6 +34,27 @@ def gridConnection(id1, id2, radius, wire=False, color=None, highlight=False, ma
     b = O.bodies._adopt(cid, shape, mat)
     object.__setattr__(b, '_pending_append', True)   # YADE returns the Body for the script to append
     return b
+
+
+def cylinder(begin=(0, 0, 0), end=(1., 0., 0.), radius=0.2, nodesIds=[], cylIds=[], dynamic=None, fixed=False,
+             wire=False, color=None, highlight=False, intMaterial=-1, extMaterial=-1, mask=1):
+    """A rounded cylinder: two grid nodes (material `intMaterial`) and their connection (`extMaterial`), all
+    appended to O.bodies; their ids are appended to `nodesIds` and `cylIds` (YADE's shared default lists
+    included)."""
+    cylinderConnection([begin, end], radius, nodesIds, cylIds, dynamic, fixed, wire, color, highlight, intMaterial,
+                       extMaterial, mask)
+
+
+def cylinderConnection(vertices, radius=0.2, nodesIds=[], cylIds=[], dynamic=None, fixed=False, wire=False, color=None,
+                       highlight=False, intMaterial=-1, extMaterial=-1, mask=1):
+    """A chain of rounded cylinders through `vertices`: every node first, then the connections in order."""
+    O = Omega()
+    nodes = [O.bodies.append(gridNode(v, radius=radius, dynamic=dynamic, fixed=fixed, wire=wire, color=color,
+                                      highlight=highlight, material=intMaterial)) for v in vertices]
+    nodesIds.extend(nodes)
+    for a, b in zip(nodes[:-1], nodes[1:]):
+        cylIds.append(O.bodies.append(gridConnection(a, b, radius=radius, wire=wire, color=color, highlight=highlight,
+                                                     material=extMaterial, mask=mask, cellDist=None)))
 
 
 def __getattr__(name):

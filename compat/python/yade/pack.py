@@ -1,11 +1,25 @@
-"""`yade.pack` over ryade: `SpherePack` with `makeCloud` reproduced bit for bit by the Rust core."""
+"""`yade.pack` over ryade: `SpherePack` with `makeCloud` reproduced bit for bit by the Rust core; the solid
+predicates of YADE's `_packPredicates` (inSphere, inAlignedBox, inCylinder and their boolean combinations)
+and the regular packings `regularOrtho` / `regularHexa` clipped by them (py/pack/pack.py)."""
 
 from . import _ryade, utils
 from ._core import Omega, Sphere
 from ._errors import unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, to_vec3
 
-__all__ = ['SpherePack']
+__all__ = ['SpherePack', 'Predicate', 'PredicateUnion', 'PredicateIntersection', 'PredicateDifference',
+           'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'regularOrtho', 'regularHexa',
+           'arange']
+
+import itertools as _itertools  # noqa: E402
+import math as _math  # noqa: E402
+import warnings as _warnings  # noqa: E402
+
+try:
+    from numpy import arange  # YADE's pack imports it, and its startup namespace has it from there
+except ImportError:  # pragma: no cover
+    def arange(*a, **k):
+        unsupported('numpy.arange (numpy is not installed)')
 
 
 class SpherePack(object):
@@ -119,6 +133,184 @@ class SpherePack(object):
         if k.startswith('_'):
             raise AttributeError(k)
         unsupported('SpherePack.%s' % k)
+
+
+# ---------------------------------------------------------------- predicates (py/pack/_packPredicates.cpp)
+
+def _v(x, what):
+    return Vector3(*to_vec3(x, what))
+
+
+def _cwise(f, a, b):
+    return Vector3(*[f(a[i], b[i]) for i in range(3)])
+
+
+def _min(a, b):  # std::min
+    return b if b < a else a
+
+
+def _max(a, b):  # std::max
+    return b if a < b else a
+
+
+class Predicate(object):
+    """A solid: `p(pt, pad)` is True when `pt` lies inside, at least `pad` from the boundary; `aabb()` is its
+    (min, max) box. `|`, `&`, `-`, `^` combine two predicates."""
+
+    def __call__(self, pt, pad=0.):
+        raise NotImplementedError
+
+    def aabb(self):
+        raise NotImplementedError
+
+    def dim(self):
+        mn, mx = self.aabb()
+        return mx - mn
+
+    def center(self):
+        mn, mx = self.aabb()
+        return .5 * (mn + mx)
+
+    def __or__(self, other):
+        return PredicateUnion(self, other)
+
+    def __and__(self, other):
+        return PredicateIntersection(self, other)
+
+    def __sub__(self, other):
+        return PredicateDifference(self, other)
+
+    def __xor__(self, other):
+        return PredicateSymmetricDifference(self, other)
+
+
+class _PredicateBoolean(Predicate):
+    def __init__(self, A, B):
+        self.A, self.B = A, B
+
+    def _boxes(self, lo, hi):
+        """(lo of the two minima, hi of the two maxima), per coordinate."""
+        (a0, a1), (b0, b1) = self.A.aabb(), self.B.aabb()
+        return _cwise(lo, a0, b0), _cwise(hi, a1, b1)
+
+
+class PredicateUnion(_PredicateBoolean):
+    def __call__(self, pt, pad=0.):
+        return self.A(pt, pad) or self.B(pt, pad)
+
+    def aabb(self):
+        return self._boxes(_min, _max)
+
+
+class PredicateIntersection(_PredicateBoolean):
+    def __call__(self, pt, pad=0.):
+        return self.A(pt, pad) and self.B(pt, pad)
+
+    def aabb(self):
+        return self._boxes(_max, _min)
+
+
+class PredicateDifference(_PredicateBoolean):
+    def __call__(self, pt, pad=0.):
+        return self.A(pt, pad) and not self.B(pt, -pad)
+
+    def aabb(self):
+        return self.A.aabb()
+
+
+class PredicateSymmetricDifference(_PredicateBoolean):
+    def __call__(self, pt, pad=0.):
+        a, b = self.A(pt, pad), self.B(pt, pad)
+        return a != b
+
+    def aabb(self):
+        return self._boxes(_min, _max)
+
+
+class inSphere(Predicate):
+    def __init__(self, center, radius):
+        self._c, self._r = _v(center, 'center'), float(radius)
+
+    def __call__(self, pt, pad=0.):
+        return (_v(pt, 'pt') - self._c).norm() <= self._r - pad
+
+    def aabb(self):
+        c, r = self._c, self._r
+        return Vector3(c[0] - r, c[1] - r, c[2] - r), Vector3(c[0] + r, c[1] + r, c[2] + r)
+
+
+class inAlignedBox(Predicate):
+    def __init__(self, minAABB, maxAABB):
+        self._mn, self._mx = _v(minAABB, 'minAABB'), _v(maxAABB, 'maxAABB')
+
+    def __call__(self, pt, pad=0.):
+        p, mn, mx = _v(pt, 'pt'), self._mn, self._mx
+        return all(mn[i] + pad <= p[i] and mx[i] - pad >= p[i] for i in range(3))
+
+    def aabb(self):
+        return Vector3(*self._mn), Vector3(*self._mx)
+
+
+class inCylinder(Predicate):
+    def __init__(self, centerBottom, centerTop, radius):
+        self._c1, self._c2 = _v(centerBottom, 'centerBottom'), _v(centerTop, 'centerTop')
+        self._c12 = self._c2 - self._c1
+        self._r = float(radius)
+        self._ht = self._c12.norm()
+
+    def __call__(self, pt, pad=0.):
+        p, ht = _v(pt, 'pt'), self._ht
+        u = (p.dot(self._c12) - self._c1.dot(self._c12)) / (ht * ht)  # position along the axis, 0..1
+        if u * ht < 0 + pad or u * ht > ht - pad:
+            return False
+        return not (p - self._c1).cross(p - self._c2).norm() / ht > self._r - pad
+
+    def aabb(self):
+        a, b, ht = self._c1, self._c2, self._ht
+        k = Vector3(_math.sqrt((a[1] - b[1]) ** 2 + (a[2] - b[2]) ** 2) / ht,
+                    _math.sqrt((a[0] - b[0]) ** 2 + (a[2] - b[2]) ** 2) / ht,
+                    _math.sqrt((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) / ht)
+        mn, mx = _cwise(_min, a, b), _cwise(_max, a, b)
+        return mn - self._r * k, mx + self._r * k
+
+
+# ---------------------------------------------------------------- regular packings (py/pack/pack.py)
+
+def _finite_aabb(predicate):
+    mn, mx = predicate.aabb()
+    if max(mx[i] - mn[i] for i in range(3)) == float('inf'):
+        raise ValueError('Aabb of the predicate must not be infinite (an unbounded predicate joined with | '
+                         'instead of intersected with &?)')
+    return mn, mx
+
+
+def regularOrtho(predicate, radius, gap, **kw):
+    """Spheres of `radius` on an orthogonal grid of spacing 2 radius + gap inside `predicate`."""
+    mn, mx = _finite_aabb(predicate)
+    axes = [arange(mn[i] + radius, mx[i] - radius, 2 * radius + gap) for i in range(3)]
+    ret = [utils.sphere(xyz, radius=radius, **kw) for xyz in _itertools.product(*axes) if predicate(xyz, radius)]
+    if not ret:
+        _warnings.warn('No spheres are produced by regularOrtho-function', category=RuntimeWarning)
+    return ret
+
+
+def regularHexa(predicate, radius, gap, **kw):
+    """Spheres of `radius` on a hexagonal close-packed lattice (spacing 2 radius + gap) inside `predicate`."""
+    a = 2 * radius + gap
+    hy, hz = a * _math.sqrt(3) / 2., a * _math.sqrt(6) / 3.
+    mn, mx = _finite_aabb(predicate)
+    dim = [mx[i] - mn[i] for i in range(3)]
+    ret = []
+    for i, j, k in _itertools.product(range(int(dim[0] / a) + 1), range(int(dim[1] / hy) + 1),
+                                      range(int(dim[2] / hz) + 1)):
+        # simple hcp lattice: layers shifted by half a spacing in x, and by a third of a row in y
+        c = Vector3(2 * i + (j + k) % 2, _math.sqrt(3.) * (j + 1. / 3. * (k % 2)),
+                    2. * _math.sqrt(6.) / 3. * k) * (a / 2.0) + mn
+        if predicate(c, radius):
+            ret.append(utils.sphere(c, radius=radius, **kw))
+    if not ret:
+        _warnings.warn('No spheres are produced by regularHexa-function', category=RuntimeWarning)
+    return ret
 
 
 def _g6(x):

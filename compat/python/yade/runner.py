@@ -23,6 +23,35 @@ import traceback
 import types
 
 
+def execfile(filename, globals=None, locals=None):
+    """YADE's `execfile` (its startup takes it from `past.builtins`): run the Python file `filename` in
+    the caller's globals and locals, or in the given ones (locals default to globals)."""
+    if globals is None:
+        caller = sys._getframe(1)
+        globals, locals = caller.f_globals, caller.f_locals
+    elif locals is None:
+        locals = globals
+    with open(filename, 'rb') as f:
+        code = compile(f.read(), filename, 'exec')
+    exec(code, globals, locals)
+
+
+def name_error_message(e):
+    """For a NameError on a name YADE defines (its script namespace, its modules, its classes): the
+    compat layer's 'ryade does not support X yet (script, line N)', at the innermost line outside this
+    package; None for a name YADE lacks too (Python's own NameError stands)."""
+    from yade import _check, _errors
+    name = getattr(e, 'name', None)
+    what = _check.yade_name(name) if name else None
+    if what is None:
+        return None
+    where = ''
+    for fr in traceback.extract_tb(e.__traceback__):
+        if not os.path.abspath(fr.filename).startswith(_errors._PKG_DIR + os.sep):
+            where = ' (%s, line %d)' % (fr.filename, fr.lineno)
+    return 'ryade does not support %s yet%s' % (what, where)
+
+
 def _namespace(mod):
     import yade
     from yade import geom, pack, utils
@@ -39,6 +68,7 @@ def _namespace(mod):
         if not k.startswith('_'):
             ns[k] = getattr(math, k)
     ns['O'] = yade.O
+    ns['execfile'] = execfile
     # the modules YADE's startup namespace holds (its utils has no __all__, and the yade launcher
     # imports more); gts, mpmath and remote are not provided by ryade
     import argparse, doctest, itertools, json as _json, os as _os, random, time, types as _types, warnings
@@ -116,6 +146,13 @@ def run(script, args, mode='check'):
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except _errors.UnsupportedError as e:
         sys.stderr.write('compat run: %s\n' % e)
+        return 1
+    except NameError as e:
+        msg = name_error_message(e)
+        if msg is None:
+            traceback.print_exc()
+        else:
+            sys.stderr.write('compat run: %s\n' % msg)
         return 1
     except BaseException:
         traceback.print_exc()

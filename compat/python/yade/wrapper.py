@@ -226,8 +226,23 @@ class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
         return {'class': 'Ip2_FrictMat_FrictMat_FrictPhys'}
 
 
+class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
+    _attrs = {'tc': None, 'en': None, 'et': None, 'frictAngle': None}
+
+    def _json(self):
+        for k in ('tc', 'en', 'et', 'frictAngle'):
+            if self._values[k] is not None:
+                unsupported('Ip2_ViscElMat_ViscElMat_ViscElPhys.%s (MatchMaker)' % k)
+        return {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_ViscElPhys_Basic(LawFunctor):
+    def _json(self):
+        return {'class': 'Law2_ScGeom_ViscElPhys_Basic'}
 
 
 class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
@@ -547,26 +562,25 @@ def _vec3_attr(cls, k, v):
     return to_vec3(v, '%s.%s' % (cls, k))
 
 
-class TranslationEngine(KinematicEngine):
-    """Constant velocity along translationAxis for the listed bodies (Rust core: `kinematic`)."""
-    _attrs = {'velocity': 0.0, 'translationAxis': (0.0, 0.0, 0.0)}
-    _live = ('ids', 'velocity', 'translationAxis')
-    _vectors = ('translationAxis',)
+class _AxisEngine(KinematicEngine):
+    """A kinematic engine whose postLoad normalizes its axis attribute `_axis` (Rust core: `kinematic`)."""
+    _axis = None
+    _vectors = ()
     _state = ()
 
     def __init__(self, *args, **kw):
         Serializable.__init__(self, *args, **kw)
-        if 'translationAxis' in kw:
-            # YADE quirk: constructing with translationAxis=... runs postLoad's normalize() twice (once per
+        if self._axis in kw:
+            # YADE quirk: constructing with the axis=... runs postLoad's normalize() twice (once per
             # attribute update and once at the end of the constructor); an assignment runs it once. The
             # second pass can move the last bit: (1, 1, 0) -> 0.7071067811865476 instead of ...475.
-            self._values['translationAxis'] = _eigen_normalized(self._values['translationAxis'])
+            self._values[self._axis] = _eigen_normalized(self._values[self._axis])
 
     def _convert(self, k, v):
         if k in self._vectors:
             v = tuple(_vec3_attr(type(self).__name__, k, v))
-            # TranslationEngine.postLoad: translationAxis.normalize()
-            return _eigen_normalized(v) if k == 'translationAxis' else v
+            # postLoad: axis.normalize()
+            return _eigen_normalized(v) if k == self._axis else v
         return PartialEngine._convert(self, k, v)
 
     def _read(self, k):
@@ -586,6 +600,24 @@ class TranslationEngine(KinematicEngine):
             if k not in Engine._attrs:
                 d[k] = _jsonable(self._values[k])
         return d
+
+
+class TranslationEngine(_AxisEngine):
+    """Constant velocity along translationAxis for the listed bodies."""
+    _attrs = {'velocity': 0.0, 'translationAxis': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'velocity', 'translationAxis')
+    _axis = 'translationAxis'
+    _vectors = ('translationAxis',)
+
+
+class RotationEngine(_AxisEngine):
+    """Constant angular velocity about rotationAxis for the listed bodies, carried round zeroPoint when
+    rotateAroundZero."""
+    _attrs = {'angularVelocity': 0.0, 'rotationAxis': (1.0, 0.0, 0.0), 'rotateAroundZero': False,
+              'zeroPoint': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'angularVelocity', 'rotationAxis', 'rotateAroundZero', 'zeroPoint')
+    _axis = 'rotationAxis'
+    _vectors = ('rotationAxis', 'zeroPoint')
 
 
 class ServoPIDController(TranslationEngine):
@@ -906,6 +938,29 @@ class CohFrictMat(FrictMat):
         FrictMat._changed(self, k)
 
 
+class ViscElMat(FrictMat):
+    _attrs = {'tc': float('nan'), 'en': float('nan'), 'et': float('nan'), 'kn': float('nan'), 'cn': float('nan'),
+              'ks': float('nan'), 'cs': float('nan'), 'mR': 0.0, 'mRtype': 1, 'lubrication': False,
+              'viscoDyn': 1e-3, 'roughnessScale': 1e-3}
+
+    def _json(self):
+        v = self._values
+        if v['lubrication']:
+            unsupported('ViscElMat.lubrication=True')
+        d = FrictMat._json(self)
+        d['class'] = 'ViscElMat'
+        for k in ('tc', 'en', 'et', 'kn', 'cn', 'ks', 'cs'):
+            x = float(v[k])
+            d[k] = None if x != x else x  # NaN (not given) as null
+        d['mR'], d['mRtype'] = float(v['mR']), int(v['mRtype'])
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in ViscElMat._attrs:
+            unsupported('changing ViscElMat.%s after the material is in use' % k)
+        FrictMat._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -942,7 +997,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
-    TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, ServoPIDController,
+    TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     RyadePistonController,
     BoundaryController, PeriTriaxController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
@@ -950,7 +1005,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
-    ElastMat, FrictMat]}
+    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)

@@ -1,10 +1,14 @@
-"""`yade.ymport` over ryade: sphere lists from text files (as YADE's py/ymport.py reads them)."""
+"""`yade.ymport` over ryade: sphere lists from text files (as YADE's py/ymport.py reads them) and facets
+from STL files (as its STLImporter does)."""
+
+import struct
 
 from . import utils
+from ._core import Body, Facet
 from ._errors import unsupported
-from .minieigen import Vector3
+from .minieigen import Quaternion, Vector3
 
-__all__ = ['text', 'textExt']
+__all__ = ['text', 'textExt', 'stl', 'gmsh']
 
 
 def textExt(fileName, format='x_y_z_r', shift=Vector3(0, 0, 0), scale=1.0, attrs=[], **kw):
@@ -41,6 +45,90 @@ def textExt(fileName, format='x_y_z_r', shift=Vector3(0, 0, 0), scale=1.0, attrs
 
 def text(fileName, shift=Vector3(0, 0, 0), scale=1.0, **kw):
     return textExt(fileName=fileName, format='x_y_z_r', shift=shift, scale=scale, **kw)
+
+
+def _stl_triangles(fileName):
+    """The triangles of an STL file as STLImporter's reader (pkg/dem/STLImporter.hpp) gets them: single
+    precision coordinates, each vertex replaced by the first equal one read before it. Binary when the size
+    is that of the facet count at byte 80, or when one of the 128 bytes after it is above 127; else ASCII,
+    read by position after the first line (a last `endfacet` that ends the file without a newline is
+    dropped, as its end-of-file test does)."""
+    with open(fileName, 'rb') as f:
+        data = f.read()
+    facenum = struct.unpack('<i', data[80:84])[0] if len(data) >= 84 else -1
+    binary = len(data) == 84 + 50 * facenum
+    head = data[84:84 + 128]
+    if len(head) == 128 and any(c > 127 for c in head):
+        binary = True
+    tris = []
+    if binary:
+        for i in range(max(facenum, 0)):
+            v = struct.unpack_from('<9f', data, 84 + 50 * i + 12)
+            tris.append([v[0:3], v[3:6], v[6:9]])
+    else:
+        import re
+        f32 = lambda t: struct.unpack('<f', struct.pack('<f', float(t)))[0]  # noqa: E731  (fscanf %f)
+        body = data[data.index(b'\n') + 1:] if b'\n' in data else b''
+        toks = [(m.group(0), m.end()) for m in re.finditer(rb'\S+', body)]
+        k = 0
+        while k + 21 <= len(toks):
+            t = [x[0] for x in toks[k:k + 21]]
+            try:
+                tri = [tuple(f32(x) for x in t[8 + 4 * j:11 + 4 * j]) for j in range(3)]
+            except ValueError:
+                break
+            if toks[k + 20][1] == len(body):
+                break
+            tris.append(tri)
+            k += 21
+    seen, out = {}, []
+    for tri in tris:
+        out.append([seen.setdefault(v, v) for v in tri])
+    return out
+
+
+def stl(file, dynamic=None, fixed=True, wire=True, color=None, highlight=False, noBound=False, material=-1,
+        scale=1.0, shift=Vector3(0, 0, 0)):
+    """Facets of an STL file (ASCII or binary), placed at the centre of each triangle's inscribed circle."""
+    ret = []
+    for tri in _stl_triangles(file):
+        v = [Vector3(*x) for x in tri]
+        icc = utils.inscribedCircleCenter(v[0], v[1], v[2])
+        b = Body()
+        b.shape = Facet(color=color if color else utils.randomColor(), wire=wire, highlight=highlight,
+                        vertices=tuple((x - icc) * scale for x in v))
+        utils._commonBodySetup(b, 0, Vector3(0, 0, 0), material=material, pos=icc * scale + shift, noBound=noBound,
+                               dynamic=dynamic, fixed=fixed)
+        b.aspherical = False
+        ret.append(b)
+    return ret
+
+
+def gmsh(meshfile="file.mesh", shift=Vector3(0, 0, 0), scale=1.0, orientation=Quaternion((0, 1, 0), 0.0), **kw):
+    """Facets from the triangles of a GMSH/MEDIT `.mesh` file: vertices scaled, rotated by `orientation` and
+    shifted; `kw` goes to utils.facet."""
+    with open(meshfile, "r") as f:
+        lines = f.readlines()
+
+    def section(start, name):
+        k = start
+        while lines[k].split()[0] != name:
+            k += 1
+        return k + 1  # the line with the count
+
+    kv = section(0, 'Vertices')
+    nv = int(lines[kv].split()[0])
+    nodes = []
+    for line in lines[kv + 1:kv + 1 + nv]:
+        x = line.split()
+        nodes.append(orientation * Vector3(float(x[0]) * scale, float(x[1]) * scale, float(x[2]) * scale) + shift)
+    kt = section(kv + nv, 'Triangles')
+    nt = int(lines[kt].split()[0])
+    ret = []
+    for line in lines[kt + 1:kt + 1 + nt]:
+        x = line.split()
+        ret.append(utils.facet((nodes[int(x[0]) - 1], nodes[int(x[1]) - 1], nodes[int(x[2]) - 1]), **kw))
+    return ret
 
 
 def __getattr__(name):

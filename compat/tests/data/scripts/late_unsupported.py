@@ -1,4 +1,4 @@
-# A long YADE run whose last line ryade lacks (O.save): `compat run` must refuse it before step 1.
+# A long YADE run whose last line ryade lacks (O.addScene): `compat run` must refuse it before step 1.
 from yade import utils
 O.materials.append(FrictMat(young=1e7, density=2600))
 O.bodies.append(utils.sphere((0, 0, 1), 0.1))
@@ -15,4 +15,4 @@ def report():
 
 print('started', flush=True)
 O.run(20000, True)
-O.save('final.yade')
+O.addScene()

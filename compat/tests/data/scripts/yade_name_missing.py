@@ -1,0 +1,4 @@
+from yade.gridpfacet import *
+print('before')
+gmshPFacet('mesh.geo')
+print('never printed')
