@@ -153,7 +153,10 @@ def study(hist_csv, sdr_csv, outdir):
                     if err:
                         err[k] = float('nan')
                     info['masked'] += 1
-            shown.extend((c, v, e) for c, v, e in zip(cyc, mean, err or [0.0] * len(cyc)) if v == v)
+            for c, v, e in zip(cyc, mean, err or [0.0] * len(cyc)):
+                if v == v:  # the drawn span of a point: its bar, none where the sd is missing
+                    e = e if e == e else 0.0
+                    shown.append((c, v - e, v + e))
             every = max(1, len(cyc) // 40)
             ax.errorbar(cyc, mean, yerr=err, fmt=ls, capsize=2, markevery=every, errorevery=every, ms=4,
                         label='d/a = %s (%s%s)' % (ra, eng, ', %s seeds' % rr[0]['n_seeds'] if several else ''))
@@ -162,8 +165,8 @@ def study(hist_csv, sdr_csv, outdir):
     ax.axhspan(0, 1, color='tab:green', alpha=0.08, lw=0, label="the paper's range [0, 1]")
     last = max([int(r['cycle']) for r in sd] or [0])
     first = 100 if last >= 150 else 0  # the paper reads the ratio over cycles 100-200
-    inside = [(v - (e if e == e else 0), v + (e if e == e else 0)) for c, v, e in shown if c >= first]
-    y0, y1 = min([a for a, _ in inside] + [-0.5]), max([b for _, b in inside] + [1.5])
+    y0 = min([a for c, a, _ in shown if c >= first] + [-0.5])
+    y1 = max([b for c, _, b in shown if c >= first] + [1.5])
     pad = 0.05 * (y1 - y0)
     info['ylim'] = (y0 - pad, y1 + pad)
     ax.set_ylim(*info['ylim'])
