@@ -19,6 +19,7 @@ pub trait Hierarchy: Copy + PartialEq {
 }
 
 /// One registered functor: its declared argument classes and a value identifying it.
+#[derive(Clone, Copy)]
 pub struct Entry<A, B, F> {
     pub a: A,
     pub b: B,

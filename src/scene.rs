@@ -190,29 +190,26 @@ impl InteractionLoop {
         if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
             return Ok(Some(PhysFunctor::Frict));
         }
-        let mut v = Vec::with_capacity(2);
-        if self.frict_phys {
-            v.push(Entry {
-                a: MatClass::FrictMat,
-                b: MatClass::FrictMat,
-                f: PhysFunctor::Frict,
-            });
+        // registration order, on the stack (this runs for every contact every step)
+        let all = [
+            (self.frict_phys, MatClass::FrictMat, PhysFunctor::Frict),
+            (self.cohfrict_phys.is_some(), MatClass::CohFrictMat, PhysFunctor::CohFrict),
+            (self.viscel_phys, MatClass::ViscElMat, PhysFunctor::ViscEl),
+        ];
+        let mut buf = [Entry {
+            a: MatClass::FrictMat,
+            b: MatClass::FrictMat,
+            f: PhysFunctor::Frict,
+        }; 3];
+        let mut n = 0;
+        for (on, m, f) in all {
+            if on {
+                buf[n] = Entry { a: m, b: m, f };
+                n += 1;
+            }
         }
-        if self.cohfrict_phys.is_some() {
-            v.push(Entry {
-                a: MatClass::CohFrictMat,
-                b: MatClass::CohFrictMat,
-                f: PhysFunctor::CohFrict,
-            });
-        }
-        if self.viscel_phys {
-            v.push(Entry {
-                a: MatClass::ViscElMat,
-                b: MatClass::ViscElMat,
-                f: PhysFunctor::ViscEl,
-            });
-        }
-        Ok(dispatch::resolve(&v, true, a, b, Some, Some)?.map(|(f, _)| f))
+        let v = &buf[..n];
+        Ok(dispatch::resolve(v, true, a, b, Some, Some)?.map(|(f, _)| f))
     }
 
     /// The law functor for a geometry/physics class pair.
@@ -220,49 +217,59 @@ impl InteractionLoop {
         if g == GeomClass::ScGeom && p == PhysClass::FrictPhys && self.cundall_strack.is_some() {
             return Ok(Some(LawFunctor::CundallStrack));
         }
-        let mut v = Vec::with_capacity(6);
-        let mut add = |on: bool, a, b, f| {
+        // registration order, on the stack (this runs for every contact every step)
+        let all = [
+            (
+                self.cundall_strack.is_some(),
+                GeomClass::ScGeom,
+                PhysClass::FrictPhys,
+                LawFunctor::CundallStrack,
+            ),
+            (
+                self.cohesion_moment.is_some(),
+                GeomClass::ScGeom6D,
+                PhysClass::CohFrictPhys,
+                LawFunctor::CohesionMoment,
+            ),
+            (
+                self.scgridco_frict.is_some(),
+                GeomClass::ScGridCoGeom,
+                PhysClass::FrictPhys,
+                LawFunctor::ScGridCoFrict,
+            ),
+            (
+                self.scgridco_cohfrict.is_some(),
+                GeomClass::ScGridCoGeom,
+                PhysClass::CohFrictPhys,
+                LawFunctor::ScGridCoCohFrict,
+            ),
+            (
+                self.gridco_gridco_frict.is_some(),
+                GeomClass::GridCoGridCoGeom,
+                PhysClass::FrictPhys,
+                LawFunctor::GridCoGridCoFrict,
+            ),
+            (
+                self.viscel_basic,
+                GeomClass::ScGeom,
+                PhysClass::ViscElPhys,
+                LawFunctor::ViscElBasic,
+            ),
+        ];
+        let mut buf = [Entry {
+            a: GeomClass::ScGeom,
+            b: PhysClass::FrictPhys,
+            f: LawFunctor::CundallStrack,
+        }; 6];
+        let mut n = 0;
+        for (on, a, b, f) in all {
             if on {
-                v.push(Entry { a, b, f });
+                buf[n] = Entry { a, b, f };
+                n += 1;
             }
-        };
-        add(
-            self.cundall_strack.is_some(),
-            GeomClass::ScGeom,
-            PhysClass::FrictPhys,
-            LawFunctor::CundallStrack,
-        );
-        add(
-            self.cohesion_moment.is_some(),
-            GeomClass::ScGeom6D,
-            PhysClass::CohFrictPhys,
-            LawFunctor::CohesionMoment,
-        );
-        add(
-            self.scgridco_frict.is_some(),
-            GeomClass::ScGridCoGeom,
-            PhysClass::FrictPhys,
-            LawFunctor::ScGridCoFrict,
-        );
-        add(
-            self.scgridco_cohfrict.is_some(),
-            GeomClass::ScGridCoGeom,
-            PhysClass::CohFrictPhys,
-            LawFunctor::ScGridCoCohFrict,
-        );
-        add(
-            self.gridco_gridco_frict.is_some(),
-            GeomClass::GridCoGridCoGeom,
-            PhysClass::FrictPhys,
-            LawFunctor::GridCoGridCoFrict,
-        );
-        add(
-            self.viscel_basic,
-            GeomClass::ScGeom,
-            PhysClass::ViscElPhys,
-            LawFunctor::ViscElBasic,
-        );
-        Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
+        }
+        let v = &buf[..n];
+        Ok(dispatch::resolve(v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
     }
 }
 
@@ -921,13 +928,11 @@ impl Scene {
                 &mut self.interactions.scan,
             );
         }
-        if let Some(runs) = self.pre_pass(il) {
+        if let Some(runs) = self.pre_pass(il)? {
             for ev in runs.iter().flatten() {
                 self.event(il, *ev, &ctx0, energy, &mut geom_entries)?;
             }
-        } else if let (Some(ss), Some(cs), false) =
-            (il.sphere_sphere, il.cundall_strack, self.energy_wanted(il))
-        {
+        } else if let Some(cfg) = self.pre_cfg(il)? {
             // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
             let n = self.interactions.list.len();
@@ -937,11 +942,9 @@ impl Scene {
                     self.interactions.prefetch(k + AHEAD);
                 }
                 let ev = pre_slot(
-                    &ss,
-                    &cs,
+                    &cfg,
                     &self.bodies,
                     self.cell.as_ref(),
-                    self.dt,
                     &self.idle_skip,
                     k as u32,
                     &mut self.interactions.scan[k],
@@ -985,6 +988,9 @@ impl Scene {
             Event::Visit(k) => self.visit(il, k as usize, ctx0, energy, geom_entries)?,
             Event::Load(id1, id2, l) => {
                 law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
+            }
+            Event::CohLoad(id1, id2, l) => {
+                law::cohesion_moment::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
             }
             Event::Erase(k) => self.interactions.list[k as usize].reset(),
         }
@@ -1256,28 +1262,72 @@ impl Scene {
         self.pool.0.clone()
     }
 
+    /// What `pre_slot` may evaluate outside the container-order walk this step; None when it
+    /// cannot help (energy tracking, or neither steady-contact kind has its functors).
+    fn pre_cfg(&self, il: &InteractionLoop) -> Result<Option<PreCfg>, String> {
+        if self.energy_wanted(il) {
+            return Ok(None);
+        }
+        let ss_cs = match (il.sphere_sphere, il.cundall_strack) {
+            (Some(ss), Some(cs)) => Some((ss, cs)),
+            _ => None,
+        };
+        // a steady ScGeom6D + CohFrictPhys contact: the Ip2 is a no-op on existing physics while
+        // no `setCohesionNow` is pending (per contact: no `initCohesion`), the law is CohesionMoment
+        // and cannot fail (its one error, twist creep with the incremental form, is a parameter check)
+        let six_d = match (il.sphere_sphere_6d, il.cohesion_moment) {
+            (Some(p6), Some(cm))
+                if !(cm.twist_creep && cm.use_incremental_form)
+                    && il.cohfrict_phys.as_ref().is_some_and(|p| !p.set_cohesion_now)
+                    && il.law_functor(GeomClass::ScGeom6D, PhysClass::CohFrictPhys)?
+                        == Some(LawFunctor::CohesionMoment)
+                    && il.phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                        == Some(PhysFunctor::CohFrict) =>
+            {
+                Some((p6, cm))
+            }
+            _ => None,
+        };
+        if ss_cs.is_none() && six_d.is_none() {
+            return Ok(None);
+        }
+        Ok(Some(PreCfg {
+            idle: il.idle_params().copied(),
+            ss_cs,
+            six_d,
+            coh_mat: self
+                .materials
+                .iter()
+                .map(|m| m.class() == MatClass::CohFrictMat)
+                .collect(),
+            dt: self.dt,
+            iter: self.iter,
+        }))
+    }
+
     /// With `threads > 1`, the part of every slot's work that depends only on positions,
     /// velocities and the slot's own state, in parallel runs of slots: idle sphere-sphere pairs
-    /// still apart are dropped, and the steady contacts (real, sphere-sphere, FrictPhys,
-    /// Cundall-Strack) get their geometry (`Ig2_Sphere_Sphere_ScGeom::go`, always true on a real
-    /// interaction) and law arithmetic (`law::load`). The caller then walks the events in container
-    /// order: loads added, erasures done, other slots visited as in the serial loop, so every
-    /// body's sums are YADE's. Safe because nothing the serial visits do changes what these read:
-    /// they write forces, their own interaction, sphere-connection interactions (the grid
-    /// hand-over) and connection positions (`GridNodeGeom6D`), never a sphere's kinematics or a
-    /// sphere-sphere contact. None: serial loop (one thread, energy tracking, or no sphere-sphere
-    /// Cundall-Strack functors).
-    fn pre_pass(&mut self, il: &InteractionLoop) -> Option<Vec<Vec<Event>>> {
-        let (Some(ss), Some(cs)) = (il.sphere_sphere.as_ref(), il.cundall_strack.as_ref()) else {
-            return None;
-        };
-        if self.energy_wanted(il) || self.interactions.list.len() < self.par_min_slots {
-            return None;
+    /// still apart are dropped, and the steady sphere-sphere contacts (real; ScGeom + FrictPhys +
+    /// Cundall-Strack, or ScGeom6D + CohFrictPhys + CohesionMoment) get their geometry (always
+    /// true or an erasure on a real interaction) and law arithmetic (`law::load`,
+    /// `law::cohesion_moment::load`). The caller then walks the events in container order: loads
+    /// added, erasures done, other slots visited as in the serial loop, so every body's sums are
+    /// YADE's. Safe because nothing the serial visits do changes what these read: they write
+    /// forces, their own interaction, sphere-connection interactions (the grid hand-over) and
+    /// connection positions (`GridNodeGeom6D`), never a sphere's kinematics or a sphere-sphere
+    /// contact. None: serial loop (one thread, energy tracking, too few slots, or no steady kind).
+    fn pre_pass(&mut self, il: &InteractionLoop) -> Result<Option<Vec<Vec<Event>>>, String> {
+        if self.interactions.list.len() < self.par_min_slots || self.threads <= 1 {
+            return Ok(None);
         }
-        let pool = self.pool_for_threads()?;
+        let Some(cfg) = self.pre_cfg(il)? else {
+            return Ok(None);
+        };
+        let Some(pool) = self.pool_for_threads() else {
+            return Ok(None);
+        };
         let b = &self.bodies;
         let cell = self.cell.as_ref();
-        let dt = self.dt;
         let skip = &self.idle_skip;
         let scan = &mut self.interactions.scan;
         let list = &mut self.interactions.list;
@@ -1297,7 +1347,7 @@ impl Scene {
                         }
                         let k = (k0 + j) as u32;
                         if let Some(ev) =
-                            pre_slot(ss, cs, b, cell, dt, skip, k, &mut sc_run[j], &mut its[j])
+                            pre_slot(&cfg, b, cell, skip, k, &mut sc_run[j], &mut its[j])
                         {
                             events.push(ev);
                         }
@@ -1306,7 +1356,7 @@ impl Scene {
                 })
                 .collect::<Vec<_>>()
         });
-        Some(runs)
+        Ok(Some(runs))
     }
 
     /// The geometry functor of interaction `k` (`IGeomFunctor::go`); true when a geometry exists now.
@@ -1680,6 +1730,8 @@ enum Event {
     Visit(u32),
     /// A steady contact evaluated: add this load to bodies `id1`, `id2`.
     Load(u32, u32, law::Load),
+    /// A steady cohesive-frictional contact evaluated: add this load to bodies `id1`, `id2`.
+    CohLoad(u32, u32, law::cohesion_moment::CohLoad),
     /// Slot `k`: a steady contact the law erases.
     Erase(u32),
 }
@@ -1716,33 +1768,41 @@ fn idle_apart(
     true
 }
 
+/// What the pre-pass may evaluate (`Scene::pre_cfg`).
+struct PreCfg {
+    /// The idle pairs' distance pre-check (`InteractionLoop::idle_params`).
+    idle: Option<geom::sphere_sphere::Params>,
+    /// Steady ScGeom + FrictPhys contacts: `Ig2_Sphere_Sphere_ScGeom`, Cundall-Strack.
+    ss_cs: Option<(geom::sphere_sphere::Params, law::Params)>,
+    /// Steady ScGeom6D + CohFrictPhys contacts: `Ig2_Sphere_Sphere_ScGeom6D`, CohesionMoment.
+    six_d: Option<(geom::grid::SixDParams, law::cohesion_moment::Params)>,
+    /// Per material: a CohFrictMat (whose Ip2 leaves existing physics alone this step).
+    coh_mat: Vec<bool>,
+    dt: f64,
+    iter: i64,
+}
+
 /// The part of slot `k`'s work that depends only on positions, velocities and its own state (see
 /// `Scene::pre_pass`): None for an idle sphere-sphere pair still apart (YADE's distance pre-check,
-/// same operands), the load (or erasure) of a steady contact, otherwise `Event::Visit(k)`.
-#[allow(clippy::too_many_arguments)]
+/// same operands), the load (or erasure) of a steady contact, otherwise `Event::Visit(k)`. Each
+/// step is the serial visit's (`Scene::visit`), in its order, with the dispatch already known.
 #[inline(always)]
 fn pre_slot(
-    ss: &geom::sphere_sphere::Params,
-    cs: &law::Params,
+    cfg: &PreCfg,
     b: &Bodies,
     cell: Option<&Cell>,
-    dt: f64,
     skip: &IdleSkip,
     k: u32,
     sc: &mut crate::interaction::ScanEntry,
     it: &mut crate::interaction::Interaction,
 ) -> Option<Event> {
     if sc.idle {
-        return if idle_apart(ss, b, cell, skip, sc) {
-            None
-        } else {
-            Some(Event::Visit(k))
+        return match cfg.idle {
+            Some(p) if idle_apart(&p, b, cell, skip, sc) => None,
+            _ => Some(Event::Visit(k)),
         };
     }
-    if sc.idle_gc {
-        return Some(Event::Visit(k));
-    }
-    if !(it.functor == GeomFunctor::SphereSphere && it.is_real() && it.ext.is_none()) {
+    if sc.idle_gc || !it.is_real() {
         return Some(Event::Visit(k));
     }
     let Some((r1, r2)) = skip.sphere_radii(it.id1, it.id2) else {
@@ -1753,19 +1813,67 @@ fn pre_slot(
         Some(c) => (c.shift_pos(&it.cell_dist), c.shift_vel(&it.cell_dist)),
         None => (Vec3::zeros(), Vec3::zeros()),
     };
-    let pr = Pair::of(b, id1, id2, shift2, true, GeomCtx { dt, shift_vel });
-    geom::sphere_sphere::go(ss, r1, r2, &pr, &mut it.geom);
-    let lb = LawBodies {
-        pos1: &b.pos[id1],
-        pos2_shifted: b.pos[id2] + shift2,
+    let ctx = GeomCtx {
+        dt: cfg.dt,
+        shift_vel,
     };
-    let g = it.geom.as_ref().unwrap();
-    Some(
-        match law::load(cs, g, it.phys.as_mut().unwrap(), &lb, None) {
-            Some(l) => Event::Load(id1 as u32, id2 as u32, l),
-            None => Event::Erase(k),
-        },
-    )
+    match (it.functor, cfg.ss_cs, cfg.six_d) {
+        (GeomFunctor::SphereSphere, Some((ss, cs)), _) if it.ext.is_none() => {
+            let pr = Pair::of(b, id1, id2, shift2, true, ctx);
+            geom::sphere_sphere::go(&ss, r1, r2, &pr, &mut it.geom);
+            let lb = LawBodies {
+                pos1: &b.pos[id1],
+                pos2_shifted: b.pos[id2] + shift2,
+            };
+            let g = it.geom.as_ref().unwrap();
+            Some(match law::load(&cs, g, it.phys.as_mut().unwrap(), &lb, None) {
+                Some(l) => Event::Load(id1 as u32, id2 as u32, l),
+                None => Event::Erase(k),
+            })
+        }
+        (GeomFunctor::SphereSphere6D, _, Some((p6, cm)))
+            if cfg.coh_mat[b.material[id1]]
+                && cfg.coh_mat[b.material[id2]]
+                && matches!(it.geom_ext(), Some(geom::GeomExt::Sc6D(_)))
+                && it.coh().is_some_and(|c| !c.init_cohesion) =>
+        {
+            let pr = Pair::of(b, id1, id2, shift2, true, ctx);
+            let mut conn_sync = None;
+            if !geom::grid::six_d(
+                &p6,
+                r1,
+                r2,
+                &pr,
+                &mut it.geom,
+                &mut it.ext,
+                false,
+                &mut conn_sync,
+            ) {
+                return Some(Event::Erase(k));
+            }
+            let fresh = it.iter_made_real == cfg.iter;
+            let g = *it.geom.as_ref().unwrap();
+            let e = it.ext.as_mut().unwrap();
+            let rot = e.geom.as_mut().and_then(|g| g.rot_mut()).unwrap();
+            let cp = e.coh.as_mut().unwrap();
+            let lb = law::cohesion_moment::Bodies2 {
+                pos1: b.pos[id1],
+                pos2_shifted: b.pos[id2] + shift2,
+                ang_vel1: b.ang_vel[id1],
+                ang_vel2: b.ang_vel[id2],
+            };
+            let ph = it.phys.as_mut().unwrap();
+            Some(
+                match law::cohesion_moment::load(&cm, cfg.dt, fresh, &g, rot, ph, cp, &lb, None) {
+                    Ok(Some(l)) => Event::CohLoad(id1 as u32, id2 as u32, l),
+                    Ok(None) => Event::Erase(k),
+                    // excluded by `pre_cfg` (the law's only error is a parameter check)
+                    Err(_) => unreachable!("CohesionMoment parameter check passed in pre_cfg"),
+                },
+            )
+        }
+        _ => Some(Event::Visit(k)),
+    }
 }
 
 fn cell_dist_of(intrs: &Interactions, k: usize) -> [i32; 3] {

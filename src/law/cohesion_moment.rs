@@ -42,9 +42,34 @@ pub struct Bodies2 {
     pub ang_vel2: Vec3,
 }
 
+/// What one contact adds to its two bodies, in the order `go` adds it: the force at the contact
+/// point (with its torques), then, when the moment law acts, the moment (-moment on body 1, +moment
+/// on body 2: a separate addition, so the torque sums keep YADE's rounding).
+#[derive(Clone, Copy, Debug)]
+pub struct CohLoad {
+    pub force: Vec3,
+    pub torque1: Vec3,
+    pub torque2: Vec3,
+    pub moment: Option<Vec3>,
+}
+
+/// Add a contact's load in `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go`'s order.
+#[inline(always)]
+pub fn apply(forces: &mut Forces, id1: usize, id2: usize, l: &CohLoad) {
+    forces.add_force(id1, &l.force);
+    forces.add_torque(id1, &l.torque1);
+    forces.add_force(id2, &(-l.force));
+    forces.add_torque(id2, &l.torque2);
+    if let Some(m) = l.moment {
+        forces.add_torque(id1, &(-m));
+        forces.add_torque(id2, &m);
+    }
+}
+
 /// Mirrors `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go`. `fresh` is `Interaction::isFresh`
 /// (made real this iteration). Returns Ok(false) when the bond breaks (or tension erases it).
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub fn go(
     p: &Params,
     dt: f64,
@@ -59,6 +84,30 @@ pub fn go(
     forces: &mut Forces,
     energy: Option<&mut LawEnergy<'_>>,
 ) -> Result<bool, String> {
+    Ok(match load(p, dt, fresh, g, rot, ph, cp, b, energy)? {
+        Some(l) => {
+            apply(forces, id1, id2, &l);
+            true
+        }
+        None => false,
+    })
+}
+
+/// The contact's state update and load (`go` without adding it): Ok(None) when the bond breaks
+/// (or tension erases it).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn load(
+    p: &Params,
+    dt: f64,
+    fresh: bool,
+    g: &ScGeom,
+    rot: &mut Rot6D,
+    ph: &mut FrictPhys,
+    cp: &mut CohFrictPhys,
+    b: &Bodies2,
+    energy: Option<&mut LawEnergy<'_>>,
+) -> Result<Option<CohLoad>, String> {
     if fresh {
         ph.shear_force = Vec3::zeros();
     }
@@ -66,14 +115,14 @@ pub fn go(
     let mut fn_ = ph.kn * (un - cp.unp);
     if cp.fragile && (-fn_) > cp.normal_adhesion {
         // tensile break
-        return Ok(false);
+        return Ok(None);
     }
     if (-fn_) > cp.normal_adhesion {
         // normal plasticity
         fn_ = -cp.normal_adhesion;
         cp.unp = un + cp.normal_adhesion / ph.kn;
         if cp.unp_max >= 0.0 && -cp.unp > cp.unp_max {
-            return Ok(false);
+            return Ok(None);
         }
     }
     ph.normal_force = g.normal * fn_;
@@ -115,10 +164,12 @@ pub fn go(
     }
     // LawFunctor::applyForceAtContactPoint
     let force = -ph.normal_force - ph.shear_force;
-    forces.add_force(id1, &force);
-    forces.add_torque(id1, &cross(&(g.contact_point - b.pos1), &force));
-    forces.add_force(id2, &(-force));
-    forces.add_torque(id2, &(-cross(&(g.contact_point - b.pos2_shifted), &force)));
+    let mut out = CohLoad {
+        force,
+        torque1: cross(&(g.contact_point - b.pos1), &force),
+        torque2: -cross(&(g.contact_point - b.pos2_shifted), &force),
+        moment: None,
+    };
 
     if cp.moment_rotation_law && (!cp.cohesion_broken || p.always_use_moment_law) {
         if !p.use_incremental_form {
@@ -180,9 +231,7 @@ pub fn go(
                 }
             }
         }
-        let moment = cp.moment_twist + cp.moment_bending;
-        forces.add_torque(id1, &(-moment));
-        forces.add_torque(id2, &moment);
+        out.moment = Some(cp.moment_twist + cp.moment_bending);
     }
-    Ok(true)
+    Ok(Some(out))
 }
