@@ -122,16 +122,16 @@ impl Interaction {
     }
 }
 
-/// Ask the CPU to bring an interaction into cache (a hint only: no effect on results).
+/// Ask the CPU to bring `v` into cache (a hint only: no effect on results).
 #[inline(always)]
-pub fn prefetch(it: &Interaction) {
+fn prefetch_value<T>(v: &T) {
     #[cfg(target_arch = "x86_64")]
     {
-        let p = it as *const Interaction as *const i8;
-        let size = std::mem::size_of::<Interaction>();
+        let p = v as *const T as *const i8;
+        let size = std::mem::size_of::<T>();
         let mut off = 0;
         while off < size {
-            // SAFETY: prefetch never faults; the address lies inside `it`
+            // SAFETY: prefetch never faults; the address lies inside `v`
             unsafe { std::arch::x86_64::_mm_prefetch(p.add(off), std::arch::x86_64::_MM_HINT_T0) };
             off += 64;
         }
@@ -139,7 +139,22 @@ pub fn prefetch(it: &Interaction) {
         unsafe { std::arch::x86_64::_mm_prefetch(p.add(size - 1), std::arch::x86_64::_MM_HINT_T0) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = it;
+    let _ = v;
+}
+
+/// Ask the CPU to bring an interaction into cache (a hint only: no effect on results).
+#[inline(always)]
+pub fn prefetch(it: &Interaction) {
+    prefetch_value(it);
+}
+
+/// Ask the CPU to bring an interaction's extension (6-D rotations, cohesive physics; a separate
+/// allocation) into cache: call it a few slots after `prefetch`, once the interaction has arrived.
+#[inline(always)]
+pub fn prefetch_ext(it: &Interaction) {
+    if let Some(e) = it.ext.as_deref() {
+        prefetch_value(e);
+    }
 }
 
 #[inline(always)]
@@ -324,6 +339,14 @@ impl Interactions {
     pub fn prefetch(&self, k: usize) {
         if let Some(it) = self.list.get(k) {
             prefetch(it);
+        }
+    }
+
+    /// `prefetch_ext` of slot `k`, if any.
+    #[inline(always)]
+    pub fn prefetch_ext(&self, k: usize) {
+        if let Some(it) = self.list.get(k) {
+            prefetch_ext(it);
         }
     }
 

@@ -941,6 +941,9 @@ impl Scene {
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
                 }
+                if k + EXT_AHEAD < n && !self.interactions.scan[k + EXT_AHEAD].is_idle() {
+                    self.interactions.prefetch_ext(k + EXT_AHEAD);
+                }
                 let ev = pre_slot(
                     &cfg,
                     &self.bodies,
@@ -960,6 +963,9 @@ impl Scene {
                 const AHEAD: usize = 24;
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
+                }
+                if k + EXT_AHEAD < n && !self.interactions.scan[k + EXT_AHEAD].is_idle() {
+                    self.interactions.prefetch_ext(k + EXT_AHEAD);
                 }
                 self.visit(il, k, &ctx0, energy, &mut geom_entries)?;
             }
@@ -1344,6 +1350,9 @@ impl Scene {
                         const AHEAD: usize = 24;
                         if j + AHEAD < its.len() && !sc_run[j + AHEAD].is_idle() {
                             crate::interaction::prefetch(&its[j + AHEAD]);
+                        }
+                        if j + EXT_AHEAD < its.len() && !sc_run[j + EXT_AHEAD].is_idle() {
+                            crate::interaction::prefetch_ext(&its[j + EXT_AHEAD]);
                         }
                         let k = (k0 + j) as u32;
                         if let Some(ev) =
@@ -1767,6 +1776,10 @@ fn idle_apart(
     sc.deadline = skip.deadline(p1, &(p2 + shift2), reach);
     true
 }
+
+/// How many slots ahead the interaction loop asks for an interaction's extension (its interaction
+/// was asked for 24 slots ahead, so the pointer is in cache by then).
+const EXT_AHEAD: usize = 8;
 
 /// What the pre-pass may evaluate (`Scene::pre_cfg`).
 struct PreCfg {
