@@ -771,8 +771,22 @@ fn norm_rms(
     pred: &dyn Fn(&str, usize) -> Option<f64>,
     cycles: std::ops::RangeInclusive<usize>,
 ) -> f64 {
+    norm_rms_of(lib, obs, pred, cycles, None)
+}
+
+/// `norm_rms` over one observable (`only`), or over all of them (None).
+fn norm_rms_of(
+    lib: &Library,
+    obs: &Series,
+    pred: &dyn Fn(&str, usize) -> Option<f64>,
+    cycles: std::ops::RangeInclusive<usize>,
+    only: Option<&str>,
+) -> f64 {
     let (mut s, mut n) = (0.0, 0);
     for o in OBSERVABLES {
+        if only.is_some_and(|x| x != o) {
+            continue;
+        }
         let Some(ov) = obs.get(o) else { continue };
         for c in cycles.clone() {
             if let (Some(x), Some(p)) = (ov.get(c).filter(|v| v.is_finite()), pred(o, c)) {
@@ -908,6 +922,18 @@ pub struct Candidate {
     pub heldout_rut_rms_mm: f64,
     /// Held-out normalised RMS over every observed observable with this model.
     pub heldout_norm_rms: f64,
+    /// Held-out normalised RMS of each of `OBSERVABLES` with this model (NaN: not observed).
+    pub heldout_by_observable: Vec<f64>,
+}
+
+/// The held-out gap of one observable: normalised RMS with today's model and with the chosen one.
+#[derive(Clone, Debug, Serialize)]
+pub struct HeldOut {
+    pub observable: String,
+    pub before: f64,
+    pub after: f64,
+    /// 1 - after / before.
+    pub reduction: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -941,6 +967,11 @@ pub struct Diagnosis {
     pub heldout_norm_rms_after: f64,
     /// 1 - after / before of the held-out normalised RMS over every observed observable.
     pub norm_gap_reduction: f64,
+    /// The held-out gap of each observed observable (empty when the answer is "none").
+    pub heldout_by_observable: Vec<HeldOut>,
+    /// What the verdict says besides the effect: each observed observable whose held-out gap
+    /// the chosen model makes worse than today's model (the rut first).
+    pub warnings: Vec<String>,
 }
 
 /// Family-wise false-alarm rate of the effect tests (one per candidate).
@@ -1216,6 +1247,10 @@ pub fn diagnose_with(
             weight: 0.0,
             heldout_rut_rms_mm: rut_rms(obs, |c| p("rut_mm", c), held.clone()),
             heldout_norm_rms: norm_rms(lib, obs, &p, held.clone()),
+            heldout_by_observable: OBSERVABLES
+                .iter()
+                .map(|o| norm_rms_of(lib, obs, &p, held.clone(), Some(o)))
+                .collect(),
         }
     };
     let mut singles: Vec<Candidate> = fits
@@ -1252,6 +1287,7 @@ pub fn diagnose_with(
         .chain(pairs.iter())
         .min_by(|a, b| a.ic.total_cmp(&b.ic))
         .cloned();
+    let chosen = best.as_ref().filter(|c| c.ic < none_chi2).cloned();
     let (winner, model, confidence, after, norm_after) = match best {
         Some(c) if c.ic < none_chi2 => {
             let dom = c.effects[0].0.clone();
@@ -1279,6 +1315,38 @@ pub fn diagnose_with(
         .map(|p| format!("{}: {}", p.observable, p.phase))
         .unwrap_or_default();
     let red = |b: f64, a: f64| if b > 0.0 { 1.0 - a / b } else { 0.0 };
+    // the held-out gap per observable, and a warning for each one the chosen model makes worse
+    let mut by_obs = Vec::new();
+    let mut warnings = Vec::new();
+    if let Some(c) = &chosen {
+        let base = knob_pred(&[]);
+        for (o, &a) in OBSERVABLES.iter().zip(&c.heldout_by_observable) {
+            let b = norm_rms_of(lib, obs, &base, held.clone(), Some(o));
+            if !(a.is_finite() && b.is_finite()) {
+                continue;
+            }
+            let r = red(b, a);
+            if a > b {
+                warnings.push(if *o == "rut_mm" {
+                    format!(
+                        "the chosen model predicts the held-out rut worse than today's model (rut RMS {:.2} -> {:.2} mm, {:.0} %): it is named for what it explains on the fitted cycles; do not use it to extrapolate the rut",
+                        before, after, 100.0 * red(before, after)
+                    )
+                } else {
+                    format!(
+                        "the chosen model predicts the held-out {} worse than today's model (normalised RMS {:.2} -> {:.2}, {:.0} %)",
+                        o, b, a, 100.0 * r
+                    )
+                });
+            }
+            by_obs.push(HeldOut {
+                observable: o.to_string(),
+                before: b,
+                after: a,
+                reduction: r,
+            });
+        }
+    }
     Ok(Diagnosis {
         split,
         noise_inflation: inflation,
@@ -1299,6 +1367,8 @@ pub fn diagnose_with(
         heldout_norm_rms_before: norm_before,
         heldout_norm_rms_after: norm_after,
         norm_gap_reduction: red(norm_before, norm_after),
+        heldout_by_observable: by_obs,
+        warnings,
     })
 }
 /// "knob strength" pairs joined by `sep`, strengths with `decimals` decimals (None: as stored).
@@ -1395,6 +1465,9 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         },
         d.confidence
     );
+    for w in &d.warnings {
+        s += &format!("**Warning**: {}.\n\n", w);
+    }
     s += &format!(
         "## How far it closes\n\nHeld-out rut RMS: {:.2} mm with today's model, {:.2} mm with the chosen model: gap reduced by {:.0} %.\nHeld-out normalised RMS over every observed observable: {:.2} with today's model, {:.2} with the chosen model: gap reduced by {:.0} %.\n",
         d.heldout_rut_rms_before_mm,
@@ -1404,6 +1477,18 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         d.heldout_norm_rms_after,
         100.0 * d.norm_gap_reduction
     );
+    if !d.heldout_by_observable.is_empty() {
+        s += "\n| observable | held-out normalised RMS, today's model | with the chosen model | gap reduction |\n|---|---|---|---|\n";
+        for h in &d.heldout_by_observable {
+            s += &format!(
+                "| {} | {:.2} | {:.2} | {:.0} % |\n",
+                h.observable,
+                h.before,
+                h.after,
+                100.0 * h.reduction
+            );
+        }
+    }
     s
 }
 
@@ -1533,6 +1618,55 @@ mod tests {
         assert_eq!(d.model[1].0, "bouncy");
         assert!((d.model[1].1 - 0.5).abs() < 0.02, "{:?}", d.model);
         assert!(d.gap_reduction > 0.95 && d.norm_gap_reduction > 0.95);
+    }
+
+    /// Issue 20: an effect named from the fitted cycles (faster compaction) whose model then
+    /// predicts the held-out rut worse than today's model (its library runs rut faster late, the
+    /// observation does not): the verdict must say so, per observable, with the rut first.
+    #[test]
+    fn a_model_that_worsens_the_held_out_rut_is_named_with_a_warning() {
+        let mk = |slope: f64, late: f64, por: f64| Series {
+            rut_mm: (0..10)
+                .map(|c| c as f64 * slope + if c > 4 { (c - 4) as f64 * late } else { 0.0 })
+                .collect(),
+            porosity: Some((0..10).map(|c| 0.40 - c as f64 * (0.001 + por)).collect()),
+            rebound_mm: None,
+            grid_settlement_mm: None,
+        };
+        let mut lib = Library {
+            effects: vec![Effect {
+                knob: "loose".into(),
+                meaning: "looser and later softer".into(),
+                zero: 0.0,
+                strengths: vec![1.0],
+            }],
+            ..Default::default()
+        };
+        lib.baseline = vec![
+            mk(4.9, 0.0, -0.001),
+            mk(5.0, 0.0, 0.0),
+            mk(5.1, 0.0, 0.001),
+        ];
+        lib.runs.insert(
+            ("loose".into(), 0),
+            vec![mk(4.95, 20.0, 0.019), mk(5.05, 20.0, 0.021)],
+        );
+        // the observation: the compaction of strength 0.5, the baseline's rut all along
+        let d = diagnose(&lib, &mk(5.02, 0.0, 0.01), 4).unwrap();
+        assert_eq!(d.winner, "loose");
+        assert!(d.gap_reduction < -1.0, "{}", d.gap_reduction);
+        let rut = &d.heldout_by_observable[0];
+        let por = &d.heldout_by_observable[1];
+        assert_eq!((rut.observable.as_str(), por.observable.as_str()), ("rut_mm", "porosity"));
+        assert!(rut.reduction < 0.0 && por.reduction > 0.9, "{:?}", d.heldout_by_observable);
+        assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+        assert!(d.warnings[0].contains("held-out rut worse"), "{}", d.warnings[0]);
+        let md = report_markdown("case", &d, &lib);
+        assert!(md.contains("**Warning**: the chosen model predicts the held-out rut worse"));
+        // today's model observed: no effect, no table, no warning
+        let d = diagnose(&lib, &mk(5.0, 0.0, 0.0), 4).unwrap();
+        assert_eq!(d.winner, "none");
+        assert!(d.warnings.is_empty() && d.heldout_by_observable.is_empty());
     }
 
     #[test]

@@ -689,6 +689,8 @@ pub struct CaseScore {
     pub gap_reduction: f64,
     /// Held-out normalised RMS reduction over every observed observable.
     pub norm_gap_reduction: f64,
+    /// The diagnosis warns that the chosen model predicts the held-out rut worse.
+    pub rut_warned: bool,
 }
 
 /// Diagnose every case blind, then score against the truth files.
@@ -751,6 +753,7 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             },
             gap_reduction: d.gap_reduction,
             norm_gap_reduction: d.norm_gap_reduction,
+            rut_warned: d.warnings.iter().any(|w| w.contains("held-out rut")),
         });
     }
     Ok(out)
@@ -807,6 +810,10 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         .iter()
         .filter(|c| c.named != "none" && !c.correct)
         .count();
+    let worse: Vec<&CaseScore> = s
+        .iter()
+        .filter(|c| c.named != "none" && c.gap_reduction < 0.0)
+        .collect();
     t += &format!(
         "\nDominant effect named correctly (\"none\" for today's model): {}/{} ({:.0} %)\n\
          Cases with hidden effects: {}; named correctly: {}; answered none: {}; named a wrong effect: {}\n\
@@ -814,7 +821,8 @@ pub fn format_scores(s: &[CaseScore]) -> String {
          \"none\" answers in all: {}\n\
          Median relative strength error (correct cases): {}\n\
          Median held-out gap reduction, cases with hidden effects: rut RMS {}, normalised over every observable {}\n\
-         (all cases: rut {}, normalised {})\n",
+         (all cases: rut {}, normalised {})\n\
+         Named cases whose held-out rut gets worse: {}, of which the report warns: {}\n",
         correct,
         s.len(),
         100.0 * correct as f64 / s.len().max(1) as f64,
@@ -830,6 +838,8 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         pct(median(eff.iter().map(|c| c.norm_gap_reduction).collect())),
         pct(median(s.iter().map(|c| c.gap_reduction).collect())),
         pct(median(s.iter().map(|c| c.norm_gap_reduction).collect())),
+        worse.len(),
+        worse.iter().filter(|c| c.rut_warned).count(),
     );
     t
 }
