@@ -969,8 +969,9 @@ pub struct Diagnosis {
     pub norm_gap_reduction: f64,
     /// The held-out gap of each observed observable (empty when the answer is "none").
     pub heldout_by_observable: Vec<HeldOut>,
-    /// What the verdict says besides the effect: each observed observable whose held-out gap
-    /// the chosen model makes worse than today's model (the rut first).
+    /// What the verdict says besides the effect: the rut when the chosen model predicts its
+    /// held-out cycles worse than today's model, and each other observable it predicts worse
+    /// beyond one run's noise (normalised RMS over 1).
     pub warnings: Vec<String>,
 }
 
@@ -1326,8 +1327,11 @@ pub fn diagnose_with(
                 continue;
             }
             let r = red(b, a);
-            if a > b {
-                warnings.push(if *o == "rut_mm" {
+            // the rut whenever it gets worse (what users extrapolate); another observable when it
+            // gets worse and its held-out error exceeds one run's noise
+            let is_rut = *o == "rut_mm";
+            if a > b && (is_rut || a > 1.0) {
+                warnings.push(if is_rut {
                     format!(
                         "the chosen model predicts the held-out rut worse than today's model (rut RMS {:.2} -> {:.2} mm, {:.0} %): it is named for what it explains on the fitted cycles; do not use it to extrapolate the rut",
                         before, after, 100.0 * red(before, after)
