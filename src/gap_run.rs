@@ -667,6 +667,36 @@ pub fn dominant_truth(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize
 
 /// Signal-to-noise of the dominant hidden effect on the fitted cycles (sqrt of the chi2 its
 /// surrogate adds, after the noise inflation).
+/// What a library can detect: its noise inflation and, per effect, the largest signal over its
+/// strengths and the strengths whose signal on the fitted cycles reaches `DETECTABILITY_FLOOR`
+/// (a markdown section; printed before any diagnosis and by `compat gap --detectability`).
+pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
+    let mut s = format!(
+        "## What this library can detect\n\nnoise inflation {:.2}; detectability floor {} (signal over one run's noise on cycles 1-{}); an effect weaker than its range below is answered \"none\"\n\n| effect | largest signal (at strength) | strengths reaching the floor |\n|---|---|---|\n",
+        gap::noise_inflation(lib, fit_cycles),
+        DETECTABILITY_FLOOR,
+        fit_cycles
+    );
+    for r in detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR) {
+        s += &format!(
+            "| {} | {:.1} ({}) | {} |\n",
+            r.knob,
+            r.max_signal,
+            r.strength_at_max,
+            if r.intervals.is_empty() {
+                "none: invisible in this scenario".to_string()
+            } else {
+                r.intervals
+                    .iter()
+                    .map(|(a, b)| format!("{:.4} .. {:.4}", a, b))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        );
+    }
+    s
+}
+
 pub fn detectability(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> f64 {
     dominant_signal(lib, t, like, fit_cycles).1
 }

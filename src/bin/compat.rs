@@ -789,31 +789,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             let (_, lib) = gap_run::load_library(&lib_dir)?;
             if detectability {
-                println!(
-                    "noise inflation {:.2}; detectability floor {} (signal on cycles 1-{})",
-                    gap::noise_inflation(&lib, fit_cycles),
-                    gap_run::DETECTABILITY_FLOOR,
-                    fit_cycles
-                );
-                println!("| effect | largest signal (at strength) | strengths reaching the floor |\n|---|---|---|");
-                for r in gap_run::detectable_ranges(&lib, fit_cycles, gap_run::DETECTABILITY_FLOOR)
-                {
-                    println!(
-                        "| {} | {:.1} ({}) | {} |",
-                        r.knob,
-                        r.max_signal,
-                        r.strength_at_max,
-                        if r.intervals.is_empty() {
-                            "none: not drawn".to_string()
-                        } else {
-                            r.intervals
-                                .iter()
-                                .map(|(a, b)| format!("{:.4} .. {:.4}", a, b))
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        }
-                    );
-                }
+                print!("{}", gap_run::format_detectability(&lib, fit_cycles));
                 return Ok(ExitCode::SUCCESS);
             }
             if let Some(d) = make_observed {
@@ -841,7 +817,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 let d = gap::diagnose(&lib, &obs, fit_cycles)?;
                 std::fs::create_dir_all(&out)?;
                 let name = f.display().to_string();
-                let md = gap::report_markdown(&name, &d, &lib);
+                // what this library can see comes before the diagnosis (issue 20)
+                let md = format!(
+                    "{}\n{}",
+                    gap::report_markdown(&name, &d, &lib),
+                    gap_run::format_detectability(&lib, fit_cycles)
+                );
+                print!("{}", gap_run::format_detectability(&lib, fit_cycles));
+                println!();
                 std::fs::write(out.join("report.md"), &md)?;
                 std::fs::write(out.join("report.json"), serde_json::to_string_pretty(&d)?)?;
                 gap_run::write_plot_data(&out, &lib, &obs, &d)?;
@@ -851,7 +834,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     &plot.to_string_lossy(),
                     &png.to_string_lossy(),
                 ]);
-                print!("{}", md);
+                print!("{}", gap::report_markdown(&name, &d, &lib));
                 println!("report: {}/report.{{md,json,png}}", out.display());
                 return Ok(ExitCode::SUCCESS);
             }
@@ -860,6 +843,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     "give --observed FILE, --validate DIR, --make-library or --make-observed DIR"
                 );
             }
+            print!("{}", gap_run::format_detectability(&lib, fit_cycles));
             println!("library in {}", lib_dir.display());
             Ok(ExitCode::SUCCESS)
         }
