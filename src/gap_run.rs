@@ -665,8 +665,6 @@ pub fn dominant_truth(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize
     dominant_signal(lib, t, like, fit_cycles).0
 }
 
-/// Signal-to-noise of the dominant hidden effect on the fitted cycles (sqrt of the chi2 its
-/// surrogate adds, after the noise inflation).
 /// What a library can detect: its noise inflation and, per effect, the largest signal over its
 /// strengths and the strengths whose signal on the fitted cycles reaches `DETECTABILITY_FLOOR`
 /// (a markdown section; printed before any diagnosis and by `compat gap --detectability`).
@@ -697,6 +695,8 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
     s
 }
 
+/// Signal-to-noise of the dominant hidden effect on the fitted cycles (sqrt of the chi2 its
+/// surrogate adds, after the noise inflation).
 pub fn detectability(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> f64 {
     dominant_signal(lib, t, like, fit_cycles).1
 }
