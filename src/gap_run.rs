@@ -69,8 +69,10 @@ pub fn knobs(effects: &[(String, f64)]) -> Result<String> {
             }
             "friction" => format!("load_friction={}", 30.0 + s),
             "damping" => format!("damping={}", 0.2 + s),
+            // outside the catalogue (issue 20's blind cases): clumps of K spheres
+            "clump" => format!("clump_size={}", s.round() as i64),
             other => bail!(
-                "unknown effect '{}' (known: rolling, grading, subgrade, grid_soft, friction, damping)",
+                "unknown effect '{}' (known: rolling, grading, subgrade, grid_soft, friction, damping; clump outside the catalogue)",
                 other
             ),
         });
@@ -80,7 +82,26 @@ pub fn knobs(effects: &[(String, f64)]) -> Result<String> {
 
 /// Does the effect change generation (needs a new specimen)?
 fn generates(k: &str) -> bool {
-    k == "grading"
+    k == "grading" || k == "clump"
+}
+
+/// How a blind dataset draws its hidden effects.
+#[derive(Clone, Copy, Debug)]
+pub struct Design {
+    /// Strengths drawn over each effect's whole library range (every effect, detectable or not;
+    /// the second effect of a two-effect case too), not only where the signal reaches the floor.
+    pub unfiltered: bool,
+    /// Cases of an effect outside the catalogue: clumps of 2-4 spheres (`--clump-size`).
+    pub n_clump: usize,
+}
+
+/// A strength drawn uniformly over the library range of effect `i` (both signs where it has them).
+fn draw_over_range(sur: &gap::Surrogate, i: usize, u: &mut dyn FnMut() -> f64) -> f64 {
+    let (lo, hi) = sur.range(i);
+    let (lo, hi) = (lo.min(0.0), hi.max(0.0));
+    let x = lo + u() * (hi - lo);
+    let x = if x == 0.0 { hi.max(lo.abs()) * 1e-3 } else { x };
+    (x * 1e4).round() / 1e4
 }
 
 /// The study case every run of a library or dataset shares.
@@ -458,10 +479,16 @@ pub fn make_observed(
     jobs: usize,
     lib: &Library,
     fit_cycles: usize,
+    design: Design,
 ) -> Result<()> {
     use rand_mt::Mt19937GenRand32 as Mt;
-    if n_null > n {
-        bail!("--n-null {} is more than --n {}", n_null, n);
+    if n_null + design.n_clump > n {
+        bail!(
+            "--n-null {} plus --n-clump {} is more than --n {}",
+            n_null,
+            design.n_clump,
+            n
+        );
     }
     std::fs::create_dir_all(dir.join("runs"))?;
     std::fs::create_dir_all(dir.join("truth"))?;
@@ -470,7 +497,7 @@ pub fn make_observed(
     let ranges = detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR);
     let drawable: Vec<&DetectableRange> =
         ranges.iter().filter(|r| !r.intervals.is_empty()).collect();
-    if drawable.is_empty() {
+    if drawable.is_empty() && !design.unfiltered {
         bail!(
             "no candidate effect reaches the detectability floor {} in this scenario (largest signals: {})",
             DETECTABILITY_FLOOR,
@@ -490,8 +517,11 @@ pub fn make_observed(
             "fit_cycles": fit_cycles,
             "detectability_floor": DETECTABILITY_FLOOR,
             "ranges": ranges,
+            "unfiltered": design.unfiltered,
+            "n_clump": design.n_clump,
         }))?,
     )?;
+    let sur = gap::Surrogate::new(lib);
     let mut rng = Mt::new(seed);
     let mut u = move || rng.next_u32() as f64 / 4294967296.0;
     // null positions: a partial Fisher-Yates shuffle
@@ -501,13 +531,27 @@ pub fn make_observed(
         pos.swap(i, j);
     }
     let nulls: Vec<usize> = pos[..n_null].to_vec();
+    let clumps: Vec<usize> = pos[n_null..n_null + design.n_clump].to_vec();
     let cat = &lib.effects;
     let mut gen_lines = Vec::new();
     let mut lines = Vec::new();
     for i in 0..n {
         let name = format!("case{:02}", i + 1);
         let mut chosen: Vec<(String, f64)> = Vec::new();
-        if !nulls.contains(&i) {
+        if clumps.contains(&i) {
+            chosen.push(("clump".into(), (2 + ((u() * 3.0) as u32).min(2)) as f64));
+        } else if design.unfiltered && !nulls.contains(&i) {
+            // any effect, any strength of its library range; a second one three times in ten
+            let first = ((u() * cat.len() as f64) as usize).min(cat.len() - 1);
+            chosen.push((cat[first].knob.clone(), draw_over_range(&sur, first, &mut u)));
+            if u() < 0.3 {
+                let mut second = ((u() * (cat.len() - 1) as f64) as usize).min(cat.len() - 2);
+                if second >= first {
+                    second += 1;
+                }
+                chosen.push((cat[second].knob.clone(), draw_over_range(&sur, second, &mut u)));
+            }
+        } else if !nulls.contains(&i) {
             let r = drawable[((u() * drawable.len() as f64) as usize).min(drawable.len() - 1)];
             let total: f64 = r.intervals.iter().map(|(a, b)| (b - a).abs()).sum();
             let mut x = u() * total;
@@ -721,6 +765,19 @@ pub struct CaseScore {
     pub norm_gap_reduction: f64,
     /// The diagnosis warns that the chosen model predicts the held-out rut worse.
     pub rut_warned: bool,
+    /// The dominant effect's signal reaches `DETECTABILITY_FLOOR` (false for today's model).
+    pub detectable: bool,
+    /// A hidden effect outside the library's catalogue (e.g. clumps): scored apart.
+    pub outside: Option<String>,
+    /// The held-out gap of each observed observable (empty when the answer is "none").
+    pub heldout_by_observable: Vec<gap::HeldOut>,
+}
+
+/// Issue 20's scoring of one answer: the dominant hidden effect named is right; "none" is right
+/// for today's model (`dominant` "none") and for an effect whose signal is under the floor; any
+/// other effect is wrong. A case of an effect outside the catalogue is scored apart (never right).
+pub fn answer_is_right(named: &str, dominant: &str, detectable: bool, outside: bool) -> bool {
+    !outside && (named == dominant || (named == "none" && !detectable))
 }
 
 /// Diagnose every case blind, then score against the truth files.
@@ -763,15 +820,22 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
         let t: Truth = serde_json::from_str(&std::fs::read_to_string(
             dir.join("truth").join(format!("{}.json", n)),
         )?)?;
+        let outside = t
+            .effects
+            .iter()
+            .find(|(k, _)| !lib.effects.iter().any(|e| &e.knob == k))
+            .map(|(k, s)| format!("{} {}", k, s));
         let dom = dominant_truth(lib, &t, &obs, fit_cycles);
-        let correct = d.winner == dom;
+        let det = detectability(lib, &t, &obs, fit_cycles);
+        let detectable = !t.effects.is_empty() && outside.is_none() && det >= DETECTABILITY_FLOOR;
+        let correct = answer_is_right(&d.winner, &dom, detectable, outside.is_some());
         let fitted = d.model.iter().find(|c| c.0 == dom).map(|c| c.1);
         let true_s = t.effects.iter().find(|e| e.0 == dom).map(|e| e.1);
         out.push(CaseScore {
             case: n.clone(),
             truth: t.effects.clone(),
-            dominant_truth: dom.clone(),
-            detectability: detectability(lib, &t, &obs, fit_cycles),
+            dominant_truth: outside.clone().unwrap_or_else(|| dom.clone()),
+            detectability: det,
             named: d.winner.clone(),
             model: d.model.clone(),
             confidence: d.confidence,
@@ -784,6 +848,9 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             gap_reduction: d.gap_reduction,
             norm_gap_reduction: d.norm_gap_reduction,
             rut_warned: d.warnings.iter().any(|w| w.contains("held-out rut")),
+            detectable,
+            outside,
+            heldout_by_observable: d.heldout_by_observable.clone(),
         });
     }
     Ok(out)
@@ -844,6 +911,27 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         .iter()
         .filter(|c| c.named != "none" && c.gap_reduction < 0.0)
         .collect();
+    // issue 20's scoring: catalogue effects only (outside ones apart)
+    let cat: Vec<&CaseScore> = eff.iter().filter(|c| c.outside.is_none()).copied().collect();
+    let det: Vec<&CaseScore> = cat.iter().filter(|c| c.detectable).copied().collect();
+    let undet: Vec<&CaseScore> = cat.iter().filter(|c| !c.detectable).copied().collect();
+    let wrong_cat = cat
+        .iter()
+        .filter(|c| c.named != "none" && c.named != c.dominant_truth)
+        .count();
+    let per_obs = |o: &str| -> String {
+        pct(median(
+            cat.iter()
+                .filter(|c| c.named != "none")
+                .filter_map(|c| {
+                    c.heldout_by_observable
+                        .iter()
+                        .find(|h| h.observable == o)
+                        .map(|h| h.reduction)
+                })
+                .collect(),
+        ))
+    };
     t += &format!(
         "\nDominant effect named correctly (\"none\" for today's model): {}/{} ({:.0} %)\n\
          Cases with hidden effects: {}; named correctly: {}; answered none: {}; named a wrong effect: {}\n\
@@ -871,6 +959,46 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         worse.len(),
         worse.iter().filter(|c| c.rut_warned).count(),
     );
+    t += &format!(
+        "\nBy issue 20's rule (catalogue effects; \"none\" right only under the floor {}):\n\
+         Detectable dominant effects named: {}/{} ({})\n\
+         Dominant effects under the floor: {} (answered none {}, named it {}, named another {})\n\
+         Wrong effect named: {} of {} cases with catalogue effects\n\
+         Median held-out gap reduction per observable, named cases: rut {}, porosity {}, rebound {}, grid settlement {}\n",
+        DETECTABILITY_FLOOR,
+        det.iter().filter(|c| c.named == c.dominant_truth).count(),
+        det.len(),
+        pct(if det.is_empty() {
+            None
+        } else {
+            Some(
+                det.iter().filter(|c| c.named == c.dominant_truth).count() as f64
+                    / det.len() as f64,
+            )
+        }),
+        undet.len(),
+        undet.iter().filter(|c| c.named == "none").count(),
+        undet.iter().filter(|c| c.named == c.dominant_truth).count(),
+        undet
+            .iter()
+            .filter(|c| c.named != "none" && c.named != c.dominant_truth)
+            .count(),
+        wrong_cat,
+        cat.len(),
+        per_obs("rut_mm"),
+        per_obs("porosity"),
+        per_obs("rebound_mm"),
+        per_obs("grid_settlement_mm"),
+    );
+    for c in s.iter().filter(|c| c.outside.is_some()) {
+        t += &format!(
+            "Outside the catalogue: {} ({}): named {} (confidence {:.2})\n",
+            c.case,
+            c.outside.as_deref().unwrap_or(""),
+            c.named,
+            c.confidence
+        );
+    }
     t
 }
 

@@ -109,3 +109,54 @@ fn final_blind_set_cases_are_diagnosed() {
     assert_eq!(d.winner, "none");
     assert!(d.confidence > 0.9, "{}", d.confidence);
 }
+
+/// Issue 20's scoring rule: the effect named is right, "none" is right only for today's model or an
+/// effect under the detectability floor, any other effect is wrong, and an effect outside the
+/// catalogue is scored apart.
+#[test]
+fn scoring_counts_none_right_only_under_the_floor() {
+    use gap_run::answer_is_right as right;
+    assert!(right("rolling", "rolling", true, false));
+    assert!(!right("none", "rolling", true, false)); // detectable and missed
+    assert!(right("none", "grading", false, false)); // under the floor: "none" is the honest answer
+    assert!(!right("grading", "damping", false, false)); // a wrong effect is wrong at any strength
+    assert!(right("none", "none", false, false)); // today's model
+    assert!(!right("rolling", "none", false, false)); // a false positive
+    assert!(!right("rolling", "none", false, true)); // clumps: outside the catalogue, apart
+}
+
+/// The committed blind set made with Debian YADE (results/gap/blind2028, filtered design) scored by
+/// issue 20's rule: 11 of its 12 detectable dominant effects named, one wrong effect (case06,
+/// lower damping read as friction), and the held-out gap per observable of the named cases.
+#[test]
+fn blind2028_scored_by_issue_20s_rule() {
+    let root = || PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let src = root().join("results/gap/blind2028_r07_G_medium_c6");
+    let tmp = std::env::temp_dir().join(format!("ryade_gap2028_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    for sub in ["cases", "truth"] {
+        for e in std::fs::read_dir(src.join(sub)).unwrap() {
+            let e = e.unwrap();
+            let to = tmp.join(sub).join(e.file_name());
+            if e.path().is_dir() {
+                std::fs::create_dir_all(&to).unwrap();
+                std::fs::copy(e.path().join("observed.csv"), to.join("observed.csv")).unwrap();
+            } else {
+                std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+                std::fs::copy(e.path(), &to).unwrap();
+            }
+        }
+    }
+    let (_, lib) = gap_run::load_library(&root().join("results/gap/library_r07_G_medium_c6")).unwrap();
+    let scores = gap_run::validate(&tmp, &lib, 4).unwrap();
+    let t = gap_run::format_scores(&scores);
+    assert!(t.contains("Detectable dominant effects named: 11/12 (92 %)"), "{}", t);
+    assert!(t.contains("Wrong effect named: 1 of 12 cases with catalogue effects"), "{}", t);
+    assert!(t.contains("Named cases whose held-out rut gets worse: 2, of which the report warns: 2"), "{}", t);
+    assert!(
+        t.contains("Median held-out gap reduction per observable, named cases: rut 89 %, porosity -4 %"),
+        "{}",
+        t
+    );
+    let _ = std::fs::remove_dir_all(&tmp);
+}

@@ -272,6 +272,14 @@ enum Cmd {
         /// Seed of the hidden-effect draw
         #[arg(long, default_value_t = 2026)]
         seed: u32,
+        /// Blind datasets: draw every effect over its whole library range (detectable or not, the
+        /// second effect of a two-effect case too) instead of where its signal reaches the floor;
+        /// validation then counts "none" right only for an effect under the floor
+        #[arg(long)]
+        unfiltered: bool,
+        /// Blind datasets: of --n, cases of an effect outside the catalogue (clumps of 2-4 spheres)
+        #[arg(long, default_value_t = 0)]
+        n_clump: usize,
         /// Report directory for --observed
         #[arg(long, default_value = "gap_out")]
         out: PathBuf,
@@ -738,6 +746,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             effect_seeds,
             n,
             n_null,
+            unfiltered,
+            n_clump,
             seed,
             out,
             jobs,
@@ -793,7 +803,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 return Ok(ExitCode::SUCCESS);
             }
             if let Some(d) = make_observed {
-                gap_run::make_observed(&root, &d, &sc, n, n_null, seed, jobs, &lib, fit_cycles)?;
+                let design = gap_run::Design {
+                    unfiltered,
+                    n_clump,
+                };
+                gap_run::make_observed(
+                    &root, &d, &sc, n, n_null, seed, jobs, &lib, fit_cycles, design,
+                )?;
                 println!(
                     "blind datasets in {}/cases (truth apart in {}/truth)",
                     d.display(),
