@@ -1646,11 +1646,7 @@ mod tests {
             }],
             ..Default::default()
         };
-        lib.baseline = vec![
-            mk(4.9, 0.0, -0.001),
-            mk(5.0, 0.0, 0.0),
-            mk(5.1, 0.0, 0.001),
-        ];
+        lib.baseline = vec![mk(4.9, 0.0, -0.001), mk(5.0, 0.0, 0.0), mk(5.1, 0.0, 0.001)];
         lib.runs.insert(
             ("loose".into(), 0),
             vec![mk(4.95, 20.0, 0.019), mk(5.05, 20.0, 0.021)],
@@ -1661,10 +1657,21 @@ mod tests {
         assert!(d.gap_reduction < -1.0, "{}", d.gap_reduction);
         let rut = &d.heldout_by_observable[0];
         let por = &d.heldout_by_observable[1];
-        assert_eq!((rut.observable.as_str(), por.observable.as_str()), ("rut_mm", "porosity"));
-        assert!(rut.reduction < 0.0 && por.reduction > 0.9, "{:?}", d.heldout_by_observable);
+        assert_eq!(
+            (rut.observable.as_str(), por.observable.as_str()),
+            ("rut_mm", "porosity")
+        );
+        assert!(
+            rut.reduction < 0.0 && por.reduction > 0.9,
+            "{:?}",
+            d.heldout_by_observable
+        );
         assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
-        assert!(d.warnings[0].contains("held-out rut worse"), "{}", d.warnings[0]);
+        assert!(
+            d.warnings[0].contains("held-out rut worse"),
+            "{}",
+            d.warnings[0]
+        );
         let md = report_markdown("case", &d, &lib);
         assert!(md.contains("**Warning**: the chosen model predicts the held-out rut worse"));
         // today's model observed: no effect, no table, no warning

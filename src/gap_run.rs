@@ -543,13 +543,19 @@ pub fn make_observed(
         } else if design.unfiltered && !nulls.contains(&i) {
             // any effect, any strength of its library range; a second one three times in ten
             let first = ((u() * cat.len() as f64) as usize).min(cat.len() - 1);
-            chosen.push((cat[first].knob.clone(), draw_over_range(&sur, first, &mut u)));
+            chosen.push((
+                cat[first].knob.clone(),
+                draw_over_range(&sur, first, &mut u),
+            ));
             if u() < 0.3 {
                 let mut second = ((u() * (cat.len() - 1) as f64) as usize).min(cat.len() - 2);
                 if second >= first {
                     second += 1;
                 }
-                chosen.push((cat[second].knob.clone(), draw_over_range(&sur, second, &mut u)));
+                chosen.push((
+                    cat[second].knob.clone(),
+                    draw_over_range(&sur, second, &mut u),
+                ));
             }
         } else if !nulls.contains(&i) {
             let r = drawable[((u() * drawable.len() as f64) as usize).min(drawable.len() - 1)];
@@ -912,7 +918,11 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         .filter(|c| c.named != "none" && c.gap_reduction < 0.0)
         .collect();
     // issue 20's scoring: catalogue effects only (outside ones apart)
-    let cat: Vec<&CaseScore> = eff.iter().filter(|c| c.outside.is_none()).copied().collect();
+    let cat: Vec<&CaseScore> = eff
+        .iter()
+        .filter(|c| c.outside.is_none())
+        .copied()
+        .collect();
     let det: Vec<&CaseScore> = cat.iter().filter(|c| c.detectable).copied().collect();
     let undet: Vec<&CaseScore> = cat.iter().filter(|c| !c.detectable).copied().collect();
     let wrong_cat = cat

@@ -193,7 +193,11 @@ impl InteractionLoop {
         // registration order, on the stack (this runs for every contact every step)
         let all = [
             (self.frict_phys, MatClass::FrictMat, PhysFunctor::Frict),
-            (self.cohfrict_phys.is_some(), MatClass::CohFrictMat, PhysFunctor::CohFrict),
+            (
+                self.cohfrict_phys.is_some(),
+                MatClass::CohFrictMat,
+                PhysFunctor::CohFrict,
+            ),
             (self.viscel_phys, MatClass::ViscElMat, PhysFunctor::ViscEl),
         ];
         let mut buf = [Entry {
@@ -1284,7 +1288,10 @@ impl Scene {
         let six_d = match (il.sphere_sphere_6d, il.cohesion_moment) {
             (Some(p6), Some(cm))
                 if !(cm.twist_creep && cm.use_incremental_form)
-                    && il.cohfrict_phys.as_ref().is_some_and(|p| !p.set_cohesion_now)
+                    && il
+                        .cohfrict_phys
+                        .as_ref()
+                        .is_some_and(|p| !p.set_cohesion_now)
                     && il.law_functor(GeomClass::ScGeom6D, PhysClass::CohFrictPhys)?
                         == Some(LawFunctor::CohesionMoment)
                     && il.phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
@@ -1628,20 +1635,14 @@ impl Scene {
                     ang_vel1: b.ang_vel[id1],
                     ang_vel2: b.ang_vel[id2],
                 };
-                law::cohesion_moment::go(
-                    il.cohesion_moment.as_ref().unwrap(),
-                    self.dt,
-                    fresh,
-                    &g,
-                    rot,
-                    ph,
-                    cp,
-                    id1,
-                    id2,
-                    &lb,
-                    &mut self.forces,
-                    energy,
-                )?
+                let p = il.cohesion_moment.as_ref().unwrap();
+                match law::cohesion_moment::load(p, self.dt, fresh, &g, rot, ph, cp, &lb, energy)? {
+                    Some(l) => {
+                        law::cohesion_moment::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
+                }
             }
             LawFunctor::ScGridCoFrict | LawFunctor::ScGridCoCohFrict => {
                 let e = it.ext.as_mut().ok_or_else(|| bad("extension"))?;
@@ -1839,10 +1840,12 @@ fn pre_slot(
                 pos2_shifted: b.pos[id2] + shift2,
             };
             let g = it.geom.as_ref().unwrap();
-            Some(match law::load(&cs, g, it.phys.as_mut().unwrap(), &lb, None) {
-                Some(l) => Event::Load(id1 as u32, id2 as u32, l),
-                None => Event::Erase(k),
-            })
+            Some(
+                match law::load(&cs, g, it.phys.as_mut().unwrap(), &lb, None) {
+                    Some(l) => Event::Load(id1 as u32, id2 as u32, l),
+                    None => Event::Erase(k),
+                },
+            )
         }
         (GeomFunctor::SphereSphere6D, _, Some((p6, cm)))
             if cfg.coh_mat[b.material[id1]]

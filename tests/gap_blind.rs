@@ -147,14 +147,29 @@ fn blind2028_scored_by_issue_20s_rule() {
             }
         }
     }
-    let (_, lib) = gap_run::load_library(&root().join("results/gap/library_r07_G_medium_c6")).unwrap();
+    let (_, lib) =
+        gap_run::load_library(&root().join("results/gap/library_r07_G_medium_c6")).unwrap();
     let scores = gap_run::validate(&tmp, &lib, 4).unwrap();
     let t = gap_run::format_scores(&scores);
-    assert!(t.contains("Detectable dominant effects named: 11/12 (92 %)"), "{}", t);
-    assert!(t.contains("Wrong effect named: 1 of 12 cases with catalogue effects"), "{}", t);
-    assert!(t.contains("Named cases whose held-out rut gets worse: 2, of which the report warns: 2"), "{}", t);
     assert!(
-        t.contains("Median held-out gap reduction per observable, named cases: rut 89 %, porosity -4 %"),
+        t.contains("Detectable dominant effects named: 11/12 (92 %)"),
+        "{}",
+        t
+    );
+    assert!(
+        t.contains("Wrong effect named: 1 of 12 cases with catalogue effects"),
+        "{}",
+        t
+    );
+    assert!(
+        t.contains("Named cases whose held-out rut gets worse: 2, of which the report warns: 2"),
+        "{}",
+        t
+    );
+    assert!(
+        t.contains(
+            "Median held-out gap reduction per observable, named cases: rut 89 %, porosity -4 %"
+        ),
         "{}",
         t
     );

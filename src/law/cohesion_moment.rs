@@ -66,35 +66,9 @@ pub fn apply(forces: &mut Forces, id1: usize, id2: usize, l: &CohLoad) {
     }
 }
 
-/// Mirrors `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go`. `fresh` is `Interaction::isFresh`
-/// (made real this iteration). Returns Ok(false) when the bond breaks (or tension erases it).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub fn go(
-    p: &Params,
-    dt: f64,
-    fresh: bool,
-    g: &ScGeom,
-    rot: &mut Rot6D,
-    ph: &mut FrictPhys,
-    cp: &mut CohFrictPhys,
-    id1: usize,
-    id2: usize,
-    b: &Bodies2,
-    forces: &mut Forces,
-    energy: Option<&mut LawEnergy<'_>>,
-) -> Result<bool, String> {
-    Ok(match load(p, dt, fresh, g, rot, ph, cp, b, energy)? {
-        Some(l) => {
-            apply(forces, id1, id2, &l);
-            true
-        }
-        None => false,
-    })
-}
-
-/// The contact's state update and load (`go` without adding it): Ok(None) when the bond breaks
-/// (or tension erases it).
+/// Mirrors `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go` up to the loads it adds (`apply` adds
+/// them in its order). `fresh` is `Interaction::isFresh` (made real this iteration). Ok(None) when
+/// the bond breaks (or tension erases it).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn load(
