@@ -1509,6 +1509,19 @@ mod tests {
         }
     }
 
+    /// A library of one effect, `knob`, with one strength (1.0) and no runs yet.
+    fn one_effect_library(knob: &str) -> Library {
+        Library {
+            effects: vec![Effect {
+                knob: knob.into(),
+                meaning: knob.into(),
+                zero: 0.0,
+                strengths: vec![1.0],
+            }],
+            ..Default::default()
+        }
+    }
+
     /// A synthetic library where the effect scales the rut linearly: the fit recovers the strength,
     /// the held-out gap closes, and an observation equal to the baseline gives "none".
     #[test]
@@ -1569,15 +1582,7 @@ mod tests {
     #[test]
     fn paired_surrogate_removes_the_specimen_offset() {
         let lin = |a: f64, b: f64| -> Vec<f64> { (0..6).map(|c| a + b * c as f64).collect() };
-        let mut lib = Library {
-            effects: vec![Effect {
-                knob: "soft".into(),
-                meaning: "more rut".into(),
-                zero: 0.0,
-                strengths: vec![1.0],
-            }],
-            ..Default::default()
-        };
+        let mut lib = one_effect_library("soft");
         lib.baseline = vec![ser(&lin(0.0, 5.0)), ser(&lin(0.0, 15.0))];
         lib.baseline_seeds = vec![1, 2];
         lib.runs
@@ -1637,15 +1642,7 @@ mod tests {
             rebound_mm: None,
             grid_settlement_mm: None,
         };
-        let mut lib = Library {
-            effects: vec![Effect {
-                knob: "loose".into(),
-                meaning: "looser and later softer".into(),
-                zero: 0.0,
-                strengths: vec![1.0],
-            }],
-            ..Default::default()
-        };
+        let mut lib = one_effect_library("loose");
         lib.baseline = vec![mk(4.9, 0.0, -0.001), mk(5.0, 0.0, 0.0), mk(5.1, 0.0, 0.001)];
         lib.runs.insert(
             ("loose".into(), 0),
