@@ -969,6 +969,11 @@ pub struct Diagnosis {
     pub norm_gap_reduction: f64,
     /// The held-out gap of each observed observable (empty when the answer is "none").
     pub heldout_by_observable: Vec<HeldOut>,
+    /// Catalogue effects not fitted: under the detectability floor at every library strength.
+    pub not_fitted: Vec<String>,
+    /// The best model when it beat today's model but its evidence (the dominant effect's signal
+    /// at the fitted strength) stayed under the floor, so the answer is "none": (model, signal).
+    pub below_floor: Option<(String, f64)>,
     /// What the verdict says besides the effect: the rut when the chosen model predicts its
     /// held-out cycles worse than today's model, and each other observable it predicts worse
     /// beyond one run's noise (normalised RMS over 1).
@@ -1073,7 +1078,25 @@ pub struct Fits {
     pub pairs: Vec<ModelFit>,
 }
 
-pub fn fit_models(sur: &Surrogate, obs: &Series, fit_cycles: usize, inflation: f64) -> Fits {
+/// Which effects are fitted: those the library can detect (some strength of its range reaches
+/// `DETECTABILITY_FLOOR` on the fitted cycles). An effect under the floor at every library strength
+/// cannot be told from the seed-to-seed noise, so naming it would be a guess (issue 20: invisible
+/// grading and friction fits at the library's edge were the commonest wrong answers).
+pub fn fitted_effects(lib: &Library, fit_cycles: usize) -> Vec<bool> {
+    detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR)
+        .iter()
+        .map(|r| !r.intervals.is_empty())
+        .collect()
+}
+
+/// Today's model, every fitted one-effect model and every pair of fitted effects (`fitted[i]`).
+pub fn fit_models(
+    sur: &Surrogate,
+    obs: &Series,
+    fit_cycles: usize,
+    inflation: f64,
+    fitted: &[bool],
+) -> Fits {
     let fit = 0..=fit_cycles;
     let x2 = |eff: &[(usize, f64)]| -> (f64, usize) {
         let (v, n) = sur.nll(obs, eff, fit.clone());
@@ -1081,19 +1104,22 @@ pub fn fit_models(sur: &Surrogate, obs: &Series, fit_cycles: usize, inflation: f
     };
     let m = sur.effects.len();
     let none_chi2 = x2(&[]).0;
+    let on = |i: usize| fitted.get(i).copied().unwrap_or(false);
     let mut singles = Vec::new();
-    for i in 0..m {
+    let mut best_single = vec![0.0; m];
+    for i in (0..m).filter(|&i| on(i)) {
         let (lo, hi) = sur.range(i);
         let (chi, s) = best_1d(&|s| x2(&[(i, s)]).0, lo, hi, 400);
+        best_single[i] = s;
         singles.push((vec![(i, s)], chi, x2(&[(i, s)]).1));
     }
     let mut pairs = Vec::new();
-    for a in 0..m {
-        for b in a + 1..m {
+    for a in (0..m).filter(|&a| on(a)) {
+        for b in (a + 1..m).filter(|&b| on(b)) {
             let (la, ha) = sur.range(a);
             let (lb, hb) = sur.range(b);
             let g = 40usize;
-            let mut best = (f64::INFINITY, singles[a].0[0].1, singles[b].0[0].1);
+            let mut best = (f64::INFINITY, best_single[a], best_single[b]);
             for ka in 0..=g {
                 let sa = la + (ha - la) * ka as f64 / g as f64;
                 for kb in 0..=g {
@@ -1122,6 +1148,64 @@ pub fn fit_models(sur: &Surrogate, obs: &Series, fit_cycles: usize, inflation: f
     }
 }
 
+/// Detectability floor of the blind-dataset design: the first hidden effect's noiseless signal on
+/// the fitted cycles (sqrt of the chi2 it adds, after the noise inflation) must be at least this.
+pub const DETECTABILITY_FLOOR: f64 = 5.0;
+
+/// Per effect, the library-range strengths whose signal on the fitted cycles reaches the floor,
+/// scanned on 201 points per side: (knob, [(lo, hi)] intervals on each side, largest signal).
+#[derive(Serialize, serde::Deserialize, Clone, Debug)]
+pub struct DetectableRange {
+    pub knob: String,
+    pub intervals: Vec<(f64, f64)>,
+    pub max_signal: f64,
+    pub strength_at_max: f64,
+}
+
+pub fn detectable_ranges(lib: &Library, fit_cycles: usize, floor: f64) -> Vec<DetectableRange> {
+    let like = lib.baseline[0].clone();
+    let sur = Surrogate::new(lib);
+    let infl = noise_inflation(lib, fit_cycles).sqrt();
+    let mut out = Vec::new();
+    for (i, e) in lib.effects.iter().enumerate() {
+        let (lo, hi) = sur.range(i);
+        let mut intervals = Vec::new();
+        let (mut best, mut at) = (0.0, 0.0);
+        for (a, b) in [(0.0, lo), (0.0, hi)] {
+            if a == b {
+                continue;
+            }
+            let mut cur: Option<(f64, f64)> = None;
+            for k in 1..=200 {
+                let s = a + (b - a) * k as f64 / 200.0;
+                let sig = sur.signal(&[(i, s)], &like, 1..=fit_cycles) / infl;
+                if sig > best {
+                    best = sig;
+                    at = s;
+                }
+                if sig >= floor {
+                    cur = Some(match cur {
+                        Some((x, _)) => (x, s),
+                        None => (s, s),
+                    });
+                } else if let Some(c) = cur.take() {
+                    intervals.push(c);
+                }
+            }
+            if let Some(c) = cur {
+                intervals.push(c);
+            }
+        }
+        out.push(DetectableRange {
+            knob: e.knob.clone(),
+            intervals,
+            max_signal: best,
+            strength_at_max: at,
+        });
+    }
+    out
+}
+
 /// Penalties of the first and of a second fitted strength, and how they were set.
 #[derive(Clone, Debug, Serialize)]
 pub struct Penalties {
@@ -1144,7 +1228,9 @@ pub struct Penalties {
 /// for the second strength. The median, not the largest drop: one soft specimen among 12 set the
 /// largest drop to 19.7 on the medium library. Set from the library alone.
 pub fn calibrated_penalties(lib: &Library, fit_cycles: usize) -> Penalties {
-    let (b1, b2) = penalties(lib.effects.len());
+    let fit = fitted_effects(lib, fit_cycles);
+    let m_fit = fit.iter().filter(|f| **f).count();
+    let (b1, b2) = penalties(m_fit);
     let (mut d1, mut d2) = (Vec::new(), Vec::new());
     if lib.baseline.len() >= 3 {
         for i in 0..lib.baseline.len() {
@@ -1154,14 +1240,20 @@ pub fn calibrated_penalties(lib: &Library, fit_cycles: usize) -> Penalties {
                 li.baseline_seeds.remove(i);
             }
             let sur = Surrogate::new(&li);
-            let f = fit_models(&sur, &obs, fit_cycles, noise_inflation(&li, fit_cycles));
+            let f = fit_models(
+                &sur,
+                &obs,
+                fit_cycles,
+                noise_inflation(&li, fit_cycles),
+                &fit,
+            );
             let s1 = f.singles.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
             let s2 = f.pairs.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
             d1.push(f.none_chi2 - s1);
             d2.push(s1 - s2);
         }
     }
-    let m = lib.effects.len().max(2);
+    let m = m_fit.max(2);
     let med = |v: &[f64]| if v.is_empty() { 0.0 } else { median_of(v) };
     // median of the largest of k independent chi2(1): P(chi2_1 > x) = 1 - 0.5^(1/k)
     let gauss_med = |k: usize| chi2_1_quantile(1.0 - 0.5f64.powf(1.0 / k as f64));
@@ -1205,7 +1297,8 @@ pub fn diagnose_with(
     let inflation = noise_inflation(lib, fit_cycles);
     let sur = Surrogate::new(lib);
     let (p1, p2) = (pen.p1, pen.p2);
-    let fits = fit_models(&sur, obs, fit_cycles, inflation);
+    let fitted = fitted_effects(lib, fit_cycles);
+    let fits = fit_models(&sur, obs, fit_cycles, inflation, &fitted);
     let none_chi2 = fits.none_chi2;
     let knob_pred = |eff: &[(usize, f64)]| {
         let eff = eff.to_vec();
@@ -1288,6 +1381,27 @@ pub fn diagnose_with(
         .chain(pairs.iter())
         .min_by(|a, b| a.ic.total_cmp(&b.ic))
         .cloned();
+    // the evidence for the best model's dominant effect: its noiseless signal at the fitted
+    // strength on the fitted cycles, in the units of the detectability floor; an answer is given
+    // only where it reaches that floor (issue 20: below it, proxies for undetectable effects and
+    // noise were named)
+    let evidence = |c: &Candidate| -> f64 {
+        let (k, st) = &c.effects[0];
+        lib.effects
+            .iter()
+            .position(|e| &e.knob == k)
+            .map_or(0.0, |i| {
+                sur.signal(&[(i, *st)], obs, 1..=fit_cycles) / inflation.sqrt()
+            })
+    };
+    let mut below_floor = None;
+    let best = match best {
+        Some(c) if c.ic < none_chi2 && evidence(&c) < DETECTABILITY_FLOOR => {
+            below_floor = Some((format_effects(&c.effects, " + ", Some(4)), evidence(&c)));
+            None
+        }
+        b => b,
+    };
     let chosen = best.as_ref().filter(|c| c.ic < none_chi2).cloned();
     let (winner, model, confidence, after, norm_after) = match best {
         Some(c) if c.ic < none_chi2 => {
@@ -1306,7 +1420,20 @@ pub fn diagnose_with(
                 c.heldout_norm_rms,
             )
         }
-        _ => ("none".to_string(), vec![], none_weight, before, norm_before),
+        // "none": today's model's weight plus that of the models whose evidence stays under the floor
+        _ => (
+            "none".to_string(),
+            vec![],
+            none_weight
+                + singles
+                    .iter()
+                    .chain(pairs.iter())
+                    .filter(|x| evidence(x) < DETECTABILITY_FLOOR)
+                    .map(|x| x.weight)
+                    .sum::<f64>(),
+            before,
+            norm_before,
+        ),
     };
     pairs.truncate(5);
     let wp = where_analysis(lib, obs, last);
@@ -1372,6 +1499,14 @@ pub fn diagnose_with(
         heldout_norm_rms_after: norm_after,
         norm_gap_reduction: red(norm_before, norm_after),
         heldout_by_observable: by_obs,
+        below_floor,
+        not_fitted: lib
+            .effects
+            .iter()
+            .zip(&fitted)
+            .filter(|(_, f)| !**f)
+            .map(|(e, _)| e.knob.clone())
+            .collect(),
         warnings,
     })
 }
@@ -1432,6 +1567,13 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         median_of(&d.penalty_calibration.null_drops1),
         median_of(&d.penalty_calibration.null_drops2)
     );
+    if !d.not_fitted.is_empty() {
+        s += &format!(
+            "Not fitted: {} (under the detectability floor {} at every strength of the library: they cannot be told from the seed-to-seed noise in this scenario, so they are never named).\n\n",
+            d.not_fitted.join(", "),
+            DETECTABILITY_FLOOR
+        );
+    }
     let fmt_eff = |c: &Candidate| format_effects(&c.effects, ", ", Some(4));
     let mut all: Vec<&Candidate> = d.candidates.iter().chain(d.pairs.iter()).collect();
     all.sort_by(|a, b| a.ic.total_cmp(&b.ic));
@@ -1469,6 +1611,12 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
         },
         d.confidence
     );
+    if let Some((m, sig)) = &d.below_floor {
+        s += &format!(
+            "The best model ({}) fits better than today's model, but its evidence (signal {:.1} on the fitted cycles) is under the detectability floor {}: not named.\n\n",
+            m, sig, DETECTABILITY_FLOOR
+        );
+    }
     for w in &d.warnings {
         s += &format!("**Warning**: {}.\n\n", w);
     }

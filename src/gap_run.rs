@@ -3,6 +3,7 @@
 //! (Debian YADE), so the same sweep can go to a cluster (`--emit-slurm`).
 
 use crate::gap::{self, Effect, Library, Series};
+pub use crate::gap::{detectable_ranges, DetectableRange, DETECTABILITY_FLOOR};
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
@@ -379,10 +380,6 @@ pub struct Truth {
     pub effects: Vec<(String, f64)>,
 }
 
-/// Detectability floor of the blind-dataset design: the first hidden effect's noiseless signal on
-/// the fitted cycles (sqrt of the chi2 it adds, after the noise inflation) must be at least this.
-pub const DETECTABILITY_FLOOR: f64 = 5.0;
-
 /// Signal of effects (knob, strength) on cycles `cycles` for an observation with the observables of
 /// `like`, in noise units after the noise inflation of `fit_cycles`.
 pub fn signal(
@@ -398,60 +395,6 @@ pub fn signal(
         .filter_map(|(k, s)| Some((lib.effects.iter().position(|e| &e.knob == k)?, *s)))
         .collect();
     sur.signal(&eff, like, cycles) / gap::noise_inflation(lib, fit_cycles).sqrt()
-}
-
-/// Per effect, the library-range strengths whose signal on the fitted cycles reaches the floor,
-/// scanned on 201 points per side: (knob, [(lo, hi)] intervals on each side, largest signal).
-#[derive(Serialize, Deserialize, Clone, Debug)]
-pub struct DetectableRange {
-    pub knob: String,
-    pub intervals: Vec<(f64, f64)>,
-    pub max_signal: f64,
-    pub strength_at_max: f64,
-}
-
-pub fn detectable_ranges(lib: &Library, fit_cycles: usize, floor: f64) -> Vec<DetectableRange> {
-    let like = lib.baseline[0].clone();
-    let sur = gap::Surrogate::new(lib);
-    let infl = gap::noise_inflation(lib, fit_cycles).sqrt();
-    let mut out = Vec::new();
-    for (i, e) in lib.effects.iter().enumerate() {
-        let (lo, hi) = sur.range(i);
-        let mut intervals = Vec::new();
-        let (mut best, mut at) = (0.0, 0.0);
-        for (a, b) in [(0.0, lo), (0.0, hi)] {
-            if a == b {
-                continue;
-            }
-            let mut cur: Option<(f64, f64)> = None;
-            for k in 1..=200 {
-                let s = a + (b - a) * k as f64 / 200.0;
-                let sig = sur.signal(&[(i, s)], &like, 1..=fit_cycles) / infl;
-                if sig > best {
-                    best = sig;
-                    at = s;
-                }
-                if sig >= floor {
-                    cur = Some(match cur {
-                        Some((x, _)) => (x, s),
-                        None => (s, s),
-                    });
-                } else if let Some(c) = cur.take() {
-                    intervals.push(c);
-                }
-            }
-            if let Some(c) = cur {
-                intervals.push(c);
-            }
-        }
-        out.push(DetectableRange {
-            knob: e.knob.clone(),
-            intervals,
-            max_signal: best,
-            strength_at_max: at,
-        });
-    }
-    out
 }
 
 /// Blind datasets made by Debian YADE on specimens of seeds the library does not use (set seed x 100
