@@ -812,7 +812,7 @@ mod tests {
             assert_eq!(sc.phase, "cycles");
             n += 1;
         }
-        assert_eq!(n, 2, "scenes (b) and (c)");
+        assert_eq!(n, 3, "scenes (b), (c) and (d)");
     }
 
     /// The per-engine table divides each engine's ns by the steps of its run, adds a TOTAL row, and
