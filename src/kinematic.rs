@@ -1,4 +1,5 @@
-//! Kinematic engines: prescribed velocities on a list of bodies (YADE `pkg/common/KinematicEngines.cpp`).
+//! Kinematic engines: prescribed velocities on a list of bodies (YADE `pkg/common/KinematicEngines.cpp`);
+//! `HelixEngine` and `CombinedKinematicEngine` (the `+` of kinematic engines) are mirrored too.
 //!
 //! `KinematicEngine::action` zeroes `vel` and `angVel` of every listed body, then `apply` adds the
 //! engine's contribution. Three engines are mirrored: `TranslationEngine` (constant `velocity` along
@@ -48,8 +49,13 @@ impl TranslationEngine {
             return false;
         }
         reset_velocities(&self.ids, bodies);
-        translate(&self.ids, bodies, self.velocity, &self.translation_axis);
+        self.apply(&self.ids, bodies);
         true
+    }
+
+    /// `TranslationEngine::apply` on `ids` (the engine's own or a combination's).
+    pub fn apply(&self, ids: &[usize], bodies: &mut Bodies) {
+        translate(ids, bodies, self.velocity, &self.translation_axis);
     }
 }
 
@@ -86,8 +92,14 @@ impl RotationEngine {
             return false;
         }
         reset_velocities(&self.ids, bodies);
+        self.apply(&self.ids, bodies, dt);
+        true
+    }
+
+    /// `RotationEngine::apply` on `ids` (the engine's own or a combination's).
+    pub fn apply(&self, ids: &[usize], bodies: &mut Bodies, dt: f64) {
         let spin = self.rotation_axis * self.angular_velocity;
-        for &id in &self.ids {
+        for &id in ids {
             if id >= bodies.len() {
                 continue;
             }
@@ -98,6 +110,108 @@ impl RotationEngine {
                 let new_pos = q.rotate(&arm) + self.zero_point;
                 bodies.vel[id] += (new_pos - bodies.pos[id]) / dt;
             }
+        }
+    }
+}
+
+/// YADE `HelixEngine`: a `RotationEngine` that also moves the bodies at `linear_velocity` along the
+/// axis; it always turns about `zeroPoint` (its apply sets `rotateAroundZero`) and counts `angleTurned`.
+#[derive(Clone, Debug, Default)]
+pub struct HelixEngine {
+    pub rot: RotationEngine,
+    pub linear_velocity: f64,
+    pub angle_turned: f64,
+}
+
+impl HelixEngine {
+    /// `KinematicEngine::action` + `HelixEngine::apply`.
+    pub fn action(&mut self, bodies: &mut Bodies, dt: f64) -> bool {
+        if self.rot.ids.is_empty() {
+            return false;
+        }
+        reset_velocities(&self.rot.ids, bodies);
+        let ids = std::mem::take(&mut self.rot.ids);
+        self.apply(&ids, bodies, dt);
+        self.rot.ids = ids;
+        true
+    }
+
+    /// `HelixEngine::apply` (KinematicEngines.cpp): angle, axial velocity, then the rotation about zero.
+    pub fn apply(&mut self, ids: &[usize], bodies: &mut Bodies, dt: f64) {
+        if ids.is_empty() {
+            return;
+        }
+        self.angle_turned += self.rot.angular_velocity * dt;
+        let dv = self.rot.rotation_axis * self.linear_velocity;
+        for &id in ids {
+            if id < bodies.len() {
+                bodies.vel[id] += dv;
+            }
+        }
+        self.rot.rotate_around_zero = true;
+        self.rot.apply(ids, bodies, dt);
+    }
+}
+
+/// One member of a `CombinedKinematicEngine`.
+#[derive(Clone, Debug)]
+pub enum KinematicPart {
+    Translation(TranslationEngine),
+    Rotation(RotationEngine),
+    Helix(HelixEngine),
+    ServoPid(ServoPid),
+}
+
+impl KinematicPart {
+    pub fn class_name(&self) -> &'static str {
+        match self {
+            KinematicPart::Translation(_) => "TranslationEngine",
+            KinematicPart::Rotation(_) => "RotationEngine",
+            KinematicPart::Helix(_) => "HelixEngine",
+            KinematicPart::ServoPid(_) => "ServoPIDController",
+        }
+    }
+
+    /// The member's `apply` on the combination's `ids`.
+    pub fn apply(
+        &mut self,
+        ids: &[usize],
+        bodies: &mut Bodies,
+        forces: &Forces,
+        dt: f64,
+        iter: i64,
+    ) {
+        match self {
+            KinematicPart::Translation(t) => t.apply(ids, bodies),
+            KinematicPart::Rotation(r) => r.apply(ids, bodies, dt),
+            KinematicPart::Helix(h) => h.apply(ids, bodies, dt),
+            KinematicPart::ServoPid(s) => s.apply(ids, bodies, forces, iter),
+        }
+    }
+}
+
+/// YADE `CombinedKinematicEngine` (made by `+` on kinematic engines; `ids` are the first engine's):
+/// `CombinedKinematicEngine::action` resets the listed bodies' velocities once, then runs the `apply`
+/// of every member that is not dead, in order, on these ids.
+#[derive(Clone, Debug, Default)]
+pub struct CombinedKinematicEngine {
+    pub ids: Vec<usize>,
+    pub comb: Vec<KinematicPart>,
+    /// `dead` of each member (checked at every step, as YADE does).
+    pub comb_dead: Vec<bool>,
+}
+
+impl CombinedKinematicEngine {
+    pub fn action(&mut self, bodies: &mut Bodies, forces: &Forces, dt: f64, iter: i64) -> bool {
+        if self.ids.is_empty() {
+            return false;
+        }
+        reset_velocities(&self.ids, bodies);
+        for (k, part) in self.comb.iter_mut().enumerate() {
+            if self.comb_dead.get(k).copied().unwrap_or(false) {
+                continue;
+            }
+            part.apply(&self.ids, bodies, forces, dt, iter);
         }
         true
     }
@@ -160,9 +274,17 @@ impl ServoPid {
             return false;
         }
         reset_velocities(&self.ids, bodies);
+        let ids = std::mem::take(&mut self.ids);
+        self.apply(&ids, bodies, forces, iter);
+        self.ids = ids;
+        true
+    }
+
+    /// `ServoPIDController::apply` on `ids` (the engine's own or a combination's).
+    pub fn apply(&mut self, ids: &[usize], bodies: &mut Bodies, forces: &Forces, iter: i64) {
         if self.iter_prev_start < 0 || iter - self.iter_prev_start >= self.iter_period {
             let mut f = Vec3::zeros();
-            for &id in &self.ids {
+            for &id in ids {
                 if let Some(fi) = forces.ft.get(id).map(|w| &w.f) {
                     f += fi;
                 }
@@ -183,8 +305,7 @@ impl ServoPid {
         }
         self.translation_axis = self.axis;
         self.velocity = self.cur_vel;
-        translate(&self.ids, bodies, self.velocity, &self.translation_axis);
-        true
+        translate(ids, bodies, self.velocity, &self.translation_axis);
     }
 }
 

@@ -284,6 +284,8 @@ pub enum Engine {
     Translation(Box<crate::kinematic::TranslationEngine>),
     Rotation(Box<crate::kinematic::RotationEngine>),
     ServoPid(Box<crate::kinematic::ServoPid>),
+    Helix(Box<crate::kinematic::HelixEngine>),
+    CombinedKinematic(Box<crate::kinematic::CombinedKinematicEngine>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
@@ -303,6 +305,8 @@ impl Engine {
             Engine::Translation(_) => "TranslationEngine",
             Engine::Rotation(_) => "RotationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
+            Engine::Helix(_) => "HelixEngine",
+            Engine::CombinedKinematic(_) => "CombinedKinematicEngine",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
@@ -576,6 +580,14 @@ impl Scene {
             }
             Engine::ServoPid(s) => {
                 s.action(&mut self.bodies, &self.forces, self.iter);
+                Ok(())
+            }
+            Engine::Helix(h) => {
+                h.action(&mut self.bodies, self.dt);
+                Ok(())
+            }
+            Engine::CombinedKinematic(c) => {
+                c.action(&mut self.bodies, &self.forces, self.dt, self.iter);
                 Ok(())
             }
             Engine::Piston(pc) => {

@@ -1248,106 +1248,12 @@ impl Sim {
     /// Change one attribute of a built-in engine (value as JSON) without resetting its state.
     fn engine_set(&mut self, idx: usize, key: &str, json: &str) -> PyResult<()> {
         let v: Value = serde_json::from_str(json).map_err(err)?;
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)))
-        };
         let e = self
             .scene
             .engines
             .get_mut(idx)
             .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
-        let unsupported = |cls: &str| {
-            PyKeyError::new_err(format!(
-                "changing {}.{} during a run is not supported by ryade yet",
-                cls, key
-            ))
-        };
-        match e {
-            Engine::Newton(n) => match key {
-                "damping" => n.damping = num()?,
-                "gravity" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    n.gravity = vec(a)
-                }
-                "dampGravity" => n.damp_gravity = boolean()?,
-                _ => return Err(unsupported("NewtonIntegrator")),
-            },
-            Engine::TimeStepper(t) => match key {
-                "active" => t.active = boolean()?,
-                "timeStepUpdateInterval" => t.time_step_update_interval = num()? as u32,
-                "defaultDt" => t.default_dt = num()?,
-                "maxDt" => t.max_dt = num()?,
-                "timestepSafetyCoefficient" => t.timestep_safety_coefficient = num()?,
-                "previousDt" => t.previous_dt = num()?,
-                _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
-            },
-            Engine::Translation(t) => match key {
-                "ids" => t.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "velocity" => t.velocity = num()?,
-                "translationAxis" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    t.translation_axis = vec(a) // normalised on the Python side
-                }
-                _ => return Err(unsupported("TranslationEngine")),
-            },
-            Engine::Rotation(r) => match key {
-                "ids" => r.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "angularVelocity" => r.angular_velocity = num()?,
-                "rotateAroundZero" => r.rotate_around_zero = boolean()?,
-                "rotationAxis" | "zeroPoint" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    if key == "rotationAxis" {
-                        r.rotation_axis = vec(a) // normalised on the Python side
-                    } else {
-                        r.zero_point = vec(a)
-                    }
-                }
-                _ => return Err(unsupported("RotationEngine")),
-            },
-            Engine::ServoPid(s) => match key {
-                "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "axis" | "current" | "translationAxis" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    match key {
-                        "axis" => s.axis = vec(a),
-                        "current" => s.current = vec(a),
-                        _ => s.translation_axis = vec(a),
-                    }
-                }
-                "target" => s.target = num()?,
-                "kP" => s.kp = num()?,
-                "kI" => s.ki = num()?,
-                "kD" => s.kd = num()?,
-                "iTerm" => s.i_term = num()?,
-                "curVel" => s.cur_vel = num()?,
-                "errorCur" => s.error_cur = num()?,
-                "errorPrev" => s.error_prev = num()?,
-                "maxVelocity" => s.max_velocity = num()?,
-                "iterPeriod" => s.iter_period = num()? as i64,
-                "iterPrevStart" => s.iter_prev_start = num()? as i64,
-                "velocity" => s.velocity = num()?,
-                _ => return Err(unsupported("ServoPIDController")),
-            },
-            // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
-            Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
-            Engine::PeriTriax(p) => peri_triax_set(p, key, &v).map_err(|e| match e {
-                None => unsupported("PeriTriaxController"),
-                Some(e) => PyValueError::new_err(e),
-            })?,
-            Engine::Collider(c) => match key {
-                "verletDist" => c.p.verlet_dist = num()?,
-                "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
-                "doSort" => c.do_sort = boolean()?,
-                _ => return Err(unsupported("InsertionSortCollider")),
-            },
-            other => return Err(unsupported(other.class_name())),
-        }
-        Ok(())
+        engine_set_attr(e, key, &v)
     }
     /// Read an attribute of a built-in engine (JSON).
     fn engine_get(&self, idx: usize, key: &str) -> PyResult<String> {
@@ -1356,73 +1262,7 @@ impl Sim {
             .engines
             .get(idx)
             .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
-        let v = match (e, key) {
-            (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
-            (Engine::Newton(n), "gravity") => {
-                serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
-            }
-            (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
-            (Engine::Newton(n), "prevVelGrad") => {
-                let m = &n.prev_vel_grad;
-                serde_json::json!([
-                    [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-                    [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-                    [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
-                ])
-            }
-            (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
-            (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
-            (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
-            (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
-            (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
-            (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
-            (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
-            (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
-            (Engine::Rotation(r), "ids") => serde_json::json!(r.ids),
-            (Engine::Rotation(r), "angularVelocity") => serde_json::json!(r.angular_velocity),
-            (Engine::Rotation(r), "rotationAxis") => v3json(&r.rotation_axis),
-            (Engine::Rotation(r), "rotateAroundZero") => serde_json::json!(r.rotate_around_zero),
-            (Engine::Rotation(r), "zeroPoint") => v3json(&r.zero_point),
-            (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
-            (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
-                PyKeyError::new_err(format!(
-                    "PeriTriaxController has no readable attribute '{}' in ryade",
-                    k
-                ))
-            })?,
-            (Engine::ServoPid(s), k) => match k {
-                "ids" => serde_json::json!(s.ids),
-                "axis" => v3json(&s.axis),
-                "current" => v3json(&s.current),
-                "translationAxis" => v3json(&s.translation_axis),
-                "target" => serde_json::json!(s.target),
-                "kP" => serde_json::json!(s.kp),
-                "kI" => serde_json::json!(s.ki),
-                "kD" => serde_json::json!(s.kd),
-                "iTerm" => serde_json::json!(s.i_term),
-                "curVel" => serde_json::json!(s.cur_vel),
-                "errorCur" => serde_json::json!(s.error_cur),
-                "errorPrev" => serde_json::json!(s.error_prev),
-                "maxVelocity" => serde_json::json!(s.max_velocity),
-                "iterPeriod" => serde_json::json!(s.iter_period),
-                "iterPrevStart" => serde_json::json!(s.iter_prev_start),
-                "velocity" => serde_json::json!(s.velocity),
-                _ => {
-                    return Err(PyKeyError::new_err(format!(
-                        "ServoPIDController has no readable attribute '{}' in ryade",
-                        key
-                    )))
-                }
-            },
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "{} has no readable attribute '{}' in ryade",
-                    e.class_name(),
-                    key
-                )))
-            }
-        };
-        Ok(v.to_string())
+        Ok(engine_get_attr(e, key)?.to_string())
     }
 
     /// `RyadePistonController.takeSteps()`: the `steps.csv` samples buffered by the piston engine at
@@ -2035,6 +1875,250 @@ fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
         &vec(v1),
         &vec(v2),
     ))
+}
+
+/// Change one attribute of a built-in engine (value as JSON) without resetting its state; a member of a
+/// `CombinedKinematicEngine` is addressed as `comb.N.attr`.
+fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
+    let num = || {
+        v.as_f64()
+            .ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)))
+    };
+    let boolean = || {
+        v.as_bool()
+            .ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)))
+    };
+    let unsupported = |cls: &str| {
+        PyKeyError::new_err(format!(
+            "changing {}.{} during a run is not supported by ryade yet",
+            cls, key
+        ))
+    };
+    match e {
+        Engine::Newton(n) => match key {
+            "damping" => n.damping = num()?,
+            "gravity" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                n.gravity = vec(a)
+            }
+            "dampGravity" => n.damp_gravity = boolean()?,
+            _ => return Err(unsupported("NewtonIntegrator")),
+        },
+        Engine::TimeStepper(t) => match key {
+            "active" => t.active = boolean()?,
+            "timeStepUpdateInterval" => t.time_step_update_interval = num()? as u32,
+            "defaultDt" => t.default_dt = num()?,
+            "maxDt" => t.max_dt = num()?,
+            "timestepSafetyCoefficient" => t.timestep_safety_coefficient = num()?,
+            "previousDt" => t.previous_dt = num()?,
+            _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
+        },
+        Engine::Translation(t) => match key {
+            "ids" => t.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "velocity" => t.velocity = num()?,
+            "translationAxis" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                t.translation_axis = vec(a) // normalised on the Python side
+            }
+            _ => return Err(unsupported("TranslationEngine")),
+        },
+        Engine::Rotation(r) => match key {
+            "ids" => r.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "angularVelocity" => r.angular_velocity = num()?,
+            "rotateAroundZero" => r.rotate_around_zero = boolean()?,
+            "rotationAxis" | "zeroPoint" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                if key == "rotationAxis" {
+                    r.rotation_axis = vec(a) // normalised on the Python side
+                } else {
+                    r.zero_point = vec(a)
+                }
+            }
+            _ => return Err(unsupported("RotationEngine")),
+        },
+        Engine::ServoPid(s) => match key {
+            "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "axis" | "current" | "translationAxis" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                match key {
+                    "axis" => s.axis = vec(a),
+                    "current" => s.current = vec(a),
+                    _ => s.translation_axis = vec(a),
+                }
+            }
+            "target" => s.target = num()?,
+            "kP" => s.kp = num()?,
+            "kI" => s.ki = num()?,
+            "kD" => s.kd = num()?,
+            "iTerm" => s.i_term = num()?,
+            "curVel" => s.cur_vel = num()?,
+            "errorCur" => s.error_cur = num()?,
+            "errorPrev" => s.error_prev = num()?,
+            "maxVelocity" => s.max_velocity = num()?,
+            "iterPeriod" => s.iter_period = num()? as i64,
+            "iterPrevStart" => s.iter_prev_start = num()? as i64,
+            "velocity" => s.velocity = num()?,
+            _ => return Err(unsupported("ServoPIDController")),
+        },
+        // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
+        Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
+        Engine::PeriTriax(p) => peri_triax_set(p, key, &v).map_err(|e| match e {
+            None => unsupported("PeriTriaxController"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
+        Engine::Collider(c) => match key {
+            "verletDist" => c.p.verlet_dist = num()?,
+            "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
+            "doSort" => c.do_sort = boolean()?,
+            _ => return Err(unsupported("InsertionSortCollider")),
+        },
+        Engine::Helix(h) => match key {
+            "linearVelocity" => h.linear_velocity = num()?,
+            "angleTurned" => h.angle_turned = num()?,
+            _ => {
+                let mut r = Engine::Rotation(Box::new(h.rot.clone()));
+                engine_set_attr(&mut r, key, v).map_err(|_| unsupported("HelixEngine"))?;
+                if let Engine::Rotation(r) = r {
+                    h.rot = *r;
+                }
+            }
+        },
+        Engine::CombinedKinematic(c) => {
+            if key == "ids" {
+                c.ids = serde_json::from_value(v.clone()).map_err(err)?;
+            } else if let Some((n, sub)) = key
+                .strip_prefix("comb.")
+                .and_then(|r| r.split_once('.'))
+                .and_then(|(n, sub)| n.parse::<usize>().ok().map(|n| (n, sub)))
+                .filter(|(n, _)| *n < c.comb.len())
+            {
+                if sub == "dead" {
+                    c.comb_dead[n] = boolean()?;
+                } else {
+                    let mut part = part_engine(c.comb[n].clone());
+                    engine_set_attr(&mut part, sub, v)?;
+                    c.comb[n] = engine_part(part);
+                }
+            } else {
+                return Err(unsupported("CombinedKinematicEngine"));
+            }
+        }
+        other => return Err(unsupported(other.class_name())),
+    }
+    Ok(())
+}
+
+/// Read an attribute of a built-in engine (JSON); a member of a `CombinedKinematicEngine` as
+/// `comb.N.attr`.
+fn engine_get_attr(e: &Engine, key: &str) -> PyResult<Value> {
+    let v = match (e, key) {
+        (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
+        (Engine::Newton(n), "gravity") => {
+            serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
+        }
+        (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
+        (Engine::Newton(n), "prevVelGrad") => {
+            let m = &n.prev_vel_grad;
+            serde_json::json!([
+                [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+                [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+                [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
+            ])
+        }
+        (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
+        (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
+        (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
+        (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
+        (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
+        (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
+        (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
+        (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
+        (Engine::Rotation(r), "ids") => serde_json::json!(r.ids),
+        (Engine::Rotation(r), "angularVelocity") => serde_json::json!(r.angular_velocity),
+        (Engine::Rotation(r), "rotationAxis") => v3json(&r.rotation_axis),
+        (Engine::Rotation(r), "rotateAroundZero") => serde_json::json!(r.rotate_around_zero),
+        (Engine::Rotation(r), "zeroPoint") => v3json(&r.zero_point),
+        (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
+        (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
+            PyKeyError::new_err(format!(
+                "PeriTriaxController has no readable attribute '{}' in ryade",
+                k
+            ))
+        })?,
+        (Engine::ServoPid(s), k) => match k {
+            "ids" => serde_json::json!(s.ids),
+            "axis" => v3json(&s.axis),
+            "current" => v3json(&s.current),
+            "translationAxis" => v3json(&s.translation_axis),
+            "target" => serde_json::json!(s.target),
+            "kP" => serde_json::json!(s.kp),
+            "kI" => serde_json::json!(s.ki),
+            "kD" => serde_json::json!(s.kd),
+            "iTerm" => serde_json::json!(s.i_term),
+            "curVel" => serde_json::json!(s.cur_vel),
+            "errorCur" => serde_json::json!(s.error_cur),
+            "errorPrev" => serde_json::json!(s.error_prev),
+            "maxVelocity" => serde_json::json!(s.max_velocity),
+            "iterPeriod" => serde_json::json!(s.iter_period),
+            "iterPrevStart" => serde_json::json!(s.iter_prev_start),
+            "velocity" => serde_json::json!(s.velocity),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "ServoPIDController has no readable attribute '{}' in ryade",
+                    key
+                )))
+            }
+        },
+        (Engine::Helix(h), "linearVelocity") => serde_json::json!(h.linear_velocity),
+        (Engine::Helix(h), "angleTurned") => serde_json::json!(h.angle_turned),
+        (Engine::Helix(h), k) => engine_get_attr(&Engine::Rotation(Box::new(h.rot.clone())), k)?,
+        (Engine::CombinedKinematic(c), "ids") => serde_json::json!(c.ids),
+        (Engine::CombinedKinematic(c), k)
+            if k.strip_prefix("comb.")
+                .and_then(|r| r.split_once('.'))
+                .and_then(|(n, _)| n.parse::<usize>().ok())
+                .is_some_and(|n| n < c.comb.len()) =>
+        {
+            let (n, sub) = k["comb.".len()..].split_once('.').unwrap();
+            let n: usize = n.parse().unwrap();
+            if sub == "dead" {
+                serde_json::json!(c.comb_dead[n])
+            } else {
+                engine_get_attr(&part_engine(c.comb[n].clone()), sub)?
+            }
+        }
+        _ => {
+            return Err(PyKeyError::new_err(format!(
+                "{} has no readable attribute '{}' in ryade",
+                e.class_name(),
+                key
+            )))
+        }
+    };
+    Ok(v)
+}
+
+/// A member of a `CombinedKinematicEngine` as the engine it stands for (to reuse the attribute code).
+fn part_engine(p: ryade::kinematic::KinematicPart) -> Engine {
+    use ryade::kinematic::KinematicPart as K;
+    match p {
+        K::Translation(t) => Engine::Translation(Box::new(t)),
+        K::Rotation(r) => Engine::Rotation(Box::new(r)),
+        K::Helix(h) => Engine::Helix(Box::new(h)),
+        K::ServoPid(s) => Engine::ServoPid(Box::new(s)),
+    }
+}
+
+/// The inverse of `part_engine` (only kinematic engines come back).
+fn engine_part(e: Engine) -> ryade::kinematic::KinematicPart {
+    use ryade::kinematic::KinematicPart as K;
+    match e {
+        Engine::Translation(t) => K::Translation(*t),
+        Engine::Rotation(r) => K::Rotation(*r),
+        Engine::Helix(h) => K::Helix(*h),
+        Engine::ServoPid(s) => K::ServoPid(*s),
+        _ => unreachable!("engine_part on a non-kinematic engine"),
+    }
 }
 
 #[pymodule]

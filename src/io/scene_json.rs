@@ -12,6 +12,7 @@ use crate::geom;
 use crate::geom::{Fict, GeomExt, GridCoGridCo, Rot6D, ScGeom, ScGridCo};
 use crate::integrator::Newton;
 use crate::interaction::{Interaction, IntrExt};
+use crate::kinematic::KinematicPart;
 use crate::law;
 use crate::material::CohFrictParams;
 use crate::material::FrictMat;
@@ -695,7 +696,8 @@ fn quat_of(v: &Value) -> Result<Quat> {
 }
 
 pub fn engine(e: &Value) -> Result<Engine> {
-    Ok(match class(e)? {
+    let cls = class(e)?;
+    Ok(match cls {
         "ForceResetter" => Engine::ForceResetter,
         "External" => Engine::External(
             e.get("id")
@@ -868,21 +870,47 @@ pub fn engine(e: &Value) -> Result<Engine> {
             mask: fo(e, "mask", -1.0)? as i32,
             ..Default::default()
         })),
-        "TranslationEngine" => Engine::Translation(Box::new(crate::kinematic::TranslationEngine {
+        "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine" => {
+
+            match kinematic_part(e, cls)? {
+                KinematicPart::Translation(t) => Engine::Translation(Box::new(t)),
+                KinematicPart::Rotation(r) => Engine::Rotation(Box::new(r)),
+                KinematicPart::ServoPid(p) => Engine::ServoPid(Box::new(p)),
+                KinematicPart::Helix(h) => Engine::Helix(Box::new(h)),
+            }
+        }
+        "CombinedKinematicEngine" => {
+            let mut c = crate::kinematic::CombinedKinematicEngine {
+                ids: ids(e)?,
+                ..Default::default()
+            };
+            for p in e.get("comb").and_then(|v| v.as_array()).cloned().unwrap_or_default() {
+                let pc = p.get("class").and_then(|v| v.as_str()).unwrap_or("");
+                c.comb.push(kinematic_part(&p, pc)?);
+                c.comb_dead.push(bo(&p, "dead", false)?);
+            }
+            Engine::CombinedKinematic(Box::new(c))
+        }
+        // a ryade extension (not a YADE class): the study's piston law, src/piston.rs
+        "RyadePistonController" => Engine::Piston(Box::new(
+            crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
+        "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+    })
+}
+
+/// A kinematic engine of KinematicEngines.cpp (alone or a member of a `CombinedKinematicEngine`).
+fn kinematic_part(e: &Value, cls: &str) -> Result<KinematicPart> {
+    Ok(match cls {
+        "TranslationEngine" => KinematicPart::Translation(crate::kinematic::TranslationEngine {
             ids: ids(e)?,
             velocity: fo(e, "velocity", 0.0)?,
             // taken as stored: YADE's postLoad normalisation already happened where the file was written
             translation_axis: vec3_or(e, "translationAxis", Vec3::zeros())?,
-        })),
-        "RotationEngine" => Engine::Rotation(Box::new(crate::kinematic::RotationEngine {
-            ids: ids(e)?,
-            angular_velocity: fo(e, "angularVelocity", 0.0)?,
-            // taken as stored (normalised where the file was written, as for TranslationEngine)
-            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
-            rotate_around_zero: bo(e, "rotateAroundZero", false)?,
-            zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
-        })),
-        "ServoPIDController" => Engine::ServoPid(Box::new(crate::kinematic::ServoPid {
+        }),
+        "RotationEngine" => KinematicPart::Rotation(rotation(e)?),
+        "ServoPIDController" => KinematicPart::ServoPid(crate::kinematic::ServoPid {
             ids: ids(e)?,
             axis: vec3_or(e, "axis", Vec3::zeros())?,
             target: fo(e, "target", 0.0)?,
@@ -897,14 +925,53 @@ pub fn engine(e: &Value) -> Result<Engine> {
             iter_period: fo(e, "iterPeriod", 100.0)? as i64,
             iter_prev_start: fo(e, "iterPrevStart", -1.0)? as i64,
             ..Default::default()
-        })),
-        // a ryade extension (not a YADE class): the study's piston law, src/piston.rs
-        "RyadePistonController" => Engine::Piston(Box::new(
-            crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
-        )),
-        "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        }),
+        "HelixEngine" => KinematicPart::Helix(crate::kinematic::HelixEngine {
+            rot: rotation(e)?,
+            linear_velocity: fo(e, "linearVelocity", 0.0)?,
+            angle_turned: fo(e, "angleTurned", 0.0)?,
+        }),
+        other => bail!("kinematic engine '{}' is not supported by ryade yet", other),
     })
+}
+
+fn rotation(e: &Value) -> Result<crate::kinematic::RotationEngine> {
+    Ok(crate::kinematic::RotationEngine {
+        ids: ids(e)?,
+        angular_velocity: fo(e, "angularVelocity", 0.0)?,
+        // taken as stored (normalised where the file was written, as for TranslationEngine)
+        rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+        rotate_around_zero: bo(e, "rotateAroundZero", false)?,
+        zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
+    })
+}
+
+/// A kinematic engine's JSON (alone or as a member of a `CombinedKinematicEngine`).
+fn kinematic_value(k: &KinematicPart) -> Value {
+    use serde_json::json;
+    let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
+
+    match k {
+        KinematicPart::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
+                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
+                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
+        KinematicPart::Translation(t) => {
+            json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
+                "translationAxis": v3(&t.translation_axis)})
+        }
+        KinematicPart::ServoPid(p) => {
+            json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
+                "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
+                "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
+                "iterPrevStart": p.iter_prev_start})
+        }
+        KinematicPart::Helix(h) => {
+            let r = &h.rot;
+            json!({"class": "HelixEngine", "ids": r.ids, "angularVelocity": r.angular_velocity,
+                "rotationAxis": v3(&r.rotation_axis), "rotateAroundZero": r.rotate_around_zero,
+                "zeroPoint": v3(&r.zero_point), "linearVelocity": h.linear_velocity, "angleTurned": h.angle_turned})
+        }
+    }
 }
 
 /// A number that may be NaN, written as `null` (JSON has no NaN); missing: `default`.
@@ -1266,15 +1333,18 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
-            Engine::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
-                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
-                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
-            Engine::Translation(t) => json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
-                "translationAxis": v3(&t.translation_axis)}),
-            Engine::ServoPid(p) => json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
-                "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
-                "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
-                "iterPrevStart": p.iter_prev_start}),
+            Engine::Rotation(r) => kinematic_value(&KinematicPart::Rotation((**r).clone())),
+            Engine::Translation(t) => kinematic_value(&KinematicPart::Translation((**t).clone())),
+            Engine::ServoPid(p) => kinematic_value(&KinematicPart::ServoPid((**p).clone())),
+            Engine::Helix(h) => kinematic_value(&KinematicPart::Helix((**h).clone())),
+            Engine::CombinedKinematic(c) => {
+                let comb: Vec<Value> = c.comb.iter().zip(&c.comb_dead).map(|(p, &dead)| {
+                    let mut v = kinematic_value(p);
+                    v["dead"] = json!(dead);
+                    v
+                }).collect();
+                json!({"class": "CombinedKinematicEngine", "ids": c.ids, "comb": comb})
+            }
             Engine::Piston(p) => p.to_json(),
             Engine::PeriTriax(p) => peri_triax_value(p),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner

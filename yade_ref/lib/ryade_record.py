@@ -317,6 +317,21 @@ def _engine(e, grid=False):
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
                 'zeroPoint': _v3(e.zeroPoint)}
+    if c == 'HelixEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint), 'linearVelocity': float(e.linearVelocity),
+                'angleTurned': float(e.angleTurned)}
+    if c == 'CombinedKinematicEngine':
+        comb = []
+        for m in e.comb:
+            dead = bool(m.dead)
+            m.dead = False  # _engine refuses dead engines; a member's dead flag is recorded here
+            d = _engine(m, grid)
+            m.dead = dead
+            d['dead'] = dead
+            comb.append(d)
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'comb': comb}
     if c == 'ServoPIDController':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'axis': _v3(e.axis), 'target': float(e.target),
                 'kP': float(e.kP), 'kI': float(e.kI), 'kD': float(e.kD), 'iTerm': float(e.iTerm),

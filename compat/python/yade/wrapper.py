@@ -545,7 +545,8 @@ class PartialEngine(Engine):
 
 class KinematicEngine(PartialEngine):
     def __add__(self, other):
-        unsupported('combining kinematic engines with + (CombinedKinematicEngine)')
+        # YADE CombinedKinematicEngine::fromTwo: a new combination with the first engine's ids
+        return CombinedKinematicEngine._from_two(self, other)
 
 
 def _eigen_normalized(v):
@@ -629,6 +630,89 @@ class ServoPIDController(TranslationEngine):
              'iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPeriod', 'iterPrevStart')
     _vectors = ('translationAxis', 'axis', 'current')
     _state = ('iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPrevStart', 'velocity')
+
+
+class HelixEngine(RotationEngine):
+    """RotationEngine plus a velocity linearVelocity along the axis, always about zeroPoint (its apply sets
+    rotateAroundZero); angleTurned counts the angle. Run in the Rust core (`kinematic::HelixEngine`)."""
+    _attrs = {'linearVelocity': 0.0, 'angleTurned': 0.0}
+    _live = RotationEngine._live + ('linearVelocity', 'angleTurned')
+    _state = ('angleTurned', 'rotateAroundZero')
+
+
+class _MemberSim(object):
+    """The Rust engine slot of a CombinedKinematicEngine seen from one of its members: attribute
+    `k` of member `n` is `comb.n.k` of the combination."""
+
+    def __init__(self, sim, n):
+        self._sim, self._n = sim, n
+
+    def engine_set(self, index, k, v):
+        self._sim.engine_set(index, 'comb.%d.%s' % (self._n, k), v)
+
+    def engine_get(self, index, k):
+        return self._sim.engine_get(index, 'comb.%d.%s' % (self._n, k))
+
+    def set_engine_dead(self, index, dead):
+        self._sim.engine_set(index, 'comb.%d.dead' % self._n, json.dumps(bool(dead)))
+
+
+class _MemberOwner(object):
+    def __init__(self, omega, n):
+        self._sim = _MemberSim(omega._sim, n)
+
+
+class CombinedKinematicEngine(PartialEngine):
+    """YADE's combination of kinematic engines (`a + b + c`, KinematicEngines.cpp): the listed bodies'
+    velocities are reset once, then every member that is not dead adds its motion, in order, on the
+    combination's ids (the first engine's). Members stay live: `comb[k].attr = v` reaches the run."""
+    _attrs = {'comb': []}
+    _live = ('ids',)
+
+    @classmethod
+    def _from_two(cls, first, second):
+        c = cls()
+        c._values['ids'] = list(first._values['ids'])
+        c._values['comb'] = [first, second]
+        return c
+
+    def __add__(self, other):
+        # YADE appendOne: this object, one member more
+        if not isinstance(other, KinematicEngine):
+            raise TypeError('only a KinematicEngine can be added to a CombinedKinematicEngine, got %s' % type(other).__name__)
+        if self._owner is not None:
+            unsupported('adding to a CombinedKinematicEngine after O.engines was assigned')
+        self._values['comb'].append(other)
+        return self
+
+    def _convert(self, k, v):
+        if k == 'comb':
+            out = list(v)
+            for e in out:
+                if not isinstance(e, KinematicEngine):
+                    raise TypeError('CombinedKinematicEngine.comb takes KinematicEngines, got %s' % type(e).__name__)
+            return out
+        return PartialEngine._convert(self, k, v)
+
+    def _changed(self, k):
+        if k == 'comb' and self._owner is not None:
+            unsupported('changing CombinedKinematicEngine.comb after O.engines was assigned')
+        PartialEngine._changed(self, k)
+
+    def _bind(self, omega, index):
+        Engine._bind(self, omega, index)
+        for n, e in enumerate(self._values['comb']):
+            object.__setattr__(e, '_owner', (_MemberOwner(omega, n), index))
+
+    def _json(self):
+        comb = []
+        for e in self._values['comb']:
+            if not isinstance(e, (TranslationEngine, RotationEngine)):
+                unsupported('%s in a CombinedKinematicEngine' % type(e).__name__)
+            d = e._json()
+            d['dead'] = bool(e._values['dead'])
+            comb.append(d)
+        return {'class': 'CombinedKinematicEngine', 'ids': list(self._values['ids']), 'comb': comb}
 
 
 def _float_json(v):
@@ -998,7 +1082,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
-    RyadePistonController,
+    HelixEngine, CombinedKinematicEngine, RyadePistonController,
     BoundaryController, PeriTriaxController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
