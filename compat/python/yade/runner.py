@@ -125,6 +125,12 @@ def run(script, args, mode='check'):
     mod.__builtins__ = __builtins__
     sys.modules['__main__'] = mod
     _namespace(mod)
+    # YADE's parsed command line (`yade -n -x SCRIPT ARGS`), which its scripts read as `opts`
+    import argparse
+    mod.__dict__['opts'] = argparse.Namespace(
+        version=False, threads=None, cores=None, updateScripts=None, nice=None, exitAfter=True, verbosity=None,
+        nogui=True, test=False, check=False, checkall=False, performance=False, quickperformance=False,
+        stdperformance=None, script=path, args=[path] + list(args), impLibraries=None, mpi_mode=False)
     with open(path, 'rb') as f:
         code = compile(f.read(), path, 'exec')
     import signal

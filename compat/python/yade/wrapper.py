@@ -391,6 +391,11 @@ class InsertionSortCollider(GlobalEngine):
             return
         Serializable.__setattr__(self, k, v)
 
+    def _convert(self, k, v):
+        if k in ('avoidSelfInteractionMask', 'targetInterv', 'sortAxis'):
+            return int(v)  # int attributes in YADE (a bool such as avoidSelfInteractionMask=True is 1)
+        return v
+
     @property
     def boundDispatcher(self):
         return _Dispatcher(self._bounds_list)
