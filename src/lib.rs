@@ -39,6 +39,7 @@ pub mod collider;
 pub mod dispatch;
 pub mod energy;
 pub mod fast;
+pub mod force_engine;
 pub mod forces;
 pub mod gap;
 pub mod gap_run;

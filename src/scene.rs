@@ -286,6 +286,8 @@ pub enum Engine {
     ServoPid(Box<crate::kinematic::ServoPid>),
     Helix(Box<crate::kinematic::HelixEngine>),
     CombinedKinematic(Box<crate::kinematic::CombinedKinematicEngine>),
+    Force(Box<crate::force_engine::ForceEngine>),
+    HarmonicForce(Box<crate::force_engine::HarmonicForceEngine>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
@@ -307,6 +309,8 @@ impl Engine {
             Engine::ServoPid(_) => "ServoPIDController",
             Engine::Helix(_) => "HelixEngine",
             Engine::CombinedKinematic(_) => "CombinedKinematicEngine",
+            Engine::Force(_) => "ForceEngine",
+            Engine::HarmonicForce(_) => "HarmonicForceEngine",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
@@ -588,6 +592,14 @@ impl Scene {
             }
             Engine::CombinedKinematic(c) => {
                 c.action(&mut self.bodies, &self.forces, self.dt, self.iter);
+                Ok(())
+            }
+            Engine::Force(f) => {
+                f.action(&mut self.forces, self.bodies.len());
+                Ok(())
+            }
+            Engine::HarmonicForce(h) => {
+                h.action(&mut self.forces, self.bodies.len(), self.time);
                 Ok(())
             }
             Engine::Piston(pc) => {

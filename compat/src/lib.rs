@@ -1983,6 +1983,26 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 }
             }
         },
+        Engine::Force(f) => match key {
+            "ids" => f.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "force" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                f.force = vec(a)
+            }
+            _ => return Err(unsupported("ForceEngine")),
+        },
+        Engine::HarmonicForce(h) => match key {
+            "ids" => h.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "A" | "f" | "fi" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                match key {
+                    "A" => h.a = vec(a),
+                    "f" => h.f = vec(a),
+                    _ => h.fi = vec(a),
+                }
+            }
+            _ => return Err(unsupported("HarmonicForceEngine")),
+        },
         Engine::CombinedKinematic(c) => {
             if key == "ids" {
                 c.ids = serde_json::from_value(v.clone()).map_err(err)?;
@@ -2072,6 +2092,12 @@ fn engine_get_attr(e: &Engine, key: &str) -> PyResult<Value> {
         (Engine::Helix(h), "linearVelocity") => serde_json::json!(h.linear_velocity),
         (Engine::Helix(h), "angleTurned") => serde_json::json!(h.angle_turned),
         (Engine::Helix(h), k) => engine_get_attr(&Engine::Rotation(Box::new(h.rot.clone())), k)?,
+        (Engine::Force(f), "ids") => serde_json::json!(f.ids),
+        (Engine::Force(f), "force") => v3json(&f.force),
+        (Engine::HarmonicForce(h), "ids") => serde_json::json!(h.ids),
+        (Engine::HarmonicForce(h), "A") => v3json(&h.a),
+        (Engine::HarmonicForce(h), "f") => v3json(&h.f),
+        (Engine::HarmonicForce(h), "fi") => v3json(&h.fi),
         (Engine::CombinedKinematic(c), "ids") => serde_json::json!(c.ids),
         (Engine::CombinedKinematic(c), k)
             if k.strip_prefix("comb.")

@@ -879,6 +879,16 @@ pub fn engine(e: &Value) -> Result<Engine> {
                 KinematicPart::Helix(h) => Engine::Helix(Box::new(h)),
             }
         }
+        "ForceEngine" => Engine::Force(Box::new(crate::force_engine::ForceEngine {
+            ids: ids(e)?,
+            force: vec3_or(e, "force", Vec3::zeros())?,
+        })),
+        "HarmonicForceEngine" => Engine::HarmonicForce(Box::new(crate::force_engine::HarmonicForceEngine {
+            ids: ids(e)?,
+            a: vec3_or(e, "A", Vec3::zeros())?,
+            f: vec3_or(e, "f", Vec3::zeros())?,
+            fi: vec3_or(e, "fi", Vec3::zeros())?,
+        })),
         "CombinedKinematicEngine" => {
             let mut c = crate::kinematic::CombinedKinematicEngine {
                 ids: ids(e)?,
@@ -896,7 +906,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, ForceEngine, HarmonicForceEngine, PeriTriaxController; ryade's own: RyadePistonController)", other),
     })
 }
 
@@ -1337,6 +1347,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::Translation(t) => kinematic_value(&KinematicPart::Translation((**t).clone())),
             Engine::ServoPid(p) => kinematic_value(&KinematicPart::ServoPid((**p).clone())),
             Engine::Helix(h) => kinematic_value(&KinematicPart::Helix((**h).clone())),
+            Engine::Force(f) => json!({"class": "ForceEngine", "ids": f.ids, "force": v3(&f.force)}),
+            Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
+                "f": v3(&h.f), "fi": v3(&h.fi)}),
             Engine::CombinedKinematic(c) => {
                 let comb: Vec<Value> = c.comb.iter().zip(&c.comb_dead).map(|(p, &dead)| {
                     let mut v = kinematic_value(p);

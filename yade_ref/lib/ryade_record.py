@@ -317,6 +317,10 @@ def _engine(e, grid=False):
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
                 'zeroPoint': _v3(e.zeroPoint)}
+    if c == 'ForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}
+    if c == 'HarmonicForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'A': _v3(e.A), 'f': _v3(e.f), 'fi': _v3(e.fi)}
     if c == 'HelixEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),

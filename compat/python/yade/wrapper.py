@@ -645,6 +645,32 @@ class HelixEngine(RotationEngine):
     _state = ('angleTurned', 'rotateAroundZero')
 
 
+class ForceEngine(PartialEngine):
+    """A constant force added to the listed bodies every step (ForceEngine.cpp; Rust core
+    `force_engine::ForceEngine`)."""
+    _attrs = {'force': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'force')
+    _axis = None
+    _vectors = ('force',)
+    _state = ()
+    _convert = _AxisEngine._convert
+    _read = _AxisEngine._read
+    _json = _AxisEngine._json
+
+
+class HarmonicForceEngine(PartialEngine):
+    """A force A_i sin(2 pi f_i t + fi_i) per axis added to the listed bodies every step (ForceEngine.cpp;
+    Rust core `force_engine::HarmonicForceEngine`)."""
+    _attrs = {'A': (0.0, 0.0, 0.0), 'f': (0.0, 0.0, 0.0), 'fi': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'A', 'f', 'fi')
+    _axis = None
+    _vectors = ('A', 'f', 'fi')
+    _state = ()
+    _convert = _AxisEngine._convert
+    _read = _AxisEngine._read
+    _json = _AxisEngine._json
+
+
 class _MemberSim(object):
     """The Rust engine slot of a CombinedKinematicEngine seen from one of its members: attribute
     `k` of member `n` is `comb.n.k` of the combination."""
@@ -1087,7 +1113,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
-    HelixEngine, CombinedKinematicEngine, RyadePistonController,
+    HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, RyadePistonController,
     BoundaryController, PeriTriaxController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
