@@ -1,13 +1,14 @@
 //! Contact physics: `Ip2_FrictMat_FrictMat_FrictPhys` (pkg/dem/FrictPhys.cpp) and
 //! `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` (pkg/dem/CohesiveFrictionalContactLaw.cpp),
-//! `Ip2_ViscElMat_ViscElMat_ViscElPhys` (pkg/dem/ViscoelasticPM.cpp).
+//! `Ip2_ViscElMat_ViscElMat_ViscElPhys` (pkg/dem/ViscoelasticPM.cpp), `Ip2_FrictMat_FrictMat_MindlinPhys`
+//! (pkg/dem/HertzMindlin.cpp).
 
 use crate::geom::ScGeom;
 use crate::material::FrictMat;
 use crate::math::Vec3;
 
 /// Physics classes for law dispatch (IPhys <- NormPhys <- NormShearPhys <- FrictPhys <-
-/// RotStiffFrictPhys <- CohFrictPhys; FrictPhys <- ViscElPhys).
+/// RotStiffFrictPhys <- CohFrictPhys, MindlinPhys; FrictPhys <- ViscElPhys).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PhysClass {
     IPhys,
@@ -17,6 +18,7 @@ pub enum PhysClass {
     RotStiffFrictPhys,
     CohFrictPhys,
     ViscElPhys,
+    MindlinPhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -30,6 +32,7 @@ impl crate::dispatch::Hierarchy for PhysClass {
             ViscElPhys => Some(FrictPhys),
             RotStiffFrictPhys => Some(FrictPhys),
             CohFrictPhys => Some(RotStiffFrictPhys),
+            MindlinPhys => Some(RotStiffFrictPhys),
         }
     }
 }
@@ -495,4 +498,145 @@ mod viscel_tests {
             assert!((viscel_en_from_cn(cn, m, k) - en).abs() / en <= 1e-2);
         }
     }
+}
+
+/// `Ip2_FrictMat_FrictMat_MindlinPhys`'s attributes (pkg/dem/HertzMindlin.hpp); `en`, `es`, `betan`,
+/// `betas` are constant MatchMakers when given.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MindlinIp2 {
+    pub gamma: f64,
+    pub eta: f64,
+    pub krot: f64,
+    pub ktwist: f64,
+    pub en: Option<f64>,
+    pub es: Option<f64>,
+    pub betan: Option<f64>,
+    pub betas: Option<f64>,
+}
+
+/// What `MindlinPhys` (pkg/dem/HertzMindlin.hpp) adds to `FrictPhys` (kn, ks, tanφ and the forces are
+/// there; kn and ks are recomputed by the law at every step), with `RotStiffFrictPhys`'s kr and ktw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MindlinPhys {
+    pub kno: f64,
+    pub kso: f64,
+    pub max_bend_pl: f64,
+    pub normal_viscous: Vec3,
+    pub shear_viscous: Vec3,
+    pub shear_elastic: Vec3,
+    pub us_elastic: Vec3,
+    pub us_total: Vec3,
+    pub moment_bend: Vec3,
+    pub moment_twist: Vec3,
+    pub radius: f64,
+    pub adhesion_force: f64,
+    pub is_adhesive: bool,
+    pub is_sliding: bool,
+    pub betan: f64,
+    pub betas: f64,
+    pub kr: f64,
+    pub ktw: f64,
+}
+
+impl Default for MindlinPhys {
+    fn default() -> Self {
+        MindlinPhys {
+            kno: 0.0,
+            kso: 0.0,
+            max_bend_pl: 0.0,
+            normal_viscous: Vec3::zeros(),
+            shear_viscous: Vec3::zeros(),
+            shear_elastic: Vec3::zeros(),
+            us_elastic: Vec3::zeros(),
+            us_total: Vec3::zeros(),
+            moment_bend: Vec3::zeros(),
+            moment_twist: Vec3::zeros(),
+            radius: f64::NAN,
+            adhesion_force: 0.0,
+            is_adhesive: false,
+            is_sliding: false,
+            betan: 0.0,
+            betas: 0.0,
+            kr: 0.0,
+            ktw: 0.0,
+        }
+    }
+}
+
+/// `Ip2_FrictMat_FrictMat_MindlinPhys::go` (pkg/dem/HertzMindlin.cpp), same operation order. Errors as
+/// YADE's `invalid_argument` when both en and betan (or es and betas) are given.
+pub fn ip2_mindlin(
+    p: &MindlinIp2,
+    m1: &FrictMat,
+    m2: &FrictMat,
+    g: &ScGeom,
+) -> Result<(FrictPhys, MindlinPhys), String> {
+    let (ea, eb, va, vb) = (m1.young, m2.young, m1.poisson, m2.poisson);
+    let (da, db) = g.ref_radii();
+    let ga = ea / (2.0 * (1.0 + va));
+    let gb = eb / (2.0 * (1.0 + vb));
+    let g_eff = 1.0 / ((2.0 - va) / ga + (2.0 - vb) / gb);
+    let e_eff = ea * eb / ((1. - va * va) * eb + (1. - vb * vb) * ea);
+    let r = da * db / (da + db);
+    let r_mean = (da + db) / 2.;
+    let kno = 4. / 3. * e_eff * r.sqrt();
+    let kso = 8.0 * r.sqrt() * g_eff;
+    let friction_angle = m1.friction_angle.min(m2.friction_angle);
+    let adhesion = 4. * std::f64::consts::PI * r * p.gamma;
+    let mut mp = MindlinPhys {
+        kno,
+        kso,
+        adhesion_force: adhesion,
+        kr: p.krot,
+        ktw: p.ktwist,
+        max_bend_pl: p.eta * r_mean,
+        ..Default::default()
+    };
+    if p.en.is_some() && p.betan.is_some() {
+        return Err(
+            "Ip2_FrictMat_FrictMat_MindlinPhys: only one of en, betan can be specified.".into(),
+        );
+    }
+    if p.es.is_some() && p.betas.is_some() {
+        return Err(
+            "Ip2_FrictMat_FrictMat_MindlinPhys: only one of es, betas can be specified.".into(),
+        );
+    }
+    if p.en.is_some() || p.es.is_some() {
+        // Thornton et al. (2013), eqs. (B6), (B7)
+        let h = [
+            -6.918798, -16.41105, 146.8049, -796.4559, 2928.711, -7206.864, 11494.29, -11342.18,
+            6276.757, -1489.915,
+        ];
+        let en = p.en.or(p.es).unwrap();
+        let es = p.es.or(p.en).unwrap();
+        let alpha = |e: f64| {
+            let mut acc = h[9];
+            for k in (1..9).rev() {
+                acc = h[k] + e * acc;
+            }
+            e * (h[0] + e * acc)
+        };
+        let beta = |e: f64, a: f64| {
+            if e == 1.0 {
+                0.0
+            } else {
+                let ope = 1.0 + e;
+                (1.0 / (1.0 - (ope * ope) * a.exp()) - 1.0).sqrt()
+            }
+        };
+        mp.betan = beta(en, alpha(en));
+        mp.betas = beta(es, alpha(es));
+    } else {
+        mp.betan = p.betan.unwrap_or(0.0);
+        mp.betas = p.betas.unwrap_or(mp.betan);
+    }
+    let fp = FrictPhys {
+        kn: 0.0,
+        ks: 0.0,
+        tan_phi: friction_angle.tan(),
+        normal_force: Vec3::zeros(),
+        shear_force: Vec3::zeros(),
+    };
+    Ok((fp, mp))
 }

@@ -42,6 +42,8 @@ pub struct InteractionLoop {
     pub cohfrict_phys: Option<phys::CohFrictIp2>,
     /// `Ip2_ViscElMat_ViscElMat_ViscElPhys` present.
     pub viscel_phys: bool,
+    /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
+    pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
     pub cundall_strack: Option<law::Params>,
     /// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`
@@ -54,6 +56,8 @@ pub struct InteractionLoop {
     pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
     /// `Law2_ScGeom_ViscElPhys_Basic` present.
     pub viscel_basic: bool,
+    /// `Law2_ScGeom_MindlinPhys_Mindlin` and its attributes.
+    pub mindlin: Option<law::mindlin::Params>,
     /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
     pub energy_caches: [IdCache; LawFunctor::COUNT],
 }
@@ -115,12 +119,14 @@ impl InteractionLoop {
             frict_phys: false,
             cohfrict_phys: None,
             viscel_phys: false,
+            mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
             scgridco_frict: None,
             scgridco_cohfrict: None,
             gridco_gridco_frict: None,
             viscel_basic: false,
+            mindlin: None,
             energy_caches: Default::default(),
         }
     }
@@ -212,6 +218,13 @@ impl InteractionLoop {
                 f: PhysFunctor::ViscEl,
             });
         }
+        if self.mindlin_phys.is_some() {
+            v.push(Entry {
+                a: MatClass::FrictMat,
+                b: MatClass::FrictMat,
+                f: PhysFunctor::Mindlin,
+            });
+        }
         Ok(dispatch::resolve(&v, true, a, b, Some, Some)?.map(|(f, _)| f))
     }
 
@@ -262,6 +275,12 @@ impl InteractionLoop {
             PhysClass::ViscElPhys,
             LawFunctor::ViscElBasic,
         );
+        add(
+            self.mindlin.is_some(),
+            GeomClass::ScGeom,
+            PhysClass::MindlinPhys,
+            LawFunctor::Mindlin,
+        );
         Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
     }
 }
@@ -272,6 +291,7 @@ enum PhysFunctor {
     Frict,
     CohFrict,
     ViscEl,
+    Mindlin,
 }
 
 #[derive(Clone, Debug)]
@@ -1486,6 +1506,18 @@ impl Scene {
                     it.ext_mut().viscel = Some(vp);
                 }
             }
+            Some(PhysFunctor::Mindlin) => {
+                if it.phys.is_none() {
+                    let (fp, mp) = phys::ip2_mindlin(
+                        il.mindlin_phys.as_ref().unwrap(),
+                        m1,
+                        m2,
+                        it.geom.as_ref().unwrap(),
+                    )?;
+                    it.phys = Some(fp);
+                    it.ext_mut().mindlin = Some(mp);
+                }
+            }
             None => {
                 return Err(format!(
                     "Undefined IPhys dispatch for materials of #{} and #{} ({} and {}): add {}",
@@ -1526,6 +1558,8 @@ impl Scene {
             PhysClass::CohFrictPhys
         } else if it.viscel().is_some() {
             PhysClass::ViscElPhys
+        } else if it.mindlin().is_some() {
+            PhysClass::MindlinPhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1543,6 +1577,7 @@ impl Scene {
                         "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack()",
                     (_, PhysClass::CohFrictPhys) => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment()",
                     (_, PhysClass::ViscElPhys) => "Law2_ScGeom_ViscElPhys_Basic()",
+                    (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1665,6 +1700,40 @@ impl Scene {
                         true
                     }
                     None => false,
+                }
+            }
+            LawFunctor::Mindlin => {
+                let mp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.mindlin.as_mut())
+                    .ok_or_else(|| bad("MindlinPhys"))?;
+                let (shift_vel, shift2) = match &self.cell {
+                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
+                    None => (Vec3::zeros(), Vec3::zeros()),
+                };
+                let mb = law::mindlin::Bodies {
+                    s1: geom::Kin::of(b, id1),
+                    s2: geom::Kin::of(b, id2),
+                    mass1: b.mass[id1],
+                    mass2: b.mass[id2],
+                    dynamic1: b.is_dynamic(id1),
+                    dynamic2: b.is_dynamic(id2),
+                    shift2,
+                    shift_vel,
+                    periodic: self.cell.is_some(),
+                };
+                match law::mindlin::load(il.mindlin.as_ref().unwrap(), self.dt, &g, ph, mp, &mb) {
+                    law::mindlin::Outcome::Erase => false,
+                    law::mindlin::Outcome::Keep => true,
+                    law::mindlin::Outcome::Apply(l, moment) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        if let Some(m) = moment {
+                            self.forces.add_torque(id1, &(-m));
+                            self.forces.add_torque(id2, &m);
+                        }
+                        true
+                    }
                 }
             }
             LawFunctor::GridCoGridCoFrict => {

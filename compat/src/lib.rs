@@ -1661,10 +1661,49 @@ impl Sim {
             "CohFrictPhys"
         } else if ext.and_then(|e| e.viscel.as_ref()).is_some() {
             "ViscElPhys"
+        } else if ext.and_then(|e| e.mindlin.as_ref()).is_some() {
+            "MindlinPhys"
         } else {
             "FrictPhys"
         };
         Ok((g.to_string(), p.to_string()))
+    }
+    /// A `MindlinPhys` attribute as JSON (None when the physics is not a MindlinPhys or has no such
+    /// attribute).
+    fn intr_mindlin(&self, a: u32, b: u32, field: &str) -> PyResult<Option<String>> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let Some(m) = it.ext.as_deref().and_then(|e| e.mindlin.as_ref()) else {
+            return Ok(None);
+        };
+        use serde_json::json as j;
+        let v = match field {
+            "kno" => j!(m.kno),
+            "kso" => j!(m.kso),
+            "maxBendPl" => j!(m.max_bend_pl),
+            "normalViscous" => v3json(&m.normal_viscous),
+            "shearViscous" => v3json(&m.shear_viscous),
+            "shearElastic" => v3json(&m.shear_elastic),
+            "usElastic" => v3json(&m.us_elastic),
+            "usTotal" => v3json(&m.us_total),
+            "momentBend" => v3json(&m.moment_bend),
+            "momentTwist" => v3json(&m.moment_twist),
+            "radius" => {
+                if m.radius.is_nan() {
+                    j!("nan")
+                } else {
+                    j!(m.radius)
+                }
+            }
+            "adhesionForce" => j!(m.adhesion_force),
+            "isAdhesive" => j!(m.is_adhesive),
+            "isSliding" => j!(m.is_sliding),
+            "betan" => j!(m.betan),
+            "betas" => j!(m.betas),
+            "kr" => j!(m.kr),
+            "ktw" => j!(m.ktw),
+            _ => return Ok(None),
+        };
+        Ok(Some(v.to_string()))
     }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {
@@ -2003,6 +2042,41 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             }
             _ => return Err(unsupported("HarmonicForceEngine")),
         },
+        Engine::InteractionLoop(il) => {
+            let opt = || -> PyResult<Option<f64>> {
+                if v.is_null() {
+                    Ok(None)
+                } else {
+                    num().map(Some)
+                }
+            };
+            match key.split_once('.') {
+                Some(("Ip2_FrictMat_FrictMat_MindlinPhys", k)) if il.mindlin_phys.is_some() => {
+                    let p = il.mindlin_phys.as_mut().unwrap();
+                    match k {
+                        "gamma" => p.gamma = num()?,
+                        "eta" => p.eta = num()?,
+                        "krot" => p.krot = num()?,
+                        "ktwist" => p.ktwist = num()?,
+                        "en" => p.en = opt()?,
+                        "es" => p.es = opt()?,
+                        "betan" => p.betan = opt()?,
+                        "betas" => p.betas = opt()?,
+                        _ => return Err(unsupported("InteractionLoop")),
+                    }
+                }
+                Some(("Law2_ScGeom_MindlinPhys_Mindlin", k)) if il.mindlin.is_some() => {
+                    let p = il.mindlin.as_mut().unwrap();
+                    match k {
+                        "includeAdhesion" => p.include_adhesion = boolean()?,
+                        "includeMoment" => p.include_moment = boolean()?,
+                        "neverErase" => p.never_erase = boolean()?,
+                        _ => return Err(unsupported("InteractionLoop")),
+                    }
+                }
+                _ => return Err(unsupported("InteractionLoop")),
+            }
+        }
         Engine::CombinedKinematic(c) => {
             if key == "ids" {
                 c.ids = serde_json::from_value(v.clone()).map_err(err)?;

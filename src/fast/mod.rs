@@ -305,6 +305,7 @@ impl FastSim {
                     let ok = ss.is_some_and(|p| {
                         p.interaction_detection_factor == 1.0 && p.avoid_granular_ratcheting
                     }) && il.sphere_sphere_6d.is_none()
+                        && il.mindlin_phys.is_none()
                         && il.frict_phys
                         && il
                             .cundall_strack

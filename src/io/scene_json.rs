@@ -804,6 +804,27 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         }
                         il.viscel_phys = true
                     }
+                    "Ip2_FrictMat_FrictMat_MindlinPhys" => {
+                        if p.get("frictAngle").is_some_and(|x| !x.is_null()) {
+                            bail!("Ip2_FrictMat_FrictMat_MindlinPhys.frictAngle (MatchMaker) is not supported by ryade yet");
+                        }
+                        let opt = |k: &str| -> Result<Option<f64>> {
+                            Ok(match p.get(k) {
+                                None | Some(Value::Null) => None,
+                                Some(_) => Some(fo(&p, k, 0.0)?),
+                            })
+                        };
+                        il.mindlin_phys = Some(crate::phys::MindlinIp2 {
+                            gamma: fo(&p, "gamma", 0.0)?,
+                            eta: fo(&p, "eta", 0.0)?,
+                            krot: fo(&p, "krot", 0.0)?,
+                            ktwist: fo(&p, "ktwist", 0.0)?,
+                            en: opt("en")?,
+                            es: opt("es")?,
+                            betan: opt("betan")?,
+                            betas: opt("betas")?,
+                        })
+                    }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -844,6 +865,16 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
+                    "Law2_ScGeom_MindlinPhys_Mindlin" => {
+                        if bo(&l, "calcEnergy", false)? {
+                            bail!("Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy is not supported by ryade yet");
+                        }
+                        il.mindlin = Some(law::mindlin::Params {
+                            include_adhesion: bo(&l, "includeAdhesion", false)?,
+                            include_moment: bo(&l, "includeMoment", false)?,
+                            never_erase: bo(&l, "neverErase", false)?,
+                        })
+                    }
                     other => bail!("law functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -1308,6 +1339,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.viscel_phys {
                     phys.push(json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"}));
                 }
+                if let Some(p) = &il.mindlin_phys {
+                    phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,
+                        "krot": p.krot, "ktwist": p.ktwist, "en": p.en, "es": p.es, "betan": p.betan, "betas": p.betas}));
+                }
                 let mut law: Vec<Value> = Vec::new();
                 if let Some(l) = &il.cohesion_moment {
                     law.push(json!({"class": "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "neverErase": l.never_erase,
@@ -1330,6 +1365,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 if il.viscel_basic {
                     law.push(json!({"class": "Law2_ScGeom_ViscElPhys_Basic"}));
+                }
+                if let Some(l) = &il.mindlin {
+                    law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,
+                        "includeMoment": l.include_moment, "neverErase": l.never_erase}));
                 }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }

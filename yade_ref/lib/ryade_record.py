@@ -253,6 +253,15 @@ def _phys_functor(f, grid=False):
         for a in ('tc', 'en', 'et', 'frictAngle'):
             _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
         return {'class': c}
+    if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
+        _require(f.frictAngle is None, '%s.frictAngle (MatchMaker) is not supported' % c)
+        d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
+             'ktwist': float(f.ktwist)}
+        for a in ('en', 'es', 'betan', 'betas'):
+            m = getattr(f, a)
+            _require(m is None or len(m.matches) == 0, '%s.%s: only a constant MatchMaker is supported' % (c, a))
+            d[a] = None if m is None else float(m(0, 0))
+        return d
     if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
         for a in ('kn', 'ks', 'frictAngle'):
             _require(getattr(f, a) is None, 'Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker) is not supported' % a)
@@ -276,6 +285,10 @@ def _law_functor(f, grid=False):
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
     if c == 'Law2_ScGeom_ViscElPhys_Basic':
         return {'class': c}
+    if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
+        _require(not f.calcEnergy, '%s.calcEnergy is not supported' % c)
+        return {'class': c, 'includeAdhesion': bool(f.includeAdhesion), 'includeMoment': bool(f.includeMoment),
+                'neverErase': bool(f.neverErase)}
     raise UnsupportedScene('law functor class %s is not supported' % c)
 
 

@@ -566,7 +566,20 @@ class _PhysView(_GeomView):
     _ext = {'kr': 's', 'ktw': 's', 'unp': 's', 'unpMax': 's', 'normalAdhesion': 's', 'shearAdhesion': 's',
             'cohesionBroken': 'b', 'momentRotationLaw': 'b', 'moment_twist': 'v', 'moment_bending': 'v'}
 
+    _mindlin = ('kno', 'kso', 'maxBendPl', 'normalViscous', 'shearViscous', 'shearElastic', 'usElastic', 'usTotal',
+                'momentBend', 'momentTwist', 'radius', 'adhesionForce', 'isAdhesive', 'isSliding', 'betan', 'betas',
+                'kr', 'ktw')
+
     def __getattr__(self, k):
+        if k in self._mindlin:
+            omega, a, b = self._k
+            v = omega._sim.intr_mindlin(a, b, k)
+            if v is not None:
+                import json
+                v = json.loads(v)
+                if isinstance(v, list):
+                    return Vector3(*v)
+                return float('nan') if v == 'nan' else v
         if k in self._ext:
             omega, a, b = self._k
             v = omega._sim.intr_get_ext(a, b, k)

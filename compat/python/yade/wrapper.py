@@ -65,6 +65,11 @@ class Serializable(object):
         if k in self._all_attrs():
             self._assign(k, v)
             return
+        name = type(self).__name__
+        known = _yade_attrs(name).union(*[_yade_attrs(b) for b in YADE_CLASSES.get(name, {}).get('bases', ())])
+        if name in YADE_CLASSES and k not in known and k not in YADE_CLASSES[name].get('methods', ()):
+            object.__setattr__(self, k, v)  # YADE's objects take attributes of the script's own
+            return
         self._missing(k)
 
     def _assign(self, k, v):
@@ -124,8 +129,16 @@ class Functor(Serializable):
                 d[k] = _jsonable(self._values[k])
         return d
 
+    #: attributes the Rust core takes on a live engine (as `Class.attr` of the owning engine's slot)
+    _live = ()
+
     def _changed(self, k):
         if self._owner is not None and k != 'label':
+            if k in self._live and getattr(self._owner, '_owner', None) is not None:
+                omega, index = self._owner._owner
+                omega._sim.engine_set(index, '%s.%s' % (type(self).__name__, k),
+                                      bridge_json(_jsonable(self._values[k]), '%s.%s' % (type(self).__name__, k)))
+                return
             unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k),
                         'set it before assigning O.engines')
 
@@ -236,8 +249,48 @@ class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
         return {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
 
 
+class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
+    """Hertz-Mindlin contact physics (HertzMindlin.cpp; Rust core `phys::ip2_mindlin`). en, es, betan,
+    betas take numbers (YADE's constant MatchMaker; reading one gives the number back)."""
+    _attrs = {'gamma': 0.0, 'eta': 0.0, 'krot': 0.0, 'ktwist': 0.0, 'en': None, 'es': None, 'betan': None,
+              'betas': None, 'frictAngle': None}
+    _live = ('gamma', 'eta', 'krot', 'ktwist', 'en', 'es', 'betan', 'betas')
+
+    def _convert(self, k, v):
+        if k in ('en', 'es', 'betan', 'betas'):
+            if v is None:
+                return None
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                return float(v)
+            unsupported('Ip2_FrictMat_FrictMat_MindlinPhys.%s as a MatchMaker' % k)
+        if k in ('gamma', 'eta', 'krot', 'ktwist'):
+            return float(v)
+        return v
+
+    def _json(self):
+        if self._values['frictAngle'] is not None:
+            unsupported('Ip2_FrictMat_FrictMat_MindlinPhys.frictAngle (MatchMaker)')
+        d = {'class': 'Ip2_FrictMat_FrictMat_MindlinPhys'}
+        for k in self._live:
+            d[k] = self._values[k]
+        return d
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_MindlinPhys_Mindlin(LawFunctor):
+    """Hertz-Mindlin contact law (HertzMindlin.cpp; Rust core `law::mindlin`)."""
+    _attrs = {'includeAdhesion': False, 'calcEnergy': False, 'includeMoment': False, 'neverErase': False,
+              'nothing': False}
+    _live = ('includeAdhesion', 'includeMoment', 'neverErase')
+
+    def _json(self):
+        if self._values['calcEnergy']:
+            unsupported('Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy=True')
+        return {'class': 'Law2_ScGeom_MindlinPhys_Mindlin', 'includeAdhesion': bool(self._values['includeAdhesion']),
+                'includeMoment': bool(self._values['includeMoment']), 'neverErase': bool(self._values['neverErase'])}
 
 
 class Law2_ScGeom_ViscElPhys_Basic(LawFunctor):
@@ -1120,7 +1173,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
-    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic]}
+    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
