@@ -1033,6 +1033,39 @@ class PeriodicEngine(GlobalEngine):
         return {'class': 'External'}
 
 
+class DomainLimiter(PeriodicEngine):
+    """YADE's DomainLimiter (pkg/dem/DomainLimiter.cpp): every period, spheres and clumps whose position
+    is outside [lo, hi] (and whose groupMask shares a bit with `mask` when mask > 0) are deleted. ryade
+    cannot erase bodies yet: the engine runs its check as YADE does and, when a body is to go, stops
+    the run with the "does not support" error naming it; otherwise nothing changes."""
+    _attrs = {'lo': (0.0, 0.0, 0.0), 'hi': (0.0, 0.0, 0.0), 'nDeleted': 0, 'mDeleted': 0.0, 'vDeleted': 0.0, 'mask': -1}
+
+    def _convert(self, k, v):
+        if k in ('lo', 'hi'):
+            return tuple(_vec3_attr('DomainLimiter', k, v))
+        return v
+
+    def _read(self, k):
+        if k in ('lo', 'hi'):
+            from .minieigen import Vector3
+            return Vector3(*self._values[k])
+        return self._values[k]
+
+    def _action(self, omega):
+        from ._core import Sphere
+        lo, hi, mask = self._values['lo'], self._values['hi'], self._values['mask']
+        out = []
+        for b in omega.bodies:
+            if b is None or (mask > 0 and (b.groupMask & mask) == 0) or b.isClumpMember:
+                continue
+            if isinstance(b.shape, Sphere) or b.isClump:
+                p = b.state.pos
+                if any(p[k] < lo[k] or p[k] > hi[k] for k in range(3)):
+                    out.append(b.id)
+        if out:
+            unsupported('DomainLimiter deleting bodies (#%s: O.bodies.erase)' % ', #'.join(str(i) for i in out[:10]))
+
+
 class PyRunner(PeriodicEngine):
     """`PyRunner(command, iterPeriod, ...)`: `command` runs in the script's `__main__` globals."""
     _attrs = {'command': '', 'ignoreErrors': False, 'updateGlobals': True}
@@ -1166,7 +1199,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
-    HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, RyadePistonController,
+    HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     BoundaryController, PeriTriaxController,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
