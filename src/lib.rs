@@ -64,4 +64,5 @@ pub mod shape;
 pub mod stdsort;
 pub mod timestepper;
 pub mod timing;
+pub mod triax;
 pub mod utils;

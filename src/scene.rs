@@ -308,6 +308,7 @@ pub enum Engine {
     CombinedKinematic(Box<crate::kinematic::CombinedKinematicEngine>),
     Force(Box<crate::force_engine::ForceEngine>),
     HarmonicForce(Box<crate::force_engine::HarmonicForceEngine>),
+    TriaxialStress(Box<crate::triax::TriaxialStressController>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
@@ -331,6 +332,7 @@ impl Engine {
             Engine::CombinedKinematic(_) => "CombinedKinematicEngine",
             Engine::Force(_) => "ForceEngine",
             Engine::HarmonicForce(_) => "HarmonicForceEngine",
+            Engine::TriaxialStress(_) => "TriaxialStressController",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
@@ -622,6 +624,7 @@ impl Scene {
                 h.action(&mut self.forces, self.bodies.len(), self.time);
                 Ok(())
             }
+            Engine::TriaxialStress(t) => t.action(self).map_err(err),
             Engine::Piston(pc) => {
                 activated = pc.periodic.is_activated(self.iter);
                 if activated {

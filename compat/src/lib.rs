@@ -1255,6 +1255,35 @@ impl Sim {
             .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
         engine_set_attr(e, key, &v)
     }
+    /// `TriaxialStressController::computeStressStrain` of the controller at slot `idx` (what
+    /// TriaxialStateRecorder calls off the controller's period).
+    fn triax_compute_stress_strain(&mut self, idx: usize) -> PyResult<()> {
+        let e = self
+            .scene
+            .engines
+            .get_mut(idx)
+            .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let Engine::TriaxialStress(t) = e else {
+            return Err(PyValueError::new_err(format!(
+                "engine #{} is not a TriaxialStressController",
+                idx
+            )));
+        };
+        let mut t = t.clone();
+        let r = t.compute_stress_strain(&self.scene);
+        self.scene.engines[idx] = Engine::TriaxialStress(t);
+        r.map_err(PyRuntimeError::new_err)
+    }
+    /// `TriaxialStressController.strainRate()` (JSON vector).
+    fn triax_strain_rate(&self, idx: usize) -> PyResult<String> {
+        match self.scene.engines.get(idx) {
+            Some(Engine::TriaxialStress(t)) => Ok(v3json(&t.strain_rate(&self.scene)).to_string()),
+            _ => Err(PyValueError::new_err(format!(
+                "engine #{} is not a TriaxialStressController",
+                idx
+            ))),
+        }
+    }
     /// Read an attribute of a built-in engine (JSON).
     fn engine_get(&self, idx: usize, key: &str) -> PyResult<String> {
         let e = self
@@ -2077,6 +2106,10 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 _ => return Err(unsupported("InteractionLoop")),
             }
         }
+        Engine::TriaxialStress(t) => t.set(key, v).map_err(|e| match e {
+            None => unsupported("TriaxialStressController"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
         Engine::CombinedKinematic(c) => {
             if key == "ids" {
                 c.ids = serde_json::from_value(v.clone()).map_err(err)?;
@@ -2172,6 +2205,12 @@ fn engine_get_attr(e: &Engine, key: &str) -> PyResult<Value> {
         (Engine::HarmonicForce(h), "A") => v3json(&h.a),
         (Engine::HarmonicForce(h), "f") => v3json(&h.f),
         (Engine::HarmonicForce(h), "fi") => v3json(&h.fi),
+        (Engine::TriaxialStress(t), k) => t.get(k).ok_or_else(|| {
+            PyKeyError::new_err(format!(
+                "TriaxialStressController has no readable attribute '{}' in ryade",
+                k
+            ))
+        })?,
         (Engine::CombinedKinematic(c), "ids") => serde_json::json!(c.ids),
         (Engine::CombinedKinematic(c), k)
             if k.strip_prefix("comb.")

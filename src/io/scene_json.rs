@@ -920,6 +920,9 @@ pub fn engine(e: &Value) -> Result<Engine> {
             f: vec3_or(e, "f", Vec3::zeros())?,
             fi: vec3_or(e, "fi", Vec3::zeros())?,
         })),
+        "TriaxialStressController" => Engine::TriaxialStress(Box::new(
+            crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
         "CombinedKinematicEngine" => {
             let mut c = crate::kinematic::CombinedKinematicEngine {
                 ids: ids(e)?,
@@ -937,7 +940,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, ForceEngine, HarmonicForceEngine, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, ForceEngine, HarmonicForceEngine, PeriTriaxController, TriaxialStressController; ryade's own: RyadePistonController)", other),
     })
 }
 
@@ -1389,6 +1392,7 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::Force(f) => json!({"class": "ForceEngine", "ids": f.ids, "force": v3(&f.force)}),
             Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
                 "f": v3(&h.f), "fi": v3(&h.fi)}),
+            Engine::TriaxialStress(t) => t.to_json(),
             Engine::CombinedKinematic(c) => {
                 let comb: Vec<Value> = c.comb.iter().zip(&c.comb_dead).map(|(p, &dead)| {
                     let mut v = kinematic_value(p);

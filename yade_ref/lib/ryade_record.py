@@ -330,6 +330,26 @@ def _engine(e, grid=False):
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
                 'zeroPoint': _v3(e.zeroPoint)}
+    if c == 'GlobalStiffnessTimeStepper':
+        for k in ('densityScaling', 'viscEl'):
+            _require(not getattr(e, k), 'GlobalStiffnessTimeStepper.%s is not supported' % k)
+        return {'class': c, 'active': bool(e.active), 'timeStepUpdateInterval': int(e.timeStepUpdateInterval),
+                'defaultDt': float(e.defaultDt), 'maxDt': float(e.maxDt),
+                'timestepSafetyCoefficient': float(e.timestepSafetyCoefficient)}
+    if c == 'TriaxialStressController':
+        d = {'class': c}
+        for k in ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'stressMask'):
+            d[k] = int(getattr(e, k))
+        for k in ('internalCompaction', 'updatePorosity'):
+            d[k] = bool(getattr(e, k))
+        for k in ('stressDamping', 'strainDamping', 'thickness', 'height', 'width', 'depth', 'height0', 'width0',
+                  'depth0', 'goal1', 'goal2', 'goal3', 'maxMultiplier', 'finalMaxMultiplier', 'max_vel',
+                  'previousStress', 'previousMultiplier', 'meanStress', 'volumetricStrain', 'externalWork'):
+            d[k] = float(getattr(e, k))
+        for w in ('left', 'right', 'bottom', 'top', 'back', 'front'):
+            d['wall_%s_id' % w] = int(getattr(e, 'wall_%s_id' % w))
+            d['wall_%s_activated' % w] = bool(getattr(e, 'wall_%s_activated' % w))
+        return d
     if c == 'ForceEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}
     if c == 'HarmonicForceEngine':

@@ -996,6 +996,100 @@ class PeriTriaxController(BoundaryController):
             exec(compile(hook, '<PeriTriaxController.doneHook>', 'exec'), sys.modules['__main__'].__dict__)
 
 
+class TriaxialStressController(BoundaryController):
+    """YADE's stress/strain controller of six walls around a packing, or internal compaction by growing
+    the spheres (pkg/dem/TriaxialStressController.cpp), run in the Rust core (`ryade::triax`). Values the
+    engine updates (height, meanStress, ...) are read from the run."""
+    _attrs = {'stiffnessUpdateInterval': 10, 'radiusControlInterval': 10, 'computeStressStrainInterval': 10,
+              'stressDamping': 0.25, 'strainDamping': 0.99, 'thickness': -1.0, 'wall_bottom_id': 2, 'wall_top_id': 3,
+              'wall_left_id': 0, 'wall_right_id': 1, 'wall_front_id': 5, 'wall_back_id': 4,
+              'wall_bottom_activated': True, 'wall_top_activated': True, 'wall_left_activated': True,
+              'wall_right_activated': True, 'wall_front_activated': True, 'wall_back_activated': True,
+              'height': 0.0, 'width': 0.0, 'depth': 0.0, 'height0': 0.0, 'width0': 0.0, 'depth0': 0.0,
+              'goal1': 0.0, 'goal2': 0.0, 'goal3': 0.0, 'stressMask': 7, 'maxMultiplier': 1.001,
+              'finalMaxMultiplier': 1.00001, 'max_vel': 1.0, 'previousStress': 0.0, 'previousMultiplier': 1.0,
+              'internalCompaction': True, 'meanStress': 0.0, 'volumetricStrain': 0.0, 'externalWork': 0.0,
+              'updatePorosity': False}
+    _ints = ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'wall_bottom_id',
+             'wall_top_id', 'wall_left_id', 'wall_right_id', 'wall_front_id', 'wall_back_id', 'stressMask')
+    _bools = ('wall_bottom_activated', 'wall_top_activated', 'wall_left_activated', 'wall_right_activated',
+              'wall_front_activated', 'wall_back_activated', 'internalCompaction', 'updatePorosity')
+    _own = tuple(_attrs)
+    _class = 'TriaxialStressController'
+
+    def _convert(self, k, v):
+        if k in self._ints:
+            return int(v)
+        if k in self._bools:
+            return bool(v)
+        if k in self._own:
+            return float(v)
+        return v
+
+    def _get(self, k):
+        omega, index = self._owner
+        return json.loads(omega._sim.engine_get(index, k))
+
+    def _read(self, k):
+        if self._owner is not None and k in self._own:
+            return self._get(k)
+        return self._values[k]
+
+    def _changed(self, k):
+        if self._owner is not None and k in self._own:
+            omega, index = self._owner
+            omega._sim.engine_set(index, k, json.dumps(self._values[k]))
+            return
+        BoundaryController._changed(self, k)
+
+    def _timing_detach(self):
+        if self._owner is not None:
+            for k in self._own:
+                self._values[k] = self._get(k)
+        BoundaryController._timing_detach(self)
+
+    def _json(self):
+        d = {'class': self._class}
+        for k in self._own:
+            d[k] = self._values[k]
+        return d
+
+    def _state(self, k, default):
+        return self._get(k) if self._owner is not None else default
+
+    @property
+    def strain(self):
+        from .minieigen import Vector3
+        return Vector3(*self._state('strain', (0.0, 0.0, 0.0)))
+
+    porosity = property(lambda self: self._state('porosity', 1.0))
+    boxVolume = property(lambda self: self._state('boxVolume', 0.0))
+    particlesVolume = property(lambda self: self._state('particlesVolume', 0.0))
+    spheresVolume = property(lambda self: self._state('spheresVolume', 0.0))
+    max_vel1 = property(lambda self: self._state('max_vel1', 0.0))
+    max_vel2 = property(lambda self: self._state('max_vel2', 0.0))
+    max_vel3 = property(lambda self: self._state('max_vel3', 0.0))
+
+    def stress(self, id):
+        """The average stress on boundary `id` (0..5: left, right, bottom, top, back, front)."""
+        from .minieigen import Vector3
+        id = int(id)
+        if not 0 <= id <= 5:
+            raise IndexError('TriaxialStressController.stress: boundary id must be 0..5, got %d' % id)
+        return Vector3(*self._state('stress.%d' % id, (0.0, 0.0, 0.0)))
+
+    def strainRate(self):
+        from .minieigen import Vector3
+        if self._owner is None:
+            return Vector3(0, 0, 0)
+        omega, index = self._owner
+        return Vector3(*json.loads(omega._sim.triax_strain_rate(index)))
+
+    def _compute_stress_strain(self):
+        omega, index = self._owner
+        omega._sim.triax_compute_stress_strain(index)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -1184,6 +1278,70 @@ def _jsonable(v):
     return v
 
 
+class Recorder(PeriodicEngine):
+    """YADE's Recorder: a periodic engine writing lines to `file` (opened in append mode, or truncated
+    first with `truncate`; `addIterNum` appends the iteration to the file name). It runs at its first
+    step too (YADE's constructor sets initRun)."""
+    _attrs = {'file': '', 'truncate': False, 'addIterNum': False, 'initRun': True}
+
+    def _out(self, omega):
+        f = self.__dict__.get('_fh')
+        if f is None:
+            name = self._values['file']
+            if not name:
+                raise IOError('%s.file must be set' % type(self).__name__)
+            if self._values['addIterNum']:
+                name = '%s-%d' % (name, omega.iter)
+            f = open(name, 'w' if self._values['truncate'] else 'a')
+            object.__setattr__(self, '_fh', f)
+        return f
+
+
+def _lexical(x):
+    """boost::lexical_cast<std::string>(double): 17 significant digits; a NaN keeps its sign (-nan)."""
+    if x != x:
+        return '-nan' if math.copysign(1.0, x) < 0 else 'nan'
+    return '%.17g' % x
+
+
+class TriaxialStateRecorder(Recorder):
+    """YADE's TriaxialStateRecorder (pkg/dem/TriaxialStateRecorder.cpp): every period a line with the
+    iteration, the stresses on the right, top and front walls, the strains, the unbalanced force, the
+    porosity of the dynamic spheres in the box and the kinetic energy, from the first triaxial controller
+    in O.engines."""
+    _attrs = {'porosity': 1.0}
+
+    def _action(self, omega):
+        from . import utils
+        f = self._out(omega)
+        if f.tell() == 0:
+            f.write('iteration s11 s22 s33 e11 e22 e33 unb_force porosity kineticE\n')
+        tsc = self.__dict__.get('_tsc')
+        if tsc is None:
+            for e in omega.engines:
+                if type(e).__name__ in ('TriaxialCompressionEngine', 'ThreeDTriaxialEngine', 'TriaxialStressController'):
+                    tsc = e
+            if tsc is None:
+                unsupported('TriaxialStateRecorder without a triaxial controller in O.engines (YADE crashes)')
+            object.__setattr__(self, '_tsc', tsc)
+        if omega.iter % tsc.computeStressStrainInterval != 0:
+            tsc._compute_stress_strain()
+        vs = 0.0
+        for b in omega.bodies:
+            if b is None or b.isClump:
+                continue
+            if b.dynamic:
+                vs += 1.3333333 * math.pi * math.pow(b.shape.radius, 3)
+        v = tsc.height * tsc.width * tsc.depth
+        self._values['porosity'] = (v - vs) / v
+        st = [tsc.stress(1)[0], tsc.stress(3)[1], tsc.stress(5)[2]]
+        e = tsc.strain
+        f.write(' '.join([str(omega.iter)] + [_lexical(x) for x in st + [e[0], e[1], e[2], utils.unbalancedForce(),
+                                                                          self._values['porosity'], utils.kineticEnergy()]]) + '\n')
+        f.flush()
+
+
+
 # ---------------------------------------------------------------- every other YADE class
 
 def _make_unsupported(name):
@@ -1200,7 +1358,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
-    BoundaryController, PeriTriaxController,
+    BoundaryController, PeriTriaxController, TriaxialStressController, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
