@@ -24,6 +24,51 @@ impl ForceEngine {
     }
 }
 
+/// YADE `InterpolatingDirectedForceEngine`: a ForceEngine whose magnitude is interpolated in time
+/// (`times`, `magnitudes`, optionally wrapped) along `direction` (normalised at every step).
+#[derive(Clone, Debug, Default)]
+pub struct InterpolatingDirectedForceEngine {
+    pub base: ForceEngine,
+    pub times: Vec<f64>,
+    pub magnitudes: Vec<f64>,
+    pub direction: Vec3,
+    pub wrap: bool,
+    pub pos: usize,
+}
+
+impl InterpolatingDirectedForceEngine {
+    /// `InterpolatingDirectedForceEngine::action` (ForceEngine.cpp).
+    pub fn action(
+        &mut self,
+        forces: &mut Forces,
+        n_bodies: usize,
+        time: f64,
+    ) -> Result<(), String> {
+        if self.times.len() < 2 || self.times.len() != self.magnitudes.len() {
+            return Err(format!(
+                "InterpolatingDirectedForceEngine: times ({}) and magnitudes ({}) must have the same length, at least 2",
+                self.times.len(),
+                self.magnitudes.len()
+            ));
+        }
+        let virt = if self.wrap {
+            crate::kinematic::periodic_wrap(time, self.times[0], self.times[self.times.len() - 1])
+        } else {
+            time
+        };
+        self.direction = crate::math::normalized(&self.direction);
+        let m = crate::kinematic::linear_interpolate(
+            virt,
+            &self.times,
+            &self.magnitudes,
+            &mut self.pos,
+        );
+        self.base.force = self.direction * m;
+        self.base.action(forces, n_bodies);
+        Ok(())
+    }
+}
+
 /// YADE `HarmonicForceEngine`: adds `A_i sin(2 pi f_i t + fi_i)` per axis to each listed body.
 #[derive(Clone, Debug, Default)]
 pub struct HarmonicForceEngine {

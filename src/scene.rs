@@ -306,6 +306,9 @@ pub enum Engine {
     ServoPid(Box<crate::kinematic::ServoPid>),
     Helix(Box<crate::kinematic::HelixEngine>),
     CombinedKinematic(Box<crate::kinematic::CombinedKinematicEngine>),
+    /// A kinematic engine without a variant of its own (InterpolatingHelixEngine, BicyclePedalEngine).
+    Kinematic(Box<crate::kinematic::KinematicPart>),
+    DirectedForce(Box<crate::force_engine::InterpolatingDirectedForceEngine>),
     Force(Box<crate::force_engine::ForceEngine>),
     HarmonicForce(Box<crate::force_engine::HarmonicForceEngine>),
     TriaxialStress(Box<crate::triax::TriaxialStressController>),
@@ -330,6 +333,8 @@ impl Engine {
             Engine::ServoPid(_) => "ServoPIDController",
             Engine::Helix(_) => "HelixEngine",
             Engine::CombinedKinematic(_) => "CombinedKinematicEngine",
+            Engine::Kinematic(k) => k.class_name(),
+            Engine::DirectedForce(_) => "InterpolatingDirectedForceEngine",
             Engine::Force(_) => "ForceEngine",
             Engine::HarmonicForce(_) => "HarmonicForceEngine",
             Engine::TriaxialStress(_) => "TriaxialStressController",
@@ -612,10 +617,28 @@ impl Scene {
                 h.action(&mut self.bodies, self.dt);
                 Ok(())
             }
-            Engine::CombinedKinematic(c) => {
-                c.action(&mut self.bodies, &self.forces, self.dt, self.iter);
-                Ok(())
-            }
+            Engine::CombinedKinematic(c) => c
+                .action(
+                    &mut self.bodies,
+                    &self.forces,
+                    self.dt,
+                    self.iter,
+                    self.time,
+                )
+                .map(|_| ())
+                .map_err(err),
+            Engine::Kinematic(c) => c
+                .action(
+                    &mut self.bodies,
+                    &self.forces,
+                    self.dt,
+                    self.iter,
+                    self.time,
+                )
+                .map_err(err),
+            Engine::DirectedForce(f) => f
+                .action(&mut self.forces, self.bodies.len(), self.time)
+                .map_err(err),
             Engine::Force(f) => {
                 f.action(&mut self.forces, self.bodies.len());
                 Ok(())

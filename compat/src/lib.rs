@@ -2106,6 +2106,53 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 _ => return Err(unsupported("InteractionLoop")),
             }
         }
+        Engine::Kinematic(k) => {
+            use ryade::kinematic::KinematicPart as K;
+            let list = || -> PyResult<Vec<f64>> { serde_json::from_value(v.clone()).map_err(err) };
+            match (&mut **k, key) {
+                (K::InterpolatingHelix(h), "times") => h.times = list()?,
+                (K::InterpolatingHelix(h), "angularVelocities") => h.angular_velocities = list()?,
+                (K::InterpolatingHelix(h), "wrap") => h.wrap = boolean()?,
+                (K::InterpolatingHelix(h), "slope") => h.slope = num()?,
+                (K::InterpolatingHelix(h), _) => {
+                    let mut e = Engine::Helix(Box::new(h.helix.clone()));
+                    engine_set_attr(&mut e, key, v)
+                        .map_err(|_| unsupported("InterpolatingHelixEngine"))?;
+                    if let Engine::Helix(x) = e {
+                        h.helix = *x;
+                    }
+                }
+                (K::BicyclePedal(b), "ids") => {
+                    b.ids = serde_json::from_value(v.clone()).map_err(err)?
+                }
+                (K::BicyclePedal(b), "angularVelocity") => b.angular_velocity = num()?,
+                (K::BicyclePedal(b), "radius") => b.radius = num()?,
+                (K::BicyclePedal(b), "fi") => b.fi = num()?,
+                (K::BicyclePedal(b), "rotationAxis") => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    b.rotation_axis = vec(a) // normalised on the Python side
+                }
+                (k, _) => return Err(unsupported(k.class_name())),
+            }
+        }
+        Engine::DirectedForce(f) => {
+            let list = || -> PyResult<Vec<f64>> { serde_json::from_value(v.clone()).map_err(err) };
+            match key {
+                "ids" => f.base.ids = serde_json::from_value(v.clone()).map_err(err)?,
+                "times" => f.times = list()?,
+                "magnitudes" => f.magnitudes = list()?,
+                "wrap" => f.wrap = boolean()?,
+                "force" | "direction" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    if key == "force" {
+                        f.base.force = vec(a)
+                    } else {
+                        f.direction = vec(a)
+                    }
+                }
+                _ => return Err(unsupported("InterpolatingDirectedForceEngine")),
+            }
+        }
         Engine::TriaxialStress(t) => t.set(key, v).map_err(|e| match e {
             None => unsupported("TriaxialStressController"),
             Some(e) => PyValueError::new_err(e),
@@ -2205,6 +2252,38 @@ fn engine_get_attr(e: &Engine, key: &str) -> PyResult<Value> {
         (Engine::HarmonicForce(h), "A") => v3json(&h.a),
         (Engine::HarmonicForce(h), "f") => v3json(&h.f),
         (Engine::HarmonicForce(h), "fi") => v3json(&h.fi),
+        (Engine::Kinematic(k), key) => {
+            use ryade::kinematic::KinematicPart as K;
+            match (&**k, key) {
+                (K::InterpolatingHelix(h), "times") => serde_json::json!(h.times),
+                (K::InterpolatingHelix(h), "angularVelocities") => {
+                    serde_json::json!(h.angular_velocities)
+                }
+                (K::InterpolatingHelix(h), "wrap") => serde_json::json!(h.wrap),
+                (K::InterpolatingHelix(h), "slope") => serde_json::json!(h.slope),
+                (K::InterpolatingHelix(h), _) => {
+                    engine_get_attr(&Engine::Helix(Box::new(h.helix.clone())), key)?
+                }
+                (K::BicyclePedal(b), "ids") => serde_json::json!(b.ids),
+                (K::BicyclePedal(b), "angularVelocity") => serde_json::json!(b.angular_velocity),
+                (K::BicyclePedal(b), "radius") => serde_json::json!(b.radius),
+                (K::BicyclePedal(b), "fi") => serde_json::json!(b.fi),
+                (K::BicyclePedal(b), "rotationAxis") => v3json(&b.rotation_axis),
+                (k, _) => {
+                    return Err(PyKeyError::new_err(format!(
+                        "{} has no readable attribute '{}' in ryade",
+                        k.class_name(),
+                        key
+                    )))
+                }
+            }
+        }
+        (Engine::DirectedForce(f), "ids") => serde_json::json!(f.base.ids),
+        (Engine::DirectedForce(f), "force") => v3json(&f.base.force),
+        (Engine::DirectedForce(f), "direction") => v3json(&f.direction),
+        (Engine::DirectedForce(f), "times") => serde_json::json!(f.times),
+        (Engine::DirectedForce(f), "magnitudes") => serde_json::json!(f.magnitudes),
+        (Engine::DirectedForce(f), "wrap") => serde_json::json!(f.wrap),
         (Engine::TriaxialStress(t), k) => t.get(k).ok_or_else(|| {
             PyKeyError::new_err(format!(
                 "TriaxialStressController has no readable attribute '{}' in ryade",
@@ -2245,6 +2324,7 @@ fn part_engine(p: ryade::kinematic::KinematicPart) -> Engine {
         K::Rotation(r) => Engine::Rotation(Box::new(r)),
         K::Helix(h) => Engine::Helix(Box::new(h)),
         K::ServoPid(s) => Engine::ServoPid(Box::new(s)),
+        k => Engine::Kinematic(Box::new(k)),
     }
 }
 
@@ -2256,6 +2336,7 @@ fn engine_part(e: Engine) -> ryade::kinematic::KinematicPart {
         Engine::Rotation(r) => K::Rotation(*r),
         Engine::Helix(h) => K::Helix(*h),
         Engine::ServoPid(s) => K::ServoPid(*s),
+        Engine::Kinematic(k) => *k,
         _ => unreachable!("engine_part on a non-kinematic engine"),
     }
 }

@@ -901,15 +901,27 @@ pub fn engine(e: &Value) -> Result<Engine> {
             mask: fo(e, "mask", -1.0)? as i32,
             ..Default::default()
         })),
-        "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine" => {
-
-            match kinematic_part(e, cls)? {
-                KinematicPart::Translation(t) => Engine::Translation(Box::new(t)),
-                KinematicPart::Rotation(r) => Engine::Rotation(Box::new(r)),
-                KinematicPart::ServoPid(p) => Engine::ServoPid(Box::new(p)),
-                KinematicPart::Helix(h) => Engine::Helix(Box::new(h)),
-            }
-        }
+        "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine"
+        | "InterpolatingHelixEngine" | "BicyclePedalEngine" => match kinematic_part(e, cls)? {
+            KinematicPart::Translation(t) => Engine::Translation(Box::new(t)),
+            KinematicPart::Rotation(r) => Engine::Rotation(Box::new(r)),
+            KinematicPart::ServoPid(p) => Engine::ServoPid(Box::new(p)),
+            KinematicPart::Helix(h) => Engine::Helix(Box::new(h)),
+            k => Engine::Kinematic(Box::new(k)),
+        },
+        "InterpolatingDirectedForceEngine" => Engine::DirectedForce(Box::new(
+            crate::force_engine::InterpolatingDirectedForceEngine {
+                base: crate::force_engine::ForceEngine {
+                    ids: ids(e)?,
+                    force: vec3_or(e, "force", Vec3::zeros())?,
+                },
+                times: f64_list(e, "times")?,
+                magnitudes: f64_list(e, "magnitudes")?,
+                direction: vec3_or(e, "direction", Vec3::new(1.0, 0.0, 0.0))?,
+                wrap: bo(e, "wrap", false)?,
+                pos: fo(e, "_pos", 0.0)? as usize,
+            },
+        )),
         "ForceEngine" => Engine::Force(Box::new(crate::force_engine::ForceEngine {
             ids: ids(e)?,
             force: vec3_or(e, "force", Vec3::zeros())?,
@@ -970,13 +982,49 @@ fn kinematic_part(e: &Value, cls: &str) -> Result<KinematicPart> {
             iter_prev_start: fo(e, "iterPrevStart", -1.0)? as i64,
             ..Default::default()
         }),
-        "HelixEngine" => KinematicPart::Helix(crate::kinematic::HelixEngine {
-            rot: rotation(e)?,
-            linear_velocity: fo(e, "linearVelocity", 0.0)?,
-            angle_turned: fo(e, "angleTurned", 0.0)?,
+        "HelixEngine" => KinematicPart::Helix(helix(e)?),
+        "InterpolatingHelixEngine" => {
+            KinematicPart::InterpolatingHelix(crate::kinematic::InterpolatingHelixEngine {
+                helix: helix(e)?,
+                times: f64_list(e, "times")?,
+                angular_velocities: f64_list(e, "angularVelocities")?,
+                wrap: bo(e, "wrap", false)?,
+                slope: fo(e, "slope", 0.0)?,
+                pos: fo(e, "_pos", 0.0)? as usize,
+            })
+        }
+        "BicyclePedalEngine" => KinematicPart::BicyclePedal(crate::kinematic::BicyclePedalEngine {
+            ids: ids(e)?,
+            angular_velocity: fo(e, "angularVelocity", 0.0)?,
+            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+            radius: fo(e, "radius", -1.0)?,
+            fi: fo(e, "fi", std::f64::consts::PI / 2.0)?,
         }),
         other => bail!("kinematic engine '{}' is not supported by ryade yet", other),
     })
+}
+
+fn helix(e: &Value) -> Result<crate::kinematic::HelixEngine> {
+    Ok(crate::kinematic::HelixEngine {
+        rot: rotation(e)?,
+        linear_velocity: fo(e, "linearVelocity", 0.0)?,
+        angle_turned: fo(e, "angleTurned", 0.0)?,
+    })
+}
+
+/// A list of numbers (missing: empty).
+fn f64_list(e: &Value, key: &str) -> Result<Vec<f64>> {
+    match e.get(key) {
+        None | Some(Value::Null) => Ok(Vec::new()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|x| {
+                x.as_f64()
+                    .ok_or_else(|| anyhow!("'{}' must hold numbers, got {}", key, x))
+            })
+            .collect(),
+        Some(x) => bail!("'{}' must be a list of numbers, got {}", key, short(x)),
+    }
 }
 
 fn rotation(e: &Value) -> Result<crate::kinematic::RotationEngine> {
@@ -1009,6 +1057,19 @@ fn kinematic_value(k: &KinematicPart) -> Value {
                 "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
                 "iterPrevStart": p.iter_prev_start})
         }
+        KinematicPart::InterpolatingHelix(ih) => {
+            let mut v = kinematic_value(&KinematicPart::Helix(ih.helix.clone()));
+            v["class"] = json!("InterpolatingHelixEngine");
+            v["times"] = json!(ih.times);
+            v["angularVelocities"] = json!(ih.angular_velocities);
+            v["wrap"] = json!(ih.wrap);
+            v["slope"] = json!(ih.slope);
+            v["_pos"] = json!(ih.pos);
+            v
+        }
+        KinematicPart::BicyclePedal(b) => json!({"class": "BicyclePedalEngine", "ids": b.ids,
+            "angularVelocity": b.angular_velocity, "rotationAxis": v3(&b.rotation_axis), "radius": b.radius,
+            "fi": b.fi}),
         KinematicPart::Helix(h) => {
             let r = &h.rot;
             json!({"class": "HelixEngine", "ids": r.ids, "angularVelocity": r.angular_velocity,
@@ -1393,6 +1454,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
                 "f": v3(&h.f), "fi": v3(&h.fi)}),
             Engine::TriaxialStress(t) => t.to_json(),
+            Engine::Kinematic(k) => kinematic_value(k),
+            Engine::DirectedForce(f) => json!({"class": "InterpolatingDirectedForceEngine", "ids": f.base.ids,
+                "force": v3(&f.base.force), "times": f.times, "magnitudes": f.magnitudes,
+                "direction": v3(&f.direction), "wrap": f.wrap, "_pos": f.pos}),
             Engine::CombinedKinematic(c) => {
                 let comb: Vec<Value> = c.comb.iter().zip(&c.comb_dead).map(|(p, &dead)| {
                     let mut v = kinematic_value(p);

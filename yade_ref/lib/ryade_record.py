@@ -354,6 +354,20 @@ def _engine(e, grid=False):
         return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}
     if c == 'HarmonicForceEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'A': _v3(e.A), 'f': _v3(e.f), 'fi': _v3(e.fi)}
+    if c == 'InterpolatingHelixEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint), 'linearVelocity': float(e.linearVelocity),
+                'angleTurned': float(e.angleTurned), 'times': [float(x) for x in e.times],
+                'angularVelocities': [float(x) for x in e.angularVelocities], 'wrap': bool(e.wrap),
+                'slope': float(e.slope)}
+    if c == 'BicyclePedalEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'radius': float(e.radius), 'fi': float(e.fi)}
+    if c == 'InterpolatingDirectedForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force),
+                'times': [float(x) for x in e.times], 'magnitudes': [float(x) for x in e.magnitudes],
+                'direction': _v3(e.direction), 'wrap': bool(e.wrap)}
     if c == 'HelixEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),

@@ -724,6 +724,52 @@ class HarmonicForceEngine(PartialEngine):
     _json = _AxisEngine._json
 
 
+def _float_list(cls, k, v):
+    try:
+        return [float(x) for x in v]
+    except TypeError:
+        raise TypeError('%s.%s must be a list of numbers' % (cls, k))
+
+
+class InterpolatingHelixEngine(HelixEngine):
+    """HelixEngine with the angular velocity interpolated in `times`/`angularVelocities` (wrapped with
+    `wrap`) and the axial velocity `slope` times it (KinematicEngines.cpp; Rust core
+    `kinematic::InterpolatingHelixEngine`)."""
+    _attrs = {'times': [], 'angularVelocities': [], 'wrap': False, 'slope': 0.0}
+    _live = HelixEngine._live + ('times', 'angularVelocities', 'wrap', 'slope')
+    _state = ('angleTurned', 'rotateAroundZero', 'angularVelocity', 'linearVelocity')
+
+    def _convert(self, k, v):
+        if k in ('times', 'angularVelocities'):
+            return _float_list('InterpolatingHelixEngine', k, v)
+        return HelixEngine._convert(self, k, v)
+
+
+class BicyclePedalEngine(_AxisEngine):
+    """Bodies carried round a circle of `radius` about `rotationAxis` without turning, at
+    `angularVelocity`, phase `fi` (KinematicEngines.cpp; Rust core `kinematic::BicyclePedalEngine`)."""
+    _attrs = {'angularVelocity': 0.0, 'rotationAxis': (1.0, 0.0, 0.0), 'radius': -1.0, 'fi': math.pi / 2.0}
+    _live = ('ids', 'angularVelocity', 'rotationAxis', 'radius', 'fi')
+    _axis = 'rotationAxis'
+    _vectors = ('rotationAxis',)
+    _state = ('fi',)
+
+
+class InterpolatingDirectedForceEngine(ForceEngine):
+    """ForceEngine with the magnitude interpolated in `times`/`magnitudes` (wrapped with `wrap`) along
+    `direction`, normalised at every step (ForceEngine.cpp; Rust core
+    `force_engine::InterpolatingDirectedForceEngine`)."""
+    _attrs = {'times': [], 'magnitudes': [], 'direction': (1.0, 0.0, 0.0), 'wrap': False}
+    _live = ('ids', 'force', 'times', 'magnitudes', 'direction', 'wrap')
+    _vectors = ('force', 'direction')
+    _state = ('force', 'direction')
+
+    def _convert(self, k, v):
+        if k in ('times', 'magnitudes'):
+            return _float_list('InterpolatingDirectedForceEngine', k, v)
+        return ForceEngine._convert(self, k, v)
+
+
 class _MemberSim(object):
     """The Rust engine slot of a CombinedKinematicEngine seen from one of its members: attribute
     `k` of member `n` is `comb.n.k` of the combination."""
@@ -791,7 +837,7 @@ class CombinedKinematicEngine(PartialEngine):
     def _json(self):
         comb = []
         for e in self._values['comb']:
-            if not isinstance(e, (TranslationEngine, RotationEngine)):
+            if not isinstance(e, (TranslationEngine, RotationEngine, BicyclePedalEngine)):
                 unsupported('%s in a CombinedKinematicEngine' % type(e).__name__)
             d = e._json()
             d['dead'] = bool(e._values['dead'])
@@ -1358,6 +1404,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
+    InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
     BoundaryController, PeriTriaxController, TriaxialStressController, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
