@@ -514,6 +514,25 @@ class _Dispatcher(object):
     def __init__(self, functors):
         self.functors = functors
 
+    def dispMatrix(self, names=True):
+        """YADE's dispatch matrix as a dict: the classes each functor declares (a geometry functor of two
+        different shapes both ways round) -> the functor's name. Entries YADE adds for derived classes
+        once they were dispatched are not listed."""
+        if not names:
+            unsupported('dispMatrix(names=False) (YADE class indices)')
+        out = {}
+        for f in self.functors:
+            n = type(f).__name__
+            parts = n.split('_')
+            if parts[0] == 'Bo1' and len(parts) >= 3:
+                out[(parts[1],)] = n
+            elif parts[0] in ('Ig2', 'Ip2', 'Law2') and len(parts) >= 4:
+                a, b = parts[1], parts[2]
+                out[(a, b)] = n
+                if parts[0] == 'Ig2' and a != b:
+                    out[(b, a)] = n
+        return out
+
 
 class NewtonIntegrator(GlobalEngine):
     _attrs = {'damping': 0.2, 'gravity': (0.0, 0.0, 0.0), 'dampGravity': True, 'exactAsphericalRot': True,
