@@ -2038,6 +2038,7 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             "verletDist" => c.p.verlet_dist = num()?,
             "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
             "doSort" => c.do_sort = boolean()?,
+            "targetInterv" => c.p.target_interv = num()? as i32,
             _ => return Err(unsupported("InsertionSortCollider")),
         },
         Engine::Helix(h) => match key {

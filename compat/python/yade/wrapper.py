@@ -432,7 +432,7 @@ class InsertionSortCollider(GlobalEngine):
               'sortAxis': 0, 'sortThenCollide': False, 'overlapTolerance': 1e-7, 'avoidSelfInteractionMask': 0,
               'doSort': False, 'smartInsertErase': False, 'keepListsShort': False}
     _positional = ('_bounds',)
-    _live = ('verletDist', 'allowBiggerThanPeriod', 'doSort')
+    _live = ('verletDist', 'allowBiggerThanPeriod', 'doSort', 'targetInterv')
 
     def __init__(self, *args, **kw):
         object.__setattr__(self, '_bounds_list', [Bo1_Sphere_Aabb(), Bo1_Facet_Aabb(), Bo1_Box_Aabb()] if not args else None)

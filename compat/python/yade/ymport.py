@@ -131,6 +131,51 @@ def gmsh(meshfile="file.mesh", shift=Vector3(0, 0, 0), scale=1.0, orientation=Qu
     return ret
 
 
+def unv(fileName, shift=(0, 0, 0), scale=1.0, returnConnectivityTable=False, **kw):
+    """Triangles of an I-DEAS universal file (.unv, e.g. from Salome) as facets (YADE's ymport.unv):
+    dataset 2411 gives the nodes (shift + scale * coordinates), dataset 2412 the elements, of which the
+    triangles (type 41) are kept until the first other element after them. `kw` goes to utils.facet;
+    with `returnConnectivityTable`, also (nodes, elements with 0-based node ids)."""
+    nodes, elements = [], []
+    with open(fileName, 'r') as f:
+        lines = f.read().split('\n')
+    if lines and lines[-1] == '':
+        lines.pop()
+    mode = None  # 'nodes', 'elements', 'triangles' or 'skip'
+    k = 0
+
+    def next_fields():
+        nonlocal k
+        k += 1
+        return lines[k].split() if k < len(lines) else []
+    while k < len(lines):
+        fields = lines[k].split()
+        if len(fields) <= 1:
+            # a dataset delimiter (-1) or a dataset number (an empty line stops YADE with an IndexError)
+            tag = fields[0]
+            if tag != '-1':
+                mode = {'2411': 'nodes', '2412': 'elements'}.get(tag, 'skip')
+        elif mode == 'nodes':
+            c = next_fields()
+            nodes.append((shift[0] + scale * float(c[0]), shift[1] + scale * float(c[1]), shift[2] + scale * float(c[2])))
+        elif mode == 'elements' and fields[1] != '41':
+            next_fields()  # a beam element: a line of beam data, then its nodes
+            next_fields()
+        elif mode in ('elements', 'triangles'):
+            if fields[1] == '41':
+                mode = 'triangles'
+                c = next_fields()
+                elements.append((int(c[0]) - 1, int(c[1]) - 1, int(c[2]) - 1))
+            else:
+                next_fields()
+                mode = 'skip'
+        k += 1
+    facets = [utils.facet(tuple(nodes[i] for i in e), **kw) for e in elements]
+    if returnConnectivityTable:
+        return facets, nodes, elements
+    return facets
+
+
 def __getattr__(name):
     if name.startswith('__'):
         raise AttributeError(name)
