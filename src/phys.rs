@@ -362,11 +362,14 @@ pub fn viscel_cn_from_en(en: f64, m: f64, kn: f64, ids: (usize, usize)) -> f64 {
 }
 
 /// `Ip2_ViscElMat_ViscElMat_ViscElPhys::Calculate_ViscElMat_ViscElMat_ViscElPhys`
-/// (pkg/dem/ViscoelasticPM.cpp) without MatchMakers or lubrication: the per-body constants from contact
+/// (pkg/dem/ViscoelasticPM.cpp) without lubrication: the per-body constants from contact
 /// time and restitution (Pournin), or given kn/ks/cn/cs, or E·d and ν·kn with cn/cs given or cn from
 /// the normal restitution; then the two bodies in series. `mass1/2` are the bodies' masses (a massless
-/// body takes the other's), `ids` only name the contact in messages.
+/// body takes the other's), `ids` only name the contact in messages; `mm` the functor's MatchMakers
+/// (tc, en, et, frictAngle), called with the two materials' ids.
+#[allow(clippy::too_many_arguments)]
 pub fn ip2_viscel(
+    mm: &ViscElIp2,
     m1: &FrictMat,
     m2: &FrictMat,
     mass1: f64,
@@ -404,10 +407,19 @@ pub fn ip2_viscel(
     let (r1, r2) = g.ref_radii();
     let pi = std::f64::consts::PI;
     let (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2);
-    if v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite() {
-        let tc = (v1.tc + v2.tc) / 2.0;
-        let ln_en = ((v1.en + v2.en) / 2.0).ln();
-        let ln_et = ((v1.et + v2.et) / 2.0).ln();
+    let nan = f64::NAN;
+    let pick = |m: &Option<MatchMaker>, a: f64, b: f64| -> Result<f64, String> {
+        match m {
+            Some(m) => m.call(m1.id, m2.id, nan, nan),
+            None => Ok((a + b) / 2.0),
+        }
+    };
+    if (v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite())
+        || (mm.tc.is_some() && mm.en.is_some() && mm.et.is_some())
+    {
+        let tc = pick(&mm.tc, v1.tc, v2.tc)?;
+        let ln_en = pick(&mm.en, v1.en, v2.en)?.ln();
+        let ln_et = pick(&mm.et, v1.et, v2.et)?.ln();
         // per body twice the contact's value, so that the two in series give it
         let kn = 1. / tc / tc * (pi * pi + ln_en * ln_en) * mass_r * 2.;
         let ks = 2.0 / 7.0 / tc / tc * (pi * pi + ln_et * ln_et) * mass_r * 2.;
@@ -426,7 +438,7 @@ pub fn ip2_viscel(
         if v1.cn.is_finite() && v1.cs.is_finite() {
             (cn1, cn2, cs1, cs2) = (v1.cn, v2.cn, v1.cs, v2.cs);
         } else if v1.en.is_finite() {
-            let en = (v1.en + v2.en) / 2.0;
+            let en = pick(&mm.en, v1.en, v2.en)?;
             let cn = 2.0 * viscel_cn_from_en(en, mass_r, viscel_series(kn1, kn2), ids);
             (cn1, cn2, cs1, cs2) = (cn, cn, 0.0, 0.0);
         } else {
@@ -448,7 +460,10 @@ pub fn ip2_viscel(
         FrictPhys {
             kn: viscel_series(kn1, kn2),
             ks: viscel_series(ks1, ks2),
-            tan_phi: cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            tan_phi: match &mm.frict_angle {
+                Some(f) => f.call(m1.id, m2.id, nan, nan)?.tan(),
+                None => cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            },
             normal_force: Vec3::zeros(),
             shear_force: Vec3::zeros(),
         },
@@ -639,4 +654,55 @@ pub fn ip2_mindlin(
         shear_force: Vec3::zeros(),
     };
     Ok((fp, mp))
+}
+
+/// YADE's `MatchMaker` (pkg/common/MatchMaker.cpp): a value per pair of material ids (either order),
+/// else a fallback computed from two values (`algo`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatchMaker {
+    /// (id1, id2, value) as given.
+    pub matches: Vec<(i32, i32, f64)>,
+    /// "val", "zero", "avg", "min", "max" or "harmAvg".
+    pub algo: String,
+    pub val: f64,
+}
+
+impl MatchMaker {
+    /// `MatchMaker::operator()(id1, id2, val1, val2)`; the functors call it with the material ids only
+    /// (NaN values), which an algo needing values refuses.
+    pub fn call(&self, id1: i32, id2: i32, v1: f64, v2: f64) -> Result<f64, String> {
+        let key = (id1.min(id2), id1.max(id2));
+        // YADE's std::map keeps the first item of a repeated pair
+        if let Some(m) = self
+            .matches
+            .iter()
+            .find(|m| (m.0.min(m.1), m.0.max(m.1)) == key)
+        {
+            return Ok(m.2);
+        }
+        let needs = !matches!(self.algo.as_str(), "val" | "zero");
+        if needs && (v1.is_nan() || v2.is_nan()) {
+            return Err(format!(
+                "MatchMaker: no match for ({},{}), and values required for algo computation '{}' not specified.",
+                id1, id2, self.algo
+            ));
+        }
+        Ok(match self.algo.as_str() {
+            "val" => self.val,
+            "zero" => 0.,
+            "avg" => (v1 + v2) / 2.,
+            "min" => crate::math::cxx_min(v1, v2),
+            "max" => crate::math::cxx_max(v1, v2),
+            _ => 2. * v1 * v2 / (v1 + v2),
+        })
+    }
+}
+
+/// The MatchMakers `Ip2_ViscElMat_ViscElMat_ViscElPhys` may be given (None: the materials' values).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViscElIp2 {
+    pub tc: Option<MatchMaker>,
+    pub en: Option<MatchMaker>,
+    pub et: Option<MatchMaker>,
+    pub frict_angle: Option<MatchMaker>,
 }

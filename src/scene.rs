@@ -42,6 +42,8 @@ pub struct InteractionLoop {
     pub cohfrict_phys: Option<phys::CohFrictIp2>,
     /// `Ip2_ViscElMat_ViscElMat_ViscElPhys` present.
     pub viscel_phys: bool,
+    /// Its MatchMakers (tc, en, et, frictAngle).
+    pub viscel_ip2: phys::ViscElIp2,
     /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
     pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
@@ -119,6 +121,7 @@ impl InteractionLoop {
             frict_phys: false,
             cohfrict_phys: None,
             viscel_phys: false,
+            viscel_ip2: Default::default(),
             mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
@@ -1521,6 +1524,7 @@ impl Scene {
             Some(PhysFunctor::ViscEl) => {
                 if it.phys.is_none() {
                     let (fp, vp) = phys::ip2_viscel(
+                        &il.viscel_ip2,
                         m1,
                         m2,
                         b.mass[id1],

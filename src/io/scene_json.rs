@@ -797,11 +797,12 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     "Ip2_ViscElMat_ViscElMat_ViscElPhys" => {
-                        for mm in ["tc", "en", "et", "frictAngle"] {
-                            if p.get(mm).is_some_and(|x| !x.is_null()) {
-                                bail!("Ip2_ViscElMat_ViscElMat_ViscElPhys.{} (MatchMaker) is not supported by ryade yet", mm);
-                            }
-                        }
+                        il.viscel_ip2 = crate::phys::ViscElIp2 {
+                            tc: match_maker(&p, "tc")?,
+                            en: match_maker(&p, "en")?,
+                            et: match_maker(&p, "et")?,
+                            frict_angle: match_maker(&p, "frictAngle")?,
+                        };
                         il.viscel_phys = true
                     }
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
@@ -1002,6 +1003,62 @@ fn kinematic_part(e: &Value, cls: &str) -> Result<KinematicPart> {
         }),
         other => bail!("kinematic engine '{}' is not supported by ryade yet", other),
     })
+}
+
+/// A functor's MatchMaker attribute: `null`/missing, or `{"matches": [[id1, id2, value], ..], "algo": ..,
+/// "val": ..}`.
+fn match_maker(p: &Value, key: &str) -> Result<Option<crate::phys::MatchMaker>> {
+    let Some(m) = p.get(key).filter(|x| !x.is_null()) else {
+        return Ok(None);
+    };
+    let mut matches = Vec::new();
+    for it in m
+        .get("matches")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default()
+    {
+        let a = it.as_array().filter(|a| a.len() == 3).ok_or_else(|| {
+            anyhow!(
+                "{}.matches: each item must be [id1, id2, value], got {}",
+                key,
+                short(&it)
+            )
+        })?;
+        let num = |x: &Value| {
+            x.as_f64()
+                .ok_or_else(|| anyhow!("{}.matches: not a number: {}", key, x))
+        };
+        matches.push((num(&a[0])? as i32, num(&a[1])? as i32, num(&a[2])?));
+    }
+    let algo = m
+        .get("algo")
+        .and_then(Value::as_str)
+        .unwrap_or("avg")
+        .to_string();
+    if !["val", "zero", "avg", "min", "max", "harmAvg"].contains(&algo.as_str()) {
+        bail!(
+            "MatchMaker:: algo '{}' not recognized (possible values: val, avg, min, max, harmAvg).",
+            algo
+        );
+    }
+    let val = match m.get("val") {
+        Some(Value::String(s)) if s == "nan" => f64::NAN,
+        Some(v) if v.is_number() => v.as_f64().unwrap(),
+        _ => f64::NAN,
+    };
+    Ok(Some(crate::phys::MatchMaker { matches, algo, val }))
+}
+
+fn match_maker_value(m: &Option<crate::phys::MatchMaker>) -> Value {
+    use serde_json::json;
+    match m {
+        None => Value::Null,
+        Some(m) => {
+            json!({"matches": m.matches.iter().map(|x| json!([x.0, x.1, x.2])).collect::<Vec<_>>(),
+            "algo": m.algo, "val": if m.val.is_nan() { json!("nan") } else { json!(m.val) }})
+        }
+    }
 }
 
 fn helix(e: &Value) -> Result<crate::kinematic::HelixEngine> {
@@ -1401,7 +1458,14 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"}));
                 }
                 if il.viscel_phys {
-                    phys.push(json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"}));
+                    let mut f = json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"});
+                    let v = &il.viscel_ip2;
+                    for (k, m) in [("tc", &v.tc), ("en", &v.en), ("et", &v.et), ("frictAngle", &v.frict_angle)] {
+                        if m.is_some() {
+                            f[k] = match_maker_value(m);
+                        }
+                    }
+                    phys.push(f);
                 }
                 if let Some(p) = &il.mindlin_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,

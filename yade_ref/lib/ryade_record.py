@@ -250,9 +250,13 @@ def _phys_functor(f, grid=False):
         return {'class': c, 'setCohesionNow': bool(f.setCohesionNow),
                 'setCohesionOnNewContacts': bool(f.setCohesionOnNewContacts)}
     if c == 'Ip2_ViscElMat_ViscElMat_ViscElPhys':
+        d = {'class': c}
         for a in ('tc', 'en', 'et', 'frictAngle'):
-            _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
-        return {'class': c}
+            m = getattr(f, a)
+            if m is not None:
+                d[a] = {'matches': [[int(x[0]), int(x[1]), float(x[2])] for x in m.matches], 'algo': str(m.algo),
+                        'val': 'nan' if m.val != m.val else float(m.val)}
+        return d
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
         _require(f.frictAngle is None, '%s.frictAngle (MatchMaker) is not supported' % c)
         d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),

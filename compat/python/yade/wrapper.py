@@ -239,14 +239,88 @@ class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
         return {'class': 'Ip2_FrictMat_FrictMat_FrictPhys'}
 
 
+class MatchMaker(Serializable):
+    """YADE's MatchMaker (pkg/common/MatchMaker.cpp): a value per pair of material ids (`matches`, either
+    order), else the fallback `algo` of two values ('avg', 'min', 'max', 'harmAvg') or without them
+    ('val': `val`, 'zero'). A number given where a functor takes a MatchMaker becomes algo 'val'."""
+    _attrs = {'matches': [], 'algo': 'avg', 'val': float('nan')}
+    _ALGOS = ('val', 'zero', 'avg', 'min', 'max', 'harmAvg')
+
+    def _convert(self, k, v):
+        if k == 'matches':
+            out = []
+            for m in v:
+                m = tuple(m)
+                if len(m) != 3:
+                    raise TypeError('MatchMaker.matches takes (id1, id2, value) items, got %r' % (m,))
+                out.append((float(m[0]), float(m[1]), float(m[2])))
+            return out
+        if k == 'algo':
+            if v not in self._ALGOS:
+                raise ValueError("MatchMaker:: algo '%s' not recognized (possible values: val, avg, min, max, harmAvg)." % v)
+            return v
+        if k == 'val':
+            return float(v)
+        return v
+
+    def _read(self, k):
+        if k == 'matches':
+            from .minieigen import Vector3
+            return [Vector3(*m) for m in self._values['matches']]
+        return self._values[k]
+
+    def computeFallback(self, v1, v2):
+        a = self._values['algo']
+        if a == 'val':
+            return self._values['val']
+        if a == 'zero':
+            return 0.
+        if a == 'avg':
+            return (v1 + v2) / 2.
+        if a == 'min':
+            return v2 if v2 < v1 else v1
+        if a == 'max':
+            return v2 if v1 < v2 else v1
+        return 2 * v1 * v2 / (v1 + v2)
+
+    def __call__(self, id1, id2, val1=float('nan'), val2=float('nan')):
+        lo, hi = min(int(id1), int(id2)), max(int(id1), int(id2))
+        for m in self._values['matches']:
+            if (min(int(m[0]), int(m[1])), max(int(m[0]), int(m[1]))) == (lo, hi):
+                return m[2]
+        if self._values['algo'] not in ('val', 'zero') and (val1 != val1 or val2 != val2):
+            raise ValueError("MatchMaker: no match for (%d,%d), and values required for algo computation '%s' not "
+                             "specified." % (int(id1), int(id2), self._values['algo']))
+        return self.computeFallback(val1, val2)
+
+    def _json(self):
+        return {'matches': [list(m) for m in self._values['matches']], 'algo': self._values['algo'],
+                'val': _float_json(self._values['val'])}
+
+
+def _match_maker(cls, k, v):
+    """A functor's MatchMaker attribute: None, a MatchMaker, or a number (algo 'val', as YADE converts)."""
+    if v is None or isinstance(v, MatchMaker):
+        return v
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return MatchMaker(algo='val', val=float(v))
+    raise TypeError('%s.%s takes a MatchMaker or a number, got %s' % (cls, k, type(v).__name__))
+
+
 class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
     _attrs = {'tc': None, 'en': None, 'et': None, 'frictAngle': None}
 
+    def _convert(self, k, v):
+        if k in ('tc', 'en', 'et', 'frictAngle'):
+            return _match_maker('Ip2_ViscElMat_ViscElMat_ViscElPhys', k, v)
+        return v
+
     def _json(self):
+        d = {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
         for k in ('tc', 'en', 'et', 'frictAngle'):
             if self._values[k] is not None:
-                unsupported('Ip2_ViscElMat_ViscElMat_ViscElPhys.%s (MatchMaker)' % k)
-        return {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
+                d[k] = self._values[k]._json()
+        return d
 
 
 class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
@@ -1431,7 +1505,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
     ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
-    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin]}
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
