@@ -2029,8 +2029,8 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             _ => return Err(unsupported("ServoPIDController")),
         },
         // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
-        Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
-        Engine::PeriTriax(p) => peri_triax_set(p, key, &v).map_err(|e| match e {
+        Engine::Piston(pc) => pc.set(key, v).map_err(PyValueError::new_err)?,
+        Engine::PeriTriax(p) => peri_triax_set(p, key, v).map_err(|e| match e {
             None => unsupported("PeriTriaxController"),
             Some(e) => PyValueError::new_err(e),
         })?,
