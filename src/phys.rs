@@ -515,18 +515,19 @@ mod viscel_tests {
     }
 }
 
-/// `Ip2_FrictMat_FrictMat_MindlinPhys`'s attributes (pkg/dem/HertzMindlin.hpp); `en`, `es`, `betan`,
-/// `betas` are constant MatchMakers when given.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// `Ip2_FrictMat_FrictMat_MindlinPhys`'s attributes (pkg/dem/HertzMindlin.hpp); the MatchMakers are
+/// called with the two materials' ids.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct MindlinIp2 {
     pub gamma: f64,
     pub eta: f64,
     pub krot: f64,
     pub ktwist: f64,
-    pub en: Option<f64>,
-    pub es: Option<f64>,
-    pub betan: Option<f64>,
-    pub betas: Option<f64>,
+    pub en: Option<MatchMaker>,
+    pub es: Option<MatchMaker>,
+    pub betan: Option<MatchMaker>,
+    pub betas: Option<MatchMaker>,
+    pub frict_angle: Option<MatchMaker>,
 }
 
 /// What `MindlinPhys` (pkg/dem/HertzMindlin.hpp) adds to `FrictPhys` (kn, ks, tanφ and the forces are
@@ -596,7 +597,13 @@ pub fn ip2_mindlin(
     let r_mean = (da + db) / 2.;
     let kno = 4. / 3. * e_eff * r.sqrt();
     let kso = 8.0 * r.sqrt() * g_eff;
-    let friction_angle = m1.friction_angle.min(m2.friction_angle);
+    let nan = f64::NAN;
+    let call = |m: &MatchMaker| m.call(m1.id, m2.id, nan, nan);
+    // YADE: (*frictAngle)(id1, id2, fa1, fa2), with the materials' angles for the fallback
+    let friction_angle = match &p.frict_angle {
+        Some(f) => f.call(m1.id, m2.id, m1.friction_angle, m2.friction_angle)?,
+        None => crate::math::cxx_min(m1.friction_angle, m2.friction_angle),
+    };
     let adhesion = 4. * std::f64::consts::PI * r * p.gamma;
     let mut mp = MindlinPhys {
         kno,
@@ -623,8 +630,8 @@ pub fn ip2_mindlin(
             -6.918798, -16.41105, 146.8049, -796.4559, 2928.711, -7206.864, 11494.29, -11342.18,
             6276.757, -1489.915,
         ];
-        let en = p.en.or(p.es).unwrap();
-        let es = p.es.or(p.en).unwrap();
+        let en = call(p.en.as_ref().or(p.es.as_ref()).unwrap())?;
+        let es = call(p.es.as_ref().or(p.en.as_ref()).unwrap())?;
         let alpha = |e: f64| {
             let mut acc = h[9];
             for k in (1..9).rev() {
@@ -643,8 +650,14 @@ pub fn ip2_mindlin(
         mp.betan = beta(en, alpha(en));
         mp.betas = beta(es, alpha(es));
     } else {
-        mp.betan = p.betan.unwrap_or(0.0);
-        mp.betas = p.betas.unwrap_or(mp.betan);
+        mp.betan = match &p.betan {
+            Some(m) => call(m)?,
+            None => 0.0,
+        };
+        mp.betas = match &p.betas {
+            Some(m) => call(m)?,
+            None => mp.betan,
+        };
     }
     let fp = FrictPhys {
         kn: 0.0,

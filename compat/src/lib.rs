@@ -2073,11 +2073,20 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             _ => return Err(unsupported("HarmonicForceEngine")),
         },
         Engine::InteractionLoop(il) => {
-            let opt = || -> PyResult<Option<f64>> {
+            // a number (a constant MatchMaker) or a MatchMaker object (its JSON)
+            let opt = || -> PyResult<Option<ryade::phys::MatchMaker>> {
                 if v.is_null() {
                     Ok(None)
+                } else if v.is_number() {
+                    Ok(Some(ryade::phys::MatchMaker {
+                        matches: Vec::new(),
+                        algo: "val".into(),
+                        val: num()?,
+                    }))
                 } else {
-                    num().map(Some)
+                    scene_json::match_maker_of(v)
+                        .map(Some)
+                        .map_err(|e| PyValueError::new_err(e.to_string()))
                 }
             };
             match key.split_once('.') {
@@ -2092,6 +2101,7 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                         "es" => p.es = opt()?,
                         "betan" => p.betan = opt()?,
                         "betas" => p.betas = opt()?,
+                        "frictAngle" => p.frict_angle = opt()?,
                         _ => return Err(unsupported("InteractionLoop")),
                     }
                 }

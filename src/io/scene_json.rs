@@ -745,11 +745,13 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     "Ig2_Facet_Sphere_ScGeom" => {
                         il.facet_sphere = Some(geom::facet_sphere::Params {
                             shrink_factor: fo(&g, "shrinkFactor", 0.0)?,
+                            hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
                     "Ig2_Wall_Sphere_ScGeom" => {
                         il.wall_sphere = Some(geom::wall_sphere::Params {
                             no_ratch: bo(&g, "noRatch", true)?,
+                            hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
                     "Ig2_Box_Sphere_ScGeom" => {
@@ -806,13 +808,16 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         il.viscel_phys = true
                     }
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
-                        if p.get("frictAngle").is_some_and(|x| !x.is_null()) {
-                            bail!("Ip2_FrictMat_FrictMat_MindlinPhys.frictAngle (MatchMaker) is not supported by ryade yet");
-                        }
-                        let opt = |k: &str| -> Result<Option<f64>> {
+                        // a number stands for a constant MatchMaker (algo 'val')
+                        let opt = |k: &str| -> Result<Option<crate::phys::MatchMaker>> {
                             Ok(match p.get(k) {
                                 None | Some(Value::Null) => None,
-                                Some(_) => Some(fo(&p, k, 0.0)?),
+                                Some(v) if v.is_number() => Some(crate::phys::MatchMaker {
+                                    matches: Vec::new(),
+                                    algo: "val".into(),
+                                    val: fo(&p, k, 0.0)?,
+                                }),
+                                Some(_) => match_maker(&p, k)?,
                             })
                         };
                         il.mindlin_phys = Some(crate::phys::MindlinIp2 {
@@ -824,6 +829,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             es: opt("es")?,
                             betan: opt("betan")?,
                             betas: opt("betas")?,
+                            frict_angle: opt("frictAngle")?,
                         })
                     }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
@@ -1048,6 +1054,12 @@ fn match_maker(p: &Value, key: &str) -> Result<Option<crate::phys::MatchMaker>> 
         _ => f64::NAN,
     };
     Ok(Some(crate::phys::MatchMaker { matches, algo, val }))
+}
+
+/// A MatchMaker's JSON object (see `match_maker`).
+pub fn match_maker_of(v: &Value) -> Result<crate::phys::MatchMaker> {
+    let w = serde_json::json!({ "m": v });
+    Ok(match_maker(&w, "m")?.expect("not null"))
 }
 
 fn match_maker_value(m: &Option<crate::phys::MatchMaker>) -> Value {
@@ -1425,10 +1437,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     geom.push(json!({"class": "Ig2_Sphere_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor, "avoidGranularRatcheting": g.avoid_granular_ratcheting}));
                 }
                 if let Some(g) = &il.facet_sphere {
-                    geom.push(json!({"class": "Ig2_Facet_Sphere_ScGeom", "shrinkFactor": g.shrink_factor}));
+                    geom.push(json!({"class": "Ig2_Facet_Sphere_ScGeom", "shrinkFactor": g.shrink_factor, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.wall_sphere {
-                    geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch}));
+                    geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.box_sphere {
                     geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
@@ -1469,7 +1481,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 if let Some(p) = &il.mindlin_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,
-                        "krot": p.krot, "ktwist": p.ktwist, "en": p.en, "es": p.es, "betan": p.betan, "betas": p.betas}));
+                        "krot": p.krot, "ktwist": p.ktwist, "en": match_maker_value(&p.en), "es": match_maker_value(&p.es),
+                        "betan": match_maker_value(&p.betan), "betas": match_maker_value(&p.betas),
+                        "frictAngle": match_maker_value(&p.frict_angle)}));
                 }
                 let mut law: Vec<Value> = Vec::new();
                 if let Some(l) = &il.cohesion_moment {

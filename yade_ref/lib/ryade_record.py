@@ -232,14 +232,24 @@ def _geom_functor(f, grid=False):
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor),
                 'avoidGranularRatcheting': bool(f.avoidGranularRatcheting)}
     if c == 'Ig2_Facet_Sphere_ScGeom':
-        _require(not f.hertzian, 'Ig2_Facet_Sphere_ScGeom.hertzian=True is not supported')
-        return {'class': c, 'shrinkFactor': float(f.shrinkFactor)}
+        d = {'class': c, 'shrinkFactor': float(f.shrinkFactor)}
+        if f.hertzian:
+            d['hertzian'] = True
+        return d
     if c == 'Ig2_Wall_Sphere_ScGeom':
-        _require(not f.hertzian, 'Ig2_Wall_Sphere_ScGeom.hertzian=True is not supported')
-        return {'class': c, 'noRatch': bool(f.noRatch)}
+        d = {'class': c, 'noRatch': bool(f.noRatch)}
+        if f.hertzian:
+            d['hertzian'] = True
+        return d
     if c == 'Ig2_Box_Sphere_ScGeom':
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
     raise UnsupportedScene('geometry functor class %s is not supported' % c)
+
+
+def _match_maker(m):
+    """A MatchMaker as golden/FORMAT.md describes it."""
+    return {'matches': [[int(x[0]), int(x[1]), float(x[2])] for x in m.matches], 'algo': str(m.algo),
+            'val': 'nan' if m.val != m.val else float(m.val)}
 
 
 def _phys_functor(f, grid=False):
@@ -254,17 +264,20 @@ def _phys_functor(f, grid=False):
         for a in ('tc', 'en', 'et', 'frictAngle'):
             m = getattr(f, a)
             if m is not None:
-                d[a] = {'matches': [[int(x[0]), int(x[1]), float(x[2])] for x in m.matches], 'algo': str(m.algo),
-                        'val': 'nan' if m.val != m.val else float(m.val)}
+                d[a] = _match_maker(m)
         return d
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
-        _require(f.frictAngle is None, '%s.frictAngle (MatchMaker) is not supported' % c)
         d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
              'ktwist': float(f.ktwist)}
-        for a in ('en', 'es', 'betan', 'betas'):
+        for a in ('en', 'es', 'betan', 'betas', 'frictAngle'):
             m = getattr(f, a)
-            _require(m is None or len(m.matches) == 0, '%s.%s: only a constant MatchMaker is supported' % (c, a))
-            d[a] = None if m is None else float(m(0, 0))
+            if m is None:
+                if a != 'frictAngle':
+                    d[a] = None
+            elif len(m.matches) == 0 and m.algo == 'val':
+                d[a] = float(m.val)  # a number given for it
+            else:
+                d[a] = _match_maker(m)
         return d
     if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
         for a in ('kn', 'ks', 'frictAngle'):

@@ -175,18 +175,16 @@ class Ig2_Facet_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'shrinkFactor': 0.0, 'hertzian': False}
 
     def _json(self):
-        if self._values['hertzian']:
-            unsupported('Ig2_Facet_Sphere_ScGeom.hertzian=True')
-        return {'class': 'Ig2_Facet_Sphere_ScGeom', 'shrinkFactor': self._values['shrinkFactor']}
+        return {'class': 'Ig2_Facet_Sphere_ScGeom', 'shrinkFactor': self._values['shrinkFactor'],
+                'hertzian': bool(self._values['hertzian'])}
 
 
 class Ig2_Wall_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'noRatch': True, 'hertzian': False}
 
     def _json(self):
-        if self._values['hertzian']:
-            unsupported('Ig2_Wall_Sphere_ScGeom.hertzian=True')
-        return {'class': 'Ig2_Wall_Sphere_ScGeom', 'noRatch': self._values['noRatch']}
+        return {'class': 'Ig2_Wall_Sphere_ScGeom', 'noRatch': self._values['noRatch'],
+                'hertzian': bool(self._values['hertzian'])}
 
 
 class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
@@ -325,28 +323,33 @@ class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
 
 class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
     """Hertz-Mindlin contact physics (HertzMindlin.cpp; Rust core `phys::ip2_mindlin`). en, es, betan,
-    betas take numbers (YADE's constant MatchMaker; reading one gives the number back)."""
+    betas, frictAngle are MatchMakers (a number becomes a constant one, as in YADE)."""
     _attrs = {'gamma': 0.0, 'eta': 0.0, 'krot': 0.0, 'ktwist': 0.0, 'en': None, 'es': None, 'betan': None,
               'betas': None, 'frictAngle': None}
-    _live = ('gamma', 'eta', 'krot', 'ktwist', 'en', 'es', 'betan', 'betas')
+    _live = ('gamma', 'eta', 'krot', 'ktwist', 'en', 'es', 'betan', 'betas', 'frictAngle')
+    _mm = ('en', 'es', 'betan', 'betas', 'frictAngle')
 
     def _convert(self, k, v):
-        if k in ('en', 'es', 'betan', 'betas'):
-            if v is None:
-                return None
-            if isinstance(v, (int, float)) and not isinstance(v, bool):
-                return float(v)
-            unsupported('Ip2_FrictMat_FrictMat_MindlinPhys.%s as a MatchMaker' % k)
+        if k in self._mm:
+            return _match_maker('Ip2_FrictMat_FrictMat_MindlinPhys', k, v)
         if k in ('gamma', 'eta', 'krot', 'ktwist'):
             return float(v)
         return v
 
+    def _changed(self, k):
+        if k in self._mm and self._owner is not None and getattr(self._owner, '_owner', None) is not None:
+            omega, index = self._owner._owner
+            v = self._values[k]
+            omega._sim.engine_set(index, 'Ip2_FrictMat_FrictMat_MindlinPhys.%s' % k,
+                                  json.dumps(None if v is None else v._json()))
+            return
+        IPhysFunctor._changed(self, k)
+
     def _json(self):
-        if self._values['frictAngle'] is not None:
-            unsupported('Ip2_FrictMat_FrictMat_MindlinPhys.frictAngle (MatchMaker)')
         d = {'class': 'Ip2_FrictMat_FrictMat_MindlinPhys'}
         for k in self._live:
-            d[k] = self._values[k]
+            v = self._values[k]
+            d[k] = v._json() if isinstance(v, MatchMaker) else v
         return d
 
 
@@ -359,6 +362,17 @@ class Law2_ScGeom_MindlinPhys_Mindlin(LawFunctor):
     _attrs = {'includeAdhesion': False, 'calcEnergy': False, 'includeMoment': False, 'neverErase': False,
               'nothing': False}
     _live = ('includeAdhesion', 'includeMoment', 'neverErase')
+
+    @property
+    def preventGranularRatcheting(self):
+        return self.nothing
+
+    @preventGranularRatcheting.setter
+    def preventGranularRatcheting(self, v):
+        # YADE's deprecated attribute: a warning, then it sets `nothing` (unused)
+        print("WARN: Law2_ScGeom_MindlinPhys_Mindlin.preventGranularRatcheting is deprecated, use "
+              "Law2_ScGeom_MindlinPhys_Mindlin.nothing instead. (this value is no longer used, don't define it.)")
+        self.nothing = v
 
     def _json(self):
         if self._values['calcEnergy']:
