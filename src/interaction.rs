@@ -6,7 +6,7 @@
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
 use crate::geom::{GeomClass, GeomExt, ScGeom};
-use crate::phys::{CohFrictPhys, FrictPhys, MindlinPhys, ViscElPhys};
+use crate::phys::{CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, ViscElPhys};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -38,6 +38,8 @@ pub struct IntrExt {
     pub viscel: Option<ViscElPhys>,
     /// `Some` when the physics is a `MindlinPhys`.
     pub mindlin: Option<MindlinPhys>,
+    /// `Some` when the physics is a `LudingPhys`.
+    pub luding: Option<LudingPhys>,
 }
 
 #[derive(Clone, Debug)]
@@ -96,6 +98,12 @@ impl Interaction {
     #[inline(always)]
     pub fn mindlin(&self) -> Option<&MindlinPhys> {
         self.ext.as_ref().and_then(|e| e.mindlin.as_ref())
+    }
+
+    /// The Luding physics part, if the physics is a `LudingPhys`.
+    #[inline(always)]
+    pub fn luding(&self) -> Option<&LudingPhys> {
+        self.ext.as_ref().and_then(|e| e.luding.as_ref())
     }
 
     /// The geometry extension, if any.

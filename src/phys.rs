@@ -19,6 +19,7 @@ pub enum PhysClass {
     CohFrictPhys,
     ViscElPhys,
     MindlinPhys,
+    LudingPhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -29,7 +30,7 @@ impl crate::dispatch::Hierarchy for PhysClass {
             NormPhys => Some(IPhys),
             NormShearPhys => Some(NormPhys),
             FrictPhys => Some(NormShearPhys),
-            ViscElPhys => Some(FrictPhys),
+            ViscElPhys | LudingPhys => Some(FrictPhys),
             RotStiffFrictPhys => Some(FrictPhys),
             CohFrictPhys => Some(RotStiffFrictPhys),
             MindlinPhys => Some(RotStiffFrictPhys),
@@ -718,4 +719,82 @@ pub struct ViscElIp2 {
     pub en: Option<MatchMaker>,
     pub et: Option<MatchMaker>,
     pub frict_angle: Option<MatchMaker>,
+}
+
+/// What `LudingPhys` (pkg/dem/LudingPM.hpp) adds to `FrictPhys` (ks, tanφ and the forces are there; kn
+/// stays 0): the hysteretic spring's slopes and its overlap history.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LudingPhys {
+    pub k1: f64,
+    pub k2: f64,
+    pub kp: f64,
+    pub kc: f64,
+    pub phi_f: f64,
+    pub g0: f64,
+    pub delt_min: f64,
+    pub delt_max: f64,
+    pub delt_p_max: f64,
+    pub delt_null: f64,
+    pub delt_p_null: f64,
+    pub delt_prev: f64,
+}
+
+/// `Ip2_LudingMat_LudingMat_LudingPhys::reduced`: twice the two values in series (a zero left out).
+fn luding_reduced(a1: f64, a2: f64) -> f64 {
+    let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
+    let a = inv(a1) + inv(a2);
+    let a = if a != 0.0 { 1.0 / a } else { 0.0 };
+    2.0 * a
+}
+
+/// `Ip2_LudingMat_LudingMat_LudingPhys::go` (pkg/dem/LudingPM.cpp); `r1`, `r2` the bodies' sphere radii
+/// (None for another shape).
+pub fn ip2_luding(
+    m1: &FrictMat,
+    m2: &FrictMat,
+    r1: Option<f64>,
+    r2: Option<f64>,
+) -> Result<(FrictPhys, LudingPhys), String> {
+    let (l1, l2) = (
+        m1.luding.as_deref().ok_or("LudingMat expected")?,
+        m2.luding.as_deref().ok_or("LudingMat expected")?,
+    );
+    let mut lp = LudingPhys {
+        k1: luding_reduced(l1.k1, l2.k1),
+        k2: 0.0,
+        kp: luding_reduced(l1.kp, l2.kp),
+        kc: luding_reduced(l1.kc, l2.kc),
+        phi_f: luding_reduced(l1.phi_f, l2.phi_f),
+        g0: luding_reduced(l1.g0, l2.g0),
+        delt_min: 0.0,
+        delt_max: 0.0,
+        delt_p_max: 0.0,
+        delt_null: 0.0,
+        delt_p_null: 0.0,
+        delt_prev: 0.0,
+    };
+    let ks = luding_reduced(l1.ks, l2.ks);
+    let (a1, a2) = match (r1, r2) {
+        (Some(a), Some(b)) => (a, b),
+        (Some(a), None) => (a, 0.0),
+        (None, Some(b)) => (0.0, b),
+        (None, None) => {
+            return Err("Ip2_LudingMat_LudingMat_LudingPhys: neither body is a Sphere".into())
+        }
+    };
+    if lp.k1 >= lp.kp {
+        return Err("k1 have to be less as kp!".into());
+    }
+    lp.delt_p_max = lp.kp / (lp.kp - lp.k1) * lp.phi_f * 2.0 * a1 * a2 / (a1 + a2);
+    lp.delt_p_null = lp.phi_f * 2.0 * a1 * a2 / (a1 + a2);
+    Ok((
+        FrictPhys {
+            kn: 0.0,
+            ks,
+            tan_phi: cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            normal_force: Vec3::zeros(),
+            shear_force: Vec3::zeros(),
+        },
+        lp,
+    ))
 }

@@ -44,6 +44,10 @@ pub struct InteractionLoop {
     pub viscel_phys: bool,
     /// Its MatchMakers (tc, en, et, frictAngle).
     pub viscel_ip2: phys::ViscElIp2,
+    /// `Ip2_LudingMat_LudingMat_LudingPhys` present.
+    pub luding_phys: bool,
+    /// `Law2_ScGeom_LudingPhys_Basic` present.
+    pub luding_basic: bool,
     /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
     pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
@@ -122,6 +126,8 @@ impl InteractionLoop {
             cohfrict_phys: None,
             viscel_phys: false,
             viscel_ip2: Default::default(),
+            luding_phys: false,
+            luding_basic: false,
             mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
@@ -221,6 +227,13 @@ impl InteractionLoop {
                 f: PhysFunctor::ViscEl,
             });
         }
+        if self.luding_phys {
+            v.push(Entry {
+                a: MatClass::LudingMat,
+                b: MatClass::LudingMat,
+                f: PhysFunctor::Luding,
+            });
+        }
         if self.mindlin_phys.is_some() {
             v.push(Entry {
                 a: MatClass::FrictMat,
@@ -284,6 +297,12 @@ impl InteractionLoop {
             PhysClass::MindlinPhys,
             LawFunctor::Mindlin,
         );
+        add(
+            self.luding_basic,
+            GeomClass::ScGeom,
+            PhysClass::LudingPhys,
+            LawFunctor::LudingBasic,
+        );
         Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
     }
 }
@@ -295,6 +314,7 @@ enum PhysFunctor {
     CohFrict,
     ViscEl,
     Mindlin,
+    Luding,
 }
 
 #[derive(Clone, Debug)]
@@ -1536,6 +1556,18 @@ impl Scene {
                     it.ext_mut().viscel = Some(vp);
                 }
             }
+            Some(PhysFunctor::Luding) => {
+                if it.phys.is_none() {
+                    let (fp, lp) = phys::ip2_luding(
+                        m1,
+                        m2,
+                        b.shape[id1].sphere_radius(),
+                        b.shape[id2].sphere_radius(),
+                    )?;
+                    it.phys = Some(fp);
+                    it.ext_mut().luding = Some(lp);
+                }
+            }
             Some(PhysFunctor::Mindlin) => {
                 if it.phys.is_none() {
                     let (fp, mp) = phys::ip2_mindlin(
@@ -1590,6 +1622,8 @@ impl Scene {
             PhysClass::ViscElPhys
         } else if it.mindlin().is_some() {
             PhysClass::MindlinPhys
+        } else if it.luding().is_some() {
+            PhysClass::LudingPhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1608,6 +1642,7 @@ impl Scene {
                     (_, PhysClass::CohFrictPhys) => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment()",
                     (_, PhysClass::ViscElPhys) => "Law2_ScGeom_ViscElPhys_Basic()",
                     (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
+                    (_, PhysClass::LudingPhys) => "Law2_ScGeom_LudingPhys_Basic()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1725,6 +1760,34 @@ impl Scene {
                     shift_vel,
                 };
                 match law::viscel::load(self.dt, fresh, &g, ph, vp, &vb) {
+                    Some(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
+                }
+            }
+            LawFunctor::LudingBasic => {
+                let lp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.luding.as_mut())
+                    .ok_or_else(|| bad("LudingPhys"))?;
+                let (shift_vel, shift2) = match &self.cell {
+                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
+                    None => (Vec3::zeros(), Vec3::zeros()),
+                };
+                let vb = law::viscel::Bodies {
+                    pos1: b.pos[id1],
+                    pos2: b.pos[id2],
+                    vel1: b.vel[id1],
+                    vel2: b.vel[id2],
+                    ang_vel1: b.ang_vel[id1],
+                    ang_vel2: b.ang_vel[id2],
+                    shift2,
+                    shift_vel,
+                };
+                match law::luding::load(self.dt, fresh, &g, ph, lp, &vb) {
                     Some(l) => {
                         law::apply(&mut self.forces, id1, id2, &l);
                         true

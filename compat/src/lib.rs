@@ -1692,6 +1692,8 @@ impl Sim {
             "ViscElPhys"
         } else if ext.and_then(|e| e.mindlin.as_ref()).is_some() {
             "MindlinPhys"
+        } else if ext.and_then(|e| e.luding.as_ref()).is_some() {
+            "LudingPhys"
         } else {
             "FrictPhys"
         };

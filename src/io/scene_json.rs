@@ -426,9 +426,9 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
-        "ViscElMat" => None,
+        "ViscElMat" | "LudingMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat)",
             cls
         ),
     };
@@ -461,6 +461,25 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     } else {
         None
     };
+    let nan_or = |k: &str| -> Result<f64> {
+        match m.get(k) {
+            None | Some(Value::Null) => Ok(f64::NAN),
+            Some(_) => f(m, k),
+        }
+    };
+    let luding = if cls == "LudingMat" {
+        Some(Box::new(crate::material::LudingParams {
+            k1: nan_or("k1")?,
+            kp: nan_or("kp")?,
+            kc: nan_or("kc")?,
+            ks: nan_or("ks")?,
+            phi_f: nan_or("PhiF")?,
+            g0: nan_or("G0")?,
+        }))
+    } else {
+        None
+    };
+    let lud = luding.is_some();
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
         label: m
@@ -468,17 +487,25 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
             .and_then(Value::as_str)
             .unwrap_or("")
             .to_string(),
-        young: f(m, "young")?,
-        poisson: f(m, "poisson")?,
-        friction_angle: f(m, "frictionAngle")?,
+        young: if lud { f64::NAN } else { f(m, "young")? },
+        poisson: if lud { f64::NAN } else { f(m, "poisson")? },
+        friction_angle: if lud {
+            nan_or("frictionAngle")?
+        } else {
+            f(m, "frictionAngle")?
+        },
         density: f(m, "density")?,
         coh,
         viscel,
+        luding,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
         if let Some(i) = mats.iter().position(|x| x.id == fm.id) {
-            if mats[i] != fm {
+            // (compared as JSON: a NaN, a value not given, equals itself there)
+            if mats[i] != fm
+                && serde_json::to_value(&mats[i]).ok() != serde_json::to_value(&fm).ok()
+            {
                 bail!("two different materials share YADE id {}", fm.id);
             }
             return Ok(i);
@@ -807,6 +834,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         };
                         il.viscel_phys = true
                     }
+                    "Ip2_LudingMat_LudingMat_LudingPhys" => il.luding_phys = true,
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
                         // a number stands for a constant MatchMaker (algo 'val')
                         let opt = |k: &str| -> Result<Option<crate::phys::MatchMaker>> {
@@ -872,6 +900,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
+                    "Law2_ScGeom_LudingPhys_Basic" => il.luding_basic = true,
                     "Law2_ScGeom_MindlinPhys_Mindlin" => {
                         if bo(&l, "calcEnergy", false)? {
                             bail!("Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy is not supported by ryade yet");
@@ -1363,6 +1392,20 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
+            if let Some(l) = &m.luding {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, x) in [
+                    ("k1", l.k1),
+                    ("kp", l.kp),
+                    ("kc", l.kc),
+                    ("ks", l.ks),
+                    ("PhiF", l.phi_f),
+                    ("G0", l.g0),
+                    ("frictionAngle", m.friction_angle),
+                ] {
+                    mat[k] = nn(x);
+                }
+            }
             if let Some(v) = &m.viscel {
                 let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
                 for (k, x) in [
@@ -1479,6 +1522,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     }
                     phys.push(f);
                 }
+                if il.luding_phys {
+                    phys.push(json!({"class": "Ip2_LudingMat_LudingMat_LudingPhys"}));
+                }
                 if let Some(p) = &il.mindlin_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,
                         "krot": p.krot, "ktwist": p.ktwist, "en": match_maker_value(&p.en), "es": match_maker_value(&p.es),
@@ -1507,6 +1553,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 if il.viscel_basic {
                     law.push(json!({"class": "Law2_ScGeom_ViscElPhys_Basic"}));
+                }
+                if il.luding_basic {
+                    law.push(json!({"class": "Law2_ScGeom_LudingPhys_Basic"}));
                 }
                 if let Some(l) = &il.mindlin {
                     law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,

@@ -6,6 +6,7 @@
 
 pub mod cohesion_moment;
 pub mod grid;
+pub mod luding;
 pub mod mindlin;
 pub mod viscel;
 
@@ -67,11 +68,13 @@ pub enum LawFunctor {
     ViscElBasic,
     /// `Law2_ScGeom_MindlinPhys_Mindlin`
     Mindlin,
+    /// `Law2_ScGeom_LudingPhys_Basic`
+    LudingBasic,
 }
 
 impl LawFunctor {
     /// Number of law functors (the size of `LawEnergy::caches`).
-    pub const COUNT: usize = 7;
+    pub const COUNT: usize = 8;
 
     pub fn class_name(&self) -> &'static str {
         match self {
@@ -82,6 +85,7 @@ impl LawFunctor {
             LawFunctor::GridCoGridCoFrict => "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack",
             LawFunctor::ViscElBasic => "Law2_ScGeom_ViscElPhys_Basic",
             LawFunctor::Mindlin => "Law2_ScGeom_MindlinPhys_Mindlin",
+            LawFunctor::LudingBasic => "Law2_ScGeom_LudingPhys_Basic",
         }
     }
 }

@@ -163,6 +163,11 @@ def _material(b, grid=False):
             d[a] = _num_or_null(getattr(m, a))
         d['mR'], d['mRtype'] = float(m.mR), int(m.mRtype)
         return d
+    if c == 'LudingMat':
+        d = {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label)}
+        for a in ('k1', 'kp', 'kc', 'ks', 'PhiF', 'G0', 'frictionAngle'):
+            d[a] = _num_or_null(getattr(m, a))
+        return d
     if c != 'FrictMat':
         raise UnsupportedScene('body %d: material class %s is not supported (only FrictMat)' % (b.id, c))
     return {'id': int(m.id), 'class': 'FrictMat', 'young': float(m.young), 'poisson': float(m.poisson),
@@ -266,6 +271,8 @@ def _phys_functor(f, grid=False):
             if m is not None:
                 d[a] = _match_maker(m)
         return d
+    if c == 'Ip2_LudingMat_LudingMat_LudingPhys':
+        return {'class': c}
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
         d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
              'ktwist': float(f.ktwist)}
@@ -301,6 +308,8 @@ def _law_functor(f, grid=False):
     if c == 'Law2_ScGeom_FrictPhys_CundallStrack':
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
     if c == 'Law2_ScGeom_ViscElPhys_Basic':
+        return {'class': c}
+    if c == 'Law2_ScGeom_LudingPhys_Basic':
         return {'class': c}
     if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
         _require(not f.calcEnergy, '%s.calcEnergy is not supported' % c)

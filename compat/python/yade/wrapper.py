@@ -353,8 +353,18 @@ class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
         return d
 
 
+class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
+    def _json(self):
+        return {'class': 'Ip2_LudingMat_LudingMat_LudingPhys'}
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_LudingPhys_Basic(LawFunctor):
+    def _json(self):
+        return {'class': 'Law2_ScGeom_LudingPhys_Basic'}
 
 
 class Law2_ScGeom_MindlinPhys_Mindlin(LawFunctor):
@@ -1409,6 +1419,26 @@ class ViscElMat(FrictMat):
         FrictMat._changed(self, k)
 
 
+class LudingMat(Material):
+    """YADE's LudingMat (pkg/dem/LudingPM.hpp): a Material (not an ElastMat) with Luding's hysteretic
+    contact parameters; NaN (YADE's default) for a value not given."""
+    _attrs = {'k1': float('nan'), 'kp': float('nan'), 'kc': float('nan'), 'ks': float('nan'), 'PhiF': float('nan'),
+              'G0': float('nan'), 'frictionAngle': float('nan')}
+
+    def _json(self):
+        v = self._values
+        d = {'class': 'LudingMat', 'id': v['id'], 'label': v['label'], 'density': float(v['density'])}
+        for k in LudingMat._attrs:
+            x = float(v[k])
+            d[k] = None if x != x else x  # NaN (not given) as null
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in LudingMat._attrs:
+            unsupported('changing LudingMat.%s after the material is in use' % k)
+        Material._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -1519,7 +1549,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
     ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
-    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker]}
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, LudingMat,
+    Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
