@@ -465,30 +465,6 @@ impl TriaxialStressController {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sign_and_min_as_cxx() {
-        assert_eq!(sign(-3.0), -1.0);
-        assert_eq!(sign(0.0), 0.0);
-        assert_eq!(sign(2.0), 1.0);
-        assert_eq!(cxx_min(1.0, 1.0), 1.0);
-        assert_eq!(cxx_min(2.0, 1.0), 1.0);
-    }
-
-    #[test]
-    fn defaults_match_yade() {
-        let t = TriaxialStressController::default();
-        assert_eq!(t.normal[BOTTOM], Vec3::new(0.0, 1.0, 0.0));
-        assert_eq!(t.normal[FRONT], Vec3::new(0.0, 0.0, -1.0));
-        assert_eq!(t.wall_ids, [0, 1, 2, 3, 4, 5]);
-        assert_eq!(t.stress_mask, 7);
-        assert_eq!(t.porosity, 1.0);
-    }
-}
-
 /// The attributes by YADE's names (scene files, the compat layer's `engine_set`/`engine_get`).
 const F64_ATTRS: &[&str] = &[
     "stressDamping",
@@ -708,5 +684,29 @@ impl TriaxialStressController {
             }
         }
         Ok(t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sign_and_min_as_cxx() {
+        assert_eq!(sign(-3.0), -1.0);
+        assert_eq!(sign(0.0), 0.0);
+        assert_eq!(sign(2.0), 1.0);
+        assert_eq!(cxx_min(1.0, 1.0), 1.0);
+        assert_eq!(cxx_min(2.0, 1.0), 1.0);
+    }
+
+    #[test]
+    fn defaults_match_yade() {
+        let t = TriaxialStressController::default();
+        assert_eq!(t.normal[BOTTOM], Vec3::new(0.0, 1.0, 0.0));
+        assert_eq!(t.normal[FRONT], Vec3::new(0.0, 0.0, -1.0));
+        assert_eq!(t.wall_ids, [0, 1, 2, 3, 4, 5]);
+        assert_eq!(t.stress_mask, 7);
+        assert_eq!(t.porosity, 1.0);
     }
 }
