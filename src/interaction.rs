@@ -6,7 +6,7 @@
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
 use crate::geom::{GeomClass, GeomExt, ScGeom};
-use crate::phys::{CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, ViscElPhys};
+use crate::phys::{BubblePhys, CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, ViscElPhys};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -40,6 +40,8 @@ pub struct IntrExt {
     pub mindlin: Option<MindlinPhys>,
     /// `Some` when the physics is a `LudingPhys`.
     pub luding: Option<LudingPhys>,
+    /// `Some` when the physics is a `BubblePhys`.
+    pub bubble: Option<BubblePhys>,
 }
 
 #[derive(Clone, Debug)]

@@ -27,6 +27,10 @@ pub struct FrictMat {
     /// `poisson` unused, `friction_angle` its frictionAngle).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub luding: Option<Box<LudingParams>>,
+    /// `Some(surfaceTension)` for a `BubbleMat` (pkg/dem/BubbleMat.hpp: a `Material`; only the density
+    /// and this are used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bubble: Option<f64>,
 }
 
 /// The fields of a `LudingMat` besides density and frictionAngle (NaN: not given, YADE's default).
@@ -137,6 +141,7 @@ impl Default for FrictMat {
             coh: None,
             viscel: None,
             luding: None,
+            bubble: None,
         }
     }
 }
@@ -166,6 +171,8 @@ impl FrictMat {
             MatClass::ViscElMat
         } else if self.luding.is_some() {
             MatClass::LudingMat
+        } else if self.bubble.is_some() {
+            MatClass::BubbleMat
         } else {
             MatClass::FrictMat
         }
@@ -178,6 +185,8 @@ impl FrictMat {
             "ViscElMat"
         } else if self.luding.is_some() {
             "LudingMat"
+        } else if self.bubble.is_some() {
+            "BubbleMat"
         } else {
             "FrictMat"
         }
@@ -193,13 +202,14 @@ pub enum MatClass {
     CohFrictMat,
     ViscElMat,
     LudingMat,
+    BubbleMat,
 }
 
 impl crate::dispatch::Hierarchy for MatClass {
     fn parent(self) -> Option<Self> {
         match self {
             MatClass::Material => None,
-            MatClass::LudingMat => Some(MatClass::Material),
+            MatClass::LudingMat | MatClass::BubbleMat => Some(MatClass::Material),
             MatClass::ElastMat => Some(MatClass::Material),
             MatClass::FrictMat => Some(MatClass::ElastMat),
             MatClass::CohFrictMat | MatClass::ViscElMat => Some(MatClass::FrictMat),

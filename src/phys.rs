@@ -20,6 +20,7 @@ pub enum PhysClass {
     ViscElPhys,
     MindlinPhys,
     LudingPhys,
+    BubblePhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -31,6 +32,7 @@ impl crate::dispatch::Hierarchy for PhysClass {
             NormShearPhys => Some(NormPhys),
             FrictPhys => Some(NormShearPhys),
             ViscElPhys | LudingPhys => Some(FrictPhys),
+            BubblePhys => Some(IPhys),
             RotStiffFrictPhys => Some(FrictPhys),
             CohFrictPhys => Some(RotStiffFrictPhys),
             MindlinPhys => Some(RotStiffFrictPhys),
@@ -797,4 +799,80 @@ pub fn ip2_luding(
         },
         lp,
     ))
+}
+
+/// `BubblePhys` (pkg/dem/BubbleMat.hpp, an IPhys: its normal force is kept in the FrictPhys part, whose
+/// kn, ks and shear force stay 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BubblePhys {
+    pub fn_: f64,
+    pub r_avg: f64,
+    pub dmax: f64,
+    pub newton_iter: i32,
+    pub newton_tol: f64,
+    pub coeff_a: f64,
+    pub coeff_b: f64,
+}
+
+impl Default for BubblePhys {
+    fn default() -> Self {
+        BubblePhys {
+            fn_: f64::NAN,
+            r_avg: f64::NAN,
+            dmax: f64::NAN,
+            newton_iter: 50,
+            newton_tol: 1e-6,
+            coeff_a: f64::NAN,
+            coeff_b: f64::NAN,
+        }
+    }
+}
+
+impl BubblePhys {
+    /// `BubblePhys::computeCoeffs` (pkg/dem/BubbleMat.cpp): the threshold Dmax of Chan's law and the
+    /// artificial exponential beyond it, and the starting force.
+    pub fn compute_coeffs(&mut self, pct_max_force: f64, c1: f64) {
+        let fmax = pct_max_force * c1 * self.r_avg;
+        let log_pct = (pct_max_force / 4.0).ln();
+        self.dmax = pct_max_force * self.r_avg * log_pct;
+        let dfdd = c1 / (log_pct + 1.0);
+        self.coeff_b = dfdd / fmax;
+        self.coeff_a = fmax / (self.coeff_b * self.dmax).exp();
+        self.fn_ = 0.1 * fmax;
+    }
+
+    /// `BubblePhys::computeForce`: Newton-Raphson on Chan's equation (25) for a separation at least
+    /// Dmax, the exponential extension below it.
+    pub fn compute_force(&self, separation: f64, c1: f64) -> Result<f64, String> {
+        if separation >= self.dmax {
+            let c2 = 1. / (4.0 * c1 * self.r_avg);
+            let mut ret = self.fn_;
+            let mut i = 0;
+            loop {
+                let ret_old = ret;
+                let g = (ret * c2).ln();
+                let f = separation * c1 - ret * g;
+                let df = g + 1.0;
+                ret += f / df;
+                let residual = if ret <= 0.0 {
+                    ret = 0.9 * ret.abs();
+                    self.newton_tol * 2.0
+                } else {
+                    (ret - ret_old).abs() / ret_old
+                };
+                let over = i > self.newton_iter;
+                i += 1;
+                if over {
+                    return Err("BubblePhys::computeForce: no convergence".into());
+                }
+                // `while (residual > newtonTol)`: a NaN residual ends the loop too
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(residual > self.newton_tol) {
+                    return Ok(ret);
+                }
+            }
+        } else {
+            Ok(self.coeff_a * (self.coeff_b * separation).exp())
+        }
+    }
 }

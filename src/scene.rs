@@ -48,6 +48,10 @@ pub struct InteractionLoop {
     pub luding_phys: bool,
     /// `Law2_ScGeom_LudingPhys_Basic` present.
     pub luding_basic: bool,
+    /// `Ip2_BubbleMat_BubbleMat_BubblePhys` present.
+    pub bubble_phys: bool,
+    /// `Law2_ScGeom_BubblePhys_Bubble` and its state.
+    pub bubble: Option<law::bubble::Params>,
     /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
     pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
@@ -128,6 +132,8 @@ impl InteractionLoop {
             viscel_ip2: Default::default(),
             luding_phys: false,
             luding_basic: false,
+            bubble_phys: false,
+            bubble: None,
             mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
@@ -234,6 +240,13 @@ impl InteractionLoop {
                 f: PhysFunctor::Luding,
             });
         }
+        if self.bubble_phys {
+            v.push(Entry {
+                a: MatClass::BubbleMat,
+                b: MatClass::BubbleMat,
+                f: PhysFunctor::Bubble,
+            });
+        }
         if self.mindlin_phys.is_some() {
             v.push(Entry {
                 a: MatClass::FrictMat,
@@ -303,6 +316,12 @@ impl InteractionLoop {
             PhysClass::LudingPhys,
             LawFunctor::LudingBasic,
         );
+        add(
+            self.bubble.is_some(),
+            GeomClass::ScGeom,
+            PhysClass::BubblePhys,
+            LawFunctor::Bubble,
+        );
         Ok(dispatch::resolve(&v, false, g, p, |_| None, |_| None)?.map(|(f, _)| f))
     }
 }
@@ -315,6 +334,7 @@ enum PhysFunctor {
     ViscEl,
     Mindlin,
     Luding,
+    Bubble,
 }
 
 #[derive(Clone, Debug)]
@@ -1556,6 +1576,12 @@ impl Scene {
                     it.ext_mut().viscel = Some(vp);
                 }
             }
+            Some(PhysFunctor::Bubble) => {
+                if it.phys.is_none() {
+                    it.phys = Some(phys::FrictPhys::default());
+                    it.ext_mut().bubble = Some(phys::BubblePhys::default());
+                }
+            }
             Some(PhysFunctor::Luding) => {
                 if it.phys.is_none() {
                     let (fp, lp) = phys::ip2_luding(
@@ -1624,6 +1650,8 @@ impl Scene {
             PhysClass::MindlinPhys
         } else if it.luding().is_some() {
             PhysClass::LudingPhys
+        } else if it.ext.as_ref().is_some_and(|e| e.bubble.is_some()) {
+            PhysClass::BubblePhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1643,6 +1671,7 @@ impl Scene {
                     (_, PhysClass::ViscElPhys) => "Law2_ScGeom_ViscElPhys_Basic()",
                     (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
                     (_, PhysClass::LudingPhys) => "Law2_ScGeom_LudingPhys_Basic()",
+                    (_, PhysClass::BubblePhys) => "Law2_ScGeom_BubblePhys_Bubble()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1760,6 +1789,29 @@ impl Scene {
                     shift_vel,
                 };
                 match law::viscel::load(self.dt, fresh, &g, ph, vp, &vb) {
+                    Some(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
+                }
+            }
+            LawFunctor::Bubble => {
+                let bp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.bubble.as_mut())
+                    .ok_or_else(|| bad("BubblePhys"))?;
+                match law::bubble::load(
+                    il.bubble.as_mut().unwrap(),
+                    fresh,
+                    &g,
+                    ph,
+                    bp,
+                    &b.pos[id1],
+                    &b.pos[id2],
+                    self.cell.is_some(),
+                )? {
                     Some(l) => {
                         law::apply(&mut self.forces, id1, id2, &l);
                         true

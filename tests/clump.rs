@@ -142,6 +142,7 @@ fn unsupported_clumps_are_refused_clearly() {
         coh: None,
         viscel: None,
         luding: None,
+        bubble: None,
     }];
     let mut b = Bodies::default();
     for x in [0.0, 0.015, 0.5] {

@@ -1694,6 +1694,8 @@ impl Sim {
             "MindlinPhys"
         } else if ext.and_then(|e| e.luding.as_ref()).is_some() {
             "LudingPhys"
+        } else if ext.and_then(|e| e.bubble.as_ref()).is_some() {
+            "BubblePhys"
         } else {
             "FrictPhys"
         };

@@ -358,7 +358,7 @@ impl FastSim {
         }
         let mut mats = Vec::with_capacity(scene.materials.len());
         for m in &scene.materials {
-            if m.coh.is_some() || m.viscel.is_some() || m.luding.is_some() {
+            if m.coh.is_some() || m.viscel.is_some() || m.luding.is_some() || m.bubble.is_some() {
                 return unsupported(m.class_name().into());
             }
             mats.push(Mat {

@@ -426,9 +426,9 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
-        "ViscElMat" | "LudingMat" => None,
+        "ViscElMat" | "LudingMat" | "BubbleMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat)",
             cls
         ),
     };
@@ -479,7 +479,12 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     } else {
         None
     };
-    let lud = luding.is_some();
+    let bubble = if cls == "BubbleMat" {
+        Some(fo(m, "surfaceTension", 0.07197)?)
+    } else {
+        None
+    };
+    let lud = luding.is_some() || bubble.is_some();
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
         label: m
@@ -498,6 +503,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         coh,
         viscel,
         luding,
+        bubble,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -835,6 +841,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         il.viscel_phys = true
                     }
                     "Ip2_LudingMat_LudingMat_LudingPhys" => il.luding_phys = true,
+                    "Ip2_BubbleMat_BubbleMat_BubblePhys" => il.bubble_phys = true,
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
                         // a number stands for a constant MatchMaker (algo 'val')
                         let opt = |k: &str| -> Result<Option<crate::phys::MatchMaker>> {
@@ -901,6 +908,13 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
                     "Law2_ScGeom_LudingPhys_Basic" => il.luding_basic = true,
+                    "Law2_ScGeom_BubblePhys_Bubble" => {
+                        il.bubble = Some(law::bubble::Params {
+                            pct_max_force: fo(&l, "pctMaxForce", 0.1)?,
+                            surface_tension: fo(&l, "surfaceTension", 0.07197)?,
+                            c1: 0.0,
+                        })
+                    }
                     "Law2_ScGeom_MindlinPhys_Mindlin" => {
                         if bo(&l, "calcEnergy", false)? {
                             bail!("Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy is not supported by ryade yet");
@@ -1392,6 +1406,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
+            if let Some(st) = m.bubble {
+                mat["surfaceTension"] = json!(st);
+            }
             if let Some(l) = &m.luding {
                 let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
                 for (k, x) in [
@@ -1525,6 +1542,9 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.luding_phys {
                     phys.push(json!({"class": "Ip2_LudingMat_LudingMat_LudingPhys"}));
                 }
+                if il.bubble_phys {
+                    phys.push(json!({"class": "Ip2_BubbleMat_BubbleMat_BubblePhys"}));
+                }
                 if let Some(p) = &il.mindlin_phys {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,
                         "krot": p.krot, "ktwist": p.ktwist, "en": match_maker_value(&p.en), "es": match_maker_value(&p.es),
@@ -1556,6 +1576,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 if il.luding_basic {
                     law.push(json!({"class": "Law2_ScGeom_LudingPhys_Basic"}));
+                }
+                if let Some(l) = &il.bubble {
+                    law.push(json!({"class": "Law2_ScGeom_BubblePhys_Bubble", "pctMaxForce": l.pct_max_force,
+                        "surfaceTension": l.surface_tension}));
                 }
                 if let Some(l) = &il.mindlin {
                     law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,

@@ -6,6 +6,7 @@
 
 pub mod cohesion_moment;
 pub mod grid;
+pub mod bubble;
 pub mod luding;
 pub mod mindlin;
 pub mod viscel;
@@ -70,11 +71,13 @@ pub enum LawFunctor {
     Mindlin,
     /// `Law2_ScGeom_LudingPhys_Basic`
     LudingBasic,
+    /// `Law2_ScGeom_BubblePhys_Bubble`
+    Bubble,
 }
 
 impl LawFunctor {
     /// Number of law functors (the size of `LawEnergy::caches`).
-    pub const COUNT: usize = 8;
+    pub const COUNT: usize = 9;
 
     pub fn class_name(&self) -> &'static str {
         match self {
@@ -86,6 +89,7 @@ impl LawFunctor {
             LawFunctor::ViscElBasic => "Law2_ScGeom_ViscElPhys_Basic",
             LawFunctor::Mindlin => "Law2_ScGeom_MindlinPhys_Mindlin",
             LawFunctor::LudingBasic => "Law2_ScGeom_LudingPhys_Basic",
+            LawFunctor::Bubble => "Law2_ScGeom_BubblePhys_Bubble",
         }
     }
 }

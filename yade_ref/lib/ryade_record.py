@@ -163,6 +163,9 @@ def _material(b, grid=False):
             d[a] = _num_or_null(getattr(m, a))
         d['mR'], d['mRtype'] = float(m.mR), int(m.mRtype)
         return d
+    if c == 'BubbleMat':
+        return {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label),
+                'surfaceTension': float(m.surfaceTension)}
     if c == 'LudingMat':
         d = {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label)}
         for a in ('k1', 'kp', 'kc', 'ks', 'PhiF', 'G0', 'frictionAngle'):
@@ -271,6 +274,8 @@ def _phys_functor(f, grid=False):
             if m is not None:
                 d[a] = _match_maker(m)
         return d
+    if c == 'Ip2_BubbleMat_BubbleMat_BubblePhys':
+        return {'class': c}
     if c == 'Ip2_LudingMat_LudingMat_LudingPhys':
         return {'class': c}
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
@@ -309,6 +314,8 @@ def _law_functor(f, grid=False):
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
     if c == 'Law2_ScGeom_ViscElPhys_Basic':
         return {'class': c}
+    if c == 'Law2_ScGeom_BubblePhys_Bubble':
+        return {'class': c, 'pctMaxForce': float(f.pctMaxForce), 'surfaceTension': float(f.surfaceTension)}
     if c == 'Law2_ScGeom_LudingPhys_Basic':
         return {'class': c}
     if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
@@ -699,10 +706,11 @@ def _write_intrs(out, step, intrs):
         cp = g.contactPoint
         si = g.shearInc
         fn = ph.normalForce
-        fs = ph.shearForce
+        # a physics without shear force or stiffnesses (BubblePhys, an IPhys): zeros, as ryade keeps them
+        fs = getattr(ph, 'shearForce', (0.0, 0.0, 0.0))
         out.write(INTR_FMT % (step, k, I.id1, I.id2, n[0], n[1], n[2], g.penetrationDepth,
                               cp[0], cp[1], cp[2], si[0], si[1], si[2],
-                              fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], ph.kn, ph.ks))
+                              fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], getattr(ph, 'kn', 0.0), getattr(ph, 'ks', 0.0)))
 
 
 def _write_intrs6d(out, step, intrs):

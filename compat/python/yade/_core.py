@@ -12,7 +12,7 @@ import sys
 from . import _ryade
 from ._errors import bridge_json, unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, Vector3i, to_vec3
-from .wrapper import Engine, FrictMat, LudingMat, Material, Serializable, YADE_CLASSES
+from .wrapper import BubbleMat, Engine, FrictMat, LudingMat, Material, Serializable, YADE_CLASSES
 
 
 def _blocked_bits(s):
@@ -386,7 +386,7 @@ class BodyContainer(object):
         if mat is None:
             mat = o.materials._default()
             b._values['material'] = mat
-        if not isinstance(mat, (FrictMat, LudingMat)):
+        if not isinstance(mat, (FrictMat, LudingMat, BubbleMat)):
             unsupported('material class %s' % type(mat).__name__)
         if o._sim.in_step():
             unsupported('adding bodies from inside a PyRunner during a step', 'add them between O.run calls')
@@ -492,7 +492,7 @@ class MaterialContainer(object):
             return [self.append(x) for x in m]
         if not isinstance(m, Material):
             raise TypeError('O.materials.append takes a Material')
-        if not isinstance(m, (FrictMat, LudingMat)):
+        if not isinstance(m, (FrictMat, LudingMat, BubbleMat)):
             unsupported('material class %s' % type(m).__name__)
         mid = len(self._mats)
         m._values['id'] = mid

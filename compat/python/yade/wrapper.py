@@ -353,6 +353,11 @@ class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
         return d
 
 
+class Ip2_BubbleMat_BubbleMat_BubblePhys(IPhysFunctor):
+    def _json(self):
+        return {'class': 'Ip2_BubbleMat_BubbleMat_BubblePhys'}
+
+
 class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
     def _json(self):
         return {'class': 'Ip2_LudingMat_LudingMat_LudingPhys'}
@@ -360,6 +365,15 @@ class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
 
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_BubblePhys_Bubble(LawFunctor):
+    """Chan's bubble-bubble law (BubbleMat.cpp; Rust core `law::bubble`); its own surfaceTension is used."""
+    _attrs = {'pctMaxForce': 0.1, 'surfaceTension': 0.07197}
+
+    def _json(self):
+        return {'class': 'Law2_ScGeom_BubblePhys_Bubble', 'pctMaxForce': float(self._values['pctMaxForce']),
+                'surfaceTension': float(self._values['surfaceTension'])}
 
 
 class Law2_ScGeom_LudingPhys_Basic(LawFunctor):
@@ -1439,6 +1453,21 @@ class LudingMat(Material):
         Material._changed(self, k)
 
 
+class BubbleMat(Material):
+    """YADE's BubbleMat (pkg/dem/BubbleMat.hpp): a Material for bubbles in a liquid of `surfaceTension`."""
+    _attrs = {'surfaceTension': 0.07197}
+
+    def _json(self):
+        v = self._values
+        return {'class': 'BubbleMat', 'id': v['id'], 'label': v['label'], 'density': float(v['density']),
+                'surfaceTension': float(v['surfaceTension'])}
+
+    def _changed(self, k):
+        if self._owner is not None and k == 'surfaceTension':
+            unsupported('changing BubbleMat.surfaceTension after the material is in use')
+        Material._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -1550,7 +1579,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
     ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
     Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, LudingMat,
-    Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic]}
+    Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic, BubbleMat, Ip2_BubbleMat_BubbleMat_BubblePhys,
+    Law2_ScGeom_BubblePhys_Bubble]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
