@@ -26,6 +26,7 @@ impl Default for Params {
 
 /// `Law2_ScGeom_BubblePhys_Bubble::go` up to the forces it adds (Ok(None): apart, erase).
 /// `pos1`/`pos2` the bodies' positions (unused on a periodic cell, as in YADE).
+#[allow(clippy::too_many_arguments)]
 pub fn load(
     p: &mut Params,
     fresh: bool,

@@ -4,9 +4,9 @@
 //! the sphere-connection and connection-connection laws that put the force on the grid nodes; `viscel`:
 //! the viscoelastic law of ViscElMat; `mindlin`: Hertz-Mindlin.
 
+pub mod bubble;
 pub mod cohesion_moment;
 pub mod grid;
-pub mod bubble;
 pub mod luding;
 pub mod mindlin;
 pub mod viscel;
