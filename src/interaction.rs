@@ -6,7 +6,7 @@
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
 use crate::geom::{GeomClass, GeomExt, ScGeom};
-use crate::phys::{CohFrictPhys, FrictPhys, ViscElPhys};
+use crate::phys::{BubblePhys, CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, ViscElPhys};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -36,6 +36,12 @@ pub struct IntrExt {
     pub coh: Option<CohFrictPhys>,
     /// `Some` when the physics is a `ViscElPhys`.
     pub viscel: Option<ViscElPhys>,
+    /// `Some` when the physics is a `MindlinPhys`.
+    pub mindlin: Option<MindlinPhys>,
+    /// `Some` when the physics is a `LudingPhys`.
+    pub luding: Option<LudingPhys>,
+    /// `Some` when the physics is a `BubblePhys`.
+    pub bubble: Option<BubblePhys>,
 }
 
 #[derive(Clone, Debug)]
@@ -88,6 +94,18 @@ impl Interaction {
     #[inline(always)]
     pub fn viscel(&self) -> Option<&ViscElPhys> {
         self.ext.as_ref().and_then(|e| e.viscel.as_ref())
+    }
+
+    /// The Hertz-Mindlin physics part, if the physics is a `MindlinPhys`.
+    #[inline(always)]
+    pub fn mindlin(&self) -> Option<&MindlinPhys> {
+        self.ext.as_ref().and_then(|e| e.mindlin.as_ref())
+    }
+
+    /// The Luding physics part, if the physics is a `LudingPhys`.
+    #[inline(always)]
+    pub fn luding(&self) -> Option<&LudingPhys> {
+        self.ext.as_ref().and_then(|e| e.luding.as_ref())
     }
 
     /// The geometry extension, if any.

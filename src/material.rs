@@ -23,6 +23,38 @@ pub struct FrictMat {
     /// `Some` for a `ViscElMat`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub viscel: Option<Box<ViscElParams>>,
+    /// `Some` for a `LudingMat` (pkg/dem/LudingPM.hpp: a `Material`, not an ElastMat; `young` and
+    /// `poisson` unused, `friction_angle` its frictionAngle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub luding: Option<Box<LudingParams>>,
+    /// `Some(surfaceTension)` for a `BubbleMat` (pkg/dem/BubbleMat.hpp: a `Material`; only the density
+    /// and this are used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bubble: Option<f64>,
+}
+
+/// The fields of a `LudingMat` besides density and frictionAngle (NaN: not given, YADE's default).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LudingParams {
+    pub k1: f64,
+    pub kp: f64,
+    pub kc: f64,
+    pub ks: f64,
+    pub phi_f: f64,
+    pub g0: f64,
+}
+
+impl Default for LudingParams {
+    fn default() -> Self {
+        LudingParams {
+            k1: f64::NAN,
+            kp: f64::NAN,
+            kc: f64::NAN,
+            ks: f64::NAN,
+            phi_f: f64::NAN,
+            g0: f64::NAN,
+        }
+    }
 }
 
 /// The fields `ViscElMat` adds to `FrictMat` (NaN: not given), with YADE's class defaults in `Default`.
@@ -108,6 +140,8 @@ impl Default for FrictMat {
             density: 1000.0,
             coh: None,
             viscel: None,
+            luding: None,
+            bubble: None,
         }
     }
 }
@@ -135,6 +169,10 @@ impl FrictMat {
             MatClass::CohFrictMat
         } else if self.viscel.is_some() {
             MatClass::ViscElMat
+        } else if self.luding.is_some() {
+            MatClass::LudingMat
+        } else if self.bubble.is_some() {
+            MatClass::BubbleMat
         } else {
             MatClass::FrictMat
         }
@@ -145,6 +183,10 @@ impl FrictMat {
             "CohFrictMat"
         } else if self.viscel.is_some() {
             "ViscElMat"
+        } else if self.luding.is_some() {
+            "LudingMat"
+        } else if self.bubble.is_some() {
+            "BubbleMat"
         } else {
             "FrictMat"
         }
@@ -159,12 +201,15 @@ pub enum MatClass {
     FrictMat,
     CohFrictMat,
     ViscElMat,
+    LudingMat,
+    BubbleMat,
 }
 
 impl crate::dispatch::Hierarchy for MatClass {
     fn parent(self) -> Option<Self> {
         match self {
             MatClass::Material => None,
+            MatClass::LudingMat | MatClass::BubbleMat => Some(MatClass::Material),
             MatClass::ElastMat => Some(MatClass::Material),
             MatClass::FrictMat => Some(MatClass::ElastMat),
             MatClass::CohFrictMat | MatClass::ViscElMat => Some(MatClass::FrictMat),

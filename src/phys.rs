@@ -1,13 +1,14 @@
 //! Contact physics: `Ip2_FrictMat_FrictMat_FrictPhys` (pkg/dem/FrictPhys.cpp) and
 //! `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` (pkg/dem/CohesiveFrictionalContactLaw.cpp),
-//! `Ip2_ViscElMat_ViscElMat_ViscElPhys` (pkg/dem/ViscoelasticPM.cpp).
+//! `Ip2_ViscElMat_ViscElMat_ViscElPhys` (pkg/dem/ViscoelasticPM.cpp), `Ip2_FrictMat_FrictMat_MindlinPhys`
+//! (pkg/dem/HertzMindlin.cpp).
 
 use crate::geom::ScGeom;
 use crate::material::FrictMat;
 use crate::math::Vec3;
 
 /// Physics classes for law dispatch (IPhys <- NormPhys <- NormShearPhys <- FrictPhys <-
-/// RotStiffFrictPhys <- CohFrictPhys; FrictPhys <- ViscElPhys).
+/// RotStiffFrictPhys <- CohFrictPhys, MindlinPhys; FrictPhys <- ViscElPhys).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PhysClass {
     IPhys,
@@ -17,6 +18,9 @@ pub enum PhysClass {
     RotStiffFrictPhys,
     CohFrictPhys,
     ViscElPhys,
+    MindlinPhys,
+    LudingPhys,
+    BubblePhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -27,9 +31,11 @@ impl crate::dispatch::Hierarchy for PhysClass {
             NormPhys => Some(IPhys),
             NormShearPhys => Some(NormPhys),
             FrictPhys => Some(NormShearPhys),
-            ViscElPhys => Some(FrictPhys),
+            ViscElPhys | LudingPhys => Some(FrictPhys),
+            BubblePhys => Some(IPhys),
             RotStiffFrictPhys => Some(FrictPhys),
             CohFrictPhys => Some(RotStiffFrictPhys),
+            MindlinPhys => Some(RotStiffFrictPhys),
         }
     }
 }
@@ -359,11 +365,14 @@ pub fn viscel_cn_from_en(en: f64, m: f64, kn: f64, ids: (usize, usize)) -> f64 {
 }
 
 /// `Ip2_ViscElMat_ViscElMat_ViscElPhys::Calculate_ViscElMat_ViscElMat_ViscElPhys`
-/// (pkg/dem/ViscoelasticPM.cpp) without MatchMakers or lubrication: the per-body constants from contact
+/// (pkg/dem/ViscoelasticPM.cpp) without lubrication: the per-body constants from contact
 /// time and restitution (Pournin), or given kn/ks/cn/cs, or E·d and ν·kn with cn/cs given or cn from
 /// the normal restitution; then the two bodies in series. `mass1/2` are the bodies' masses (a massless
-/// body takes the other's), `ids` only name the contact in messages.
+/// body takes the other's), `ids` only name the contact in messages; `mm` the functor's MatchMakers
+/// (tc, en, et, frictAngle), called with the two materials' ids.
+#[allow(clippy::too_many_arguments)]
 pub fn ip2_viscel(
+    mm: &ViscElIp2,
     m1: &FrictMat,
     m2: &FrictMat,
     mass1: f64,
@@ -401,10 +410,19 @@ pub fn ip2_viscel(
     let (r1, r2) = g.ref_radii();
     let pi = std::f64::consts::PI;
     let (kn1, kn2, ks1, ks2, cn1, cn2, cs1, cs2);
-    if v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite() {
-        let tc = (v1.tc + v2.tc) / 2.0;
-        let ln_en = ((v1.en + v2.en) / 2.0).ln();
-        let ln_et = ((v1.et + v2.et) / 2.0).ln();
+    let nan = f64::NAN;
+    let pick = |m: &Option<MatchMaker>, a: f64, b: f64| -> Result<f64, String> {
+        match m {
+            Some(m) => m.call(m1.id, m2.id, nan, nan),
+            None => Ok((a + b) / 2.0),
+        }
+    };
+    if (v1.tc.is_finite() && v1.en.is_finite() && v1.et.is_finite())
+        || (mm.tc.is_some() && mm.en.is_some() && mm.et.is_some())
+    {
+        let tc = pick(&mm.tc, v1.tc, v2.tc)?;
+        let ln_en = pick(&mm.en, v1.en, v2.en)?.ln();
+        let ln_et = pick(&mm.et, v1.et, v2.et)?.ln();
         // per body twice the contact's value, so that the two in series give it
         let kn = 1. / tc / tc * (pi * pi + ln_en * ln_en) * mass_r * 2.;
         let ks = 2.0 / 7.0 / tc / tc * (pi * pi + ln_et * ln_et) * mass_r * 2.;
@@ -423,7 +441,7 @@ pub fn ip2_viscel(
         if v1.cn.is_finite() && v1.cs.is_finite() {
             (cn1, cn2, cs1, cs2) = (v1.cn, v2.cn, v1.cs, v2.cs);
         } else if v1.en.is_finite() {
-            let en = (v1.en + v2.en) / 2.0;
+            let en = pick(&mm.en, v1.en, v2.en)?;
             let cn = 2.0 * viscel_cn_from_en(en, mass_r, viscel_series(kn1, kn2), ids);
             (cn1, cn2, cs1, cs2) = (cn, cn, 0.0, 0.0);
         } else {
@@ -445,7 +463,10 @@ pub fn ip2_viscel(
         FrictPhys {
             kn: viscel_series(kn1, kn2),
             ks: viscel_series(ks1, ks2),
-            tan_phi: cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            tan_phi: match &mm.frict_angle {
+                Some(f) => f.call(m1.id, m2.id, nan, nan)?.tan(),
+                None => cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            },
             normal_force: Vec3::zeros(),
             shear_force: Vec3::zeros(),
         },
@@ -493,6 +514,365 @@ mod viscel_tests {
             let cn = viscel_cn_from_en(en, m, k, (0, 1));
             assert!(cn > 0.0);
             assert!((viscel_en_from_cn(cn, m, k) - en).abs() / en <= 1e-2);
+        }
+    }
+}
+
+/// `Ip2_FrictMat_FrictMat_MindlinPhys`'s attributes (pkg/dem/HertzMindlin.hpp); the MatchMakers are
+/// called with the two materials' ids.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MindlinIp2 {
+    pub gamma: f64,
+    pub eta: f64,
+    pub krot: f64,
+    pub ktwist: f64,
+    pub en: Option<MatchMaker>,
+    pub es: Option<MatchMaker>,
+    pub betan: Option<MatchMaker>,
+    pub betas: Option<MatchMaker>,
+    pub frict_angle: Option<MatchMaker>,
+}
+
+/// What `MindlinPhys` (pkg/dem/HertzMindlin.hpp) adds to `FrictPhys` (kn, ks, tanφ and the forces are
+/// there; kn and ks are recomputed by the law at every step), with `RotStiffFrictPhys`'s kr and ktw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MindlinPhys {
+    pub kno: f64,
+    pub kso: f64,
+    pub max_bend_pl: f64,
+    pub normal_viscous: Vec3,
+    pub shear_viscous: Vec3,
+    pub shear_elastic: Vec3,
+    pub us_elastic: Vec3,
+    pub us_total: Vec3,
+    pub moment_bend: Vec3,
+    pub moment_twist: Vec3,
+    pub radius: f64,
+    pub adhesion_force: f64,
+    pub is_adhesive: bool,
+    pub is_sliding: bool,
+    pub betan: f64,
+    pub betas: f64,
+    pub kr: f64,
+    pub ktw: f64,
+}
+
+impl Default for MindlinPhys {
+    fn default() -> Self {
+        MindlinPhys {
+            kno: 0.0,
+            kso: 0.0,
+            max_bend_pl: 0.0,
+            normal_viscous: Vec3::zeros(),
+            shear_viscous: Vec3::zeros(),
+            shear_elastic: Vec3::zeros(),
+            us_elastic: Vec3::zeros(),
+            us_total: Vec3::zeros(),
+            moment_bend: Vec3::zeros(),
+            moment_twist: Vec3::zeros(),
+            radius: f64::NAN,
+            adhesion_force: 0.0,
+            is_adhesive: false,
+            is_sliding: false,
+            betan: 0.0,
+            betas: 0.0,
+            kr: 0.0,
+            ktw: 0.0,
+        }
+    }
+}
+
+/// `Ip2_FrictMat_FrictMat_MindlinPhys::go` (pkg/dem/HertzMindlin.cpp), same operation order. Errors as
+/// YADE's `invalid_argument` when both en and betan (or es and betas) are given.
+pub fn ip2_mindlin(
+    p: &MindlinIp2,
+    m1: &FrictMat,
+    m2: &FrictMat,
+    g: &ScGeom,
+) -> Result<(FrictPhys, MindlinPhys), String> {
+    let (ea, eb, va, vb) = (m1.young, m2.young, m1.poisson, m2.poisson);
+    let (da, db) = g.ref_radii();
+    let ga = ea / (2.0 * (1.0 + va));
+    let gb = eb / (2.0 * (1.0 + vb));
+    let g_eff = 1.0 / ((2.0 - va) / ga + (2.0 - vb) / gb);
+    let e_eff = ea * eb / ((1. - va * va) * eb + (1. - vb * vb) * ea);
+    let r = da * db / (da + db);
+    let r_mean = (da + db) / 2.;
+    let kno = 4. / 3. * e_eff * r.sqrt();
+    let kso = 8.0 * r.sqrt() * g_eff;
+    let nan = f64::NAN;
+    let call = |m: &MatchMaker| m.call(m1.id, m2.id, nan, nan);
+    // YADE: (*frictAngle)(id1, id2, fa1, fa2), with the materials' angles for the fallback
+    let friction_angle = match &p.frict_angle {
+        Some(f) => f.call(m1.id, m2.id, m1.friction_angle, m2.friction_angle)?,
+        None => crate::math::cxx_min(m1.friction_angle, m2.friction_angle),
+    };
+    let adhesion = 4. * std::f64::consts::PI * r * p.gamma;
+    let mut mp = MindlinPhys {
+        kno,
+        kso,
+        adhesion_force: adhesion,
+        kr: p.krot,
+        ktw: p.ktwist,
+        max_bend_pl: p.eta * r_mean,
+        ..Default::default()
+    };
+    if p.en.is_some() && p.betan.is_some() {
+        return Err(
+            "Ip2_FrictMat_FrictMat_MindlinPhys: only one of en, betan can be specified.".into(),
+        );
+    }
+    if p.es.is_some() && p.betas.is_some() {
+        return Err(
+            "Ip2_FrictMat_FrictMat_MindlinPhys: only one of es, betas can be specified.".into(),
+        );
+    }
+    if p.en.is_some() || p.es.is_some() {
+        // Thornton et al. (2013), eqs. (B6), (B7)
+        let h = [
+            -6.918798, -16.41105, 146.8049, -796.4559, 2928.711, -7206.864, 11494.29, -11342.18,
+            6276.757, -1489.915,
+        ];
+        let en = call(p.en.as_ref().or(p.es.as_ref()).unwrap())?;
+        let es = call(p.es.as_ref().or(p.en.as_ref()).unwrap())?;
+        let alpha = |e: f64| {
+            let mut acc = h[9];
+            for k in (1..9).rev() {
+                acc = h[k] + e * acc;
+            }
+            e * (h[0] + e * acc)
+        };
+        let beta = |e: f64, a: f64| {
+            if e == 1.0 {
+                0.0
+            } else {
+                let ope = 1.0 + e;
+                (1.0 / (1.0 - (ope * ope) * a.exp()) - 1.0).sqrt()
+            }
+        };
+        mp.betan = beta(en, alpha(en));
+        mp.betas = beta(es, alpha(es));
+    } else {
+        mp.betan = match &p.betan {
+            Some(m) => call(m)?,
+            None => 0.0,
+        };
+        mp.betas = match &p.betas {
+            Some(m) => call(m)?,
+            None => mp.betan,
+        };
+    }
+    let fp = FrictPhys {
+        kn: 0.0,
+        ks: 0.0,
+        tan_phi: friction_angle.tan(),
+        normal_force: Vec3::zeros(),
+        shear_force: Vec3::zeros(),
+    };
+    Ok((fp, mp))
+}
+
+/// YADE's `MatchMaker` (pkg/common/MatchMaker.cpp): a value per pair of material ids (either order),
+/// else a fallback computed from two values (`algo`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatchMaker {
+    /// (id1, id2, value) as given.
+    pub matches: Vec<(i32, i32, f64)>,
+    /// "val", "zero", "avg", "min", "max" or "harmAvg".
+    pub algo: String,
+    pub val: f64,
+}
+
+impl MatchMaker {
+    /// `MatchMaker::operator()(id1, id2, val1, val2)`; the functors call it with the material ids only
+    /// (NaN values), which an algo needing values refuses.
+    pub fn call(&self, id1: i32, id2: i32, v1: f64, v2: f64) -> Result<f64, String> {
+        let key = (id1.min(id2), id1.max(id2));
+        // YADE's std::map keeps the first item of a repeated pair
+        if let Some(m) = self
+            .matches
+            .iter()
+            .find(|m| (m.0.min(m.1), m.0.max(m.1)) == key)
+        {
+            return Ok(m.2);
+        }
+        let needs = !matches!(self.algo.as_str(), "val" | "zero");
+        if needs && (v1.is_nan() || v2.is_nan()) {
+            return Err(format!(
+                "MatchMaker: no match for ({},{}), and values required for algo computation '{}' not specified.",
+                id1, id2, self.algo
+            ));
+        }
+        Ok(match self.algo.as_str() {
+            "val" => self.val,
+            "zero" => 0.,
+            "avg" => (v1 + v2) / 2.,
+            "min" => crate::math::cxx_min(v1, v2),
+            "max" => crate::math::cxx_max(v1, v2),
+            _ => 2. * v1 * v2 / (v1 + v2),
+        })
+    }
+}
+
+/// The MatchMakers `Ip2_ViscElMat_ViscElMat_ViscElPhys` may be given (None: the materials' values).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViscElIp2 {
+    pub tc: Option<MatchMaker>,
+    pub en: Option<MatchMaker>,
+    pub et: Option<MatchMaker>,
+    pub frict_angle: Option<MatchMaker>,
+}
+
+/// What `LudingPhys` (pkg/dem/LudingPM.hpp) adds to `FrictPhys` (ks, tanφ and the forces are there; kn
+/// stays 0): the hysteretic spring's slopes and its overlap history.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LudingPhys {
+    pub k1: f64,
+    pub k2: f64,
+    pub kp: f64,
+    pub kc: f64,
+    pub phi_f: f64,
+    pub g0: f64,
+    pub delt_min: f64,
+    pub delt_max: f64,
+    pub delt_p_max: f64,
+    pub delt_null: f64,
+    pub delt_p_null: f64,
+    pub delt_prev: f64,
+}
+
+/// `Ip2_LudingMat_LudingMat_LudingPhys::reduced`: twice the two values in series (a zero left out).
+fn luding_reduced(a1: f64, a2: f64) -> f64 {
+    let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
+    let a = inv(a1) + inv(a2);
+    let a = if a != 0.0 { 1.0 / a } else { 0.0 };
+    2.0 * a
+}
+
+/// `Ip2_LudingMat_LudingMat_LudingPhys::go` (pkg/dem/LudingPM.cpp); `r1`, `r2` the bodies' sphere radii
+/// (None for another shape).
+pub fn ip2_luding(
+    m1: &FrictMat,
+    m2: &FrictMat,
+    r1: Option<f64>,
+    r2: Option<f64>,
+) -> Result<(FrictPhys, LudingPhys), String> {
+    let (l1, l2) = (
+        m1.luding.as_deref().ok_or("LudingMat expected")?,
+        m2.luding.as_deref().ok_or("LudingMat expected")?,
+    );
+    let mut lp = LudingPhys {
+        k1: luding_reduced(l1.k1, l2.k1),
+        k2: 0.0,
+        kp: luding_reduced(l1.kp, l2.kp),
+        kc: luding_reduced(l1.kc, l2.kc),
+        phi_f: luding_reduced(l1.phi_f, l2.phi_f),
+        g0: luding_reduced(l1.g0, l2.g0),
+        delt_min: 0.0,
+        delt_max: 0.0,
+        delt_p_max: 0.0,
+        delt_null: 0.0,
+        delt_p_null: 0.0,
+        delt_prev: 0.0,
+    };
+    let ks = luding_reduced(l1.ks, l2.ks);
+    let (a1, a2) = match (r1, r2) {
+        (Some(a), Some(b)) => (a, b),
+        (Some(a), None) => (a, 0.0),
+        (None, Some(b)) => (0.0, b),
+        (None, None) => {
+            return Err("Ip2_LudingMat_LudingMat_LudingPhys: neither body is a Sphere".into())
+        }
+    };
+    if lp.k1 >= lp.kp {
+        return Err("k1 have to be less as kp!".into());
+    }
+    lp.delt_p_max = lp.kp / (lp.kp - lp.k1) * lp.phi_f * 2.0 * a1 * a2 / (a1 + a2);
+    lp.delt_p_null = lp.phi_f * 2.0 * a1 * a2 / (a1 + a2);
+    Ok((
+        FrictPhys {
+            kn: 0.0,
+            ks,
+            tan_phi: cxx_min(m1.friction_angle, m2.friction_angle).tan(),
+            normal_force: Vec3::zeros(),
+            shear_force: Vec3::zeros(),
+        },
+        lp,
+    ))
+}
+
+/// `BubblePhys` (pkg/dem/BubbleMat.hpp, an IPhys: its normal force is kept in the FrictPhys part, whose
+/// kn, ks and shear force stay 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BubblePhys {
+    pub fn_: f64,
+    pub r_avg: f64,
+    pub dmax: f64,
+    pub newton_iter: i32,
+    pub newton_tol: f64,
+    pub coeff_a: f64,
+    pub coeff_b: f64,
+}
+
+impl Default for BubblePhys {
+    fn default() -> Self {
+        BubblePhys {
+            fn_: f64::NAN,
+            r_avg: f64::NAN,
+            dmax: f64::NAN,
+            newton_iter: 50,
+            newton_tol: 1e-6,
+            coeff_a: f64::NAN,
+            coeff_b: f64::NAN,
+        }
+    }
+}
+
+impl BubblePhys {
+    /// `BubblePhys::computeCoeffs` (pkg/dem/BubbleMat.cpp): the threshold Dmax of Chan's law and the
+    /// artificial exponential beyond it, and the starting force.
+    pub fn compute_coeffs(&mut self, pct_max_force: f64, c1: f64) {
+        let fmax = pct_max_force * c1 * self.r_avg;
+        let log_pct = (pct_max_force / 4.0).ln();
+        self.dmax = pct_max_force * self.r_avg * log_pct;
+        let dfdd = c1 / (log_pct + 1.0);
+        self.coeff_b = dfdd / fmax;
+        self.coeff_a = fmax / (self.coeff_b * self.dmax).exp();
+        self.fn_ = 0.1 * fmax;
+    }
+
+    /// `BubblePhys::computeForce`: Newton-Raphson on Chan's equation (25) for a separation at least
+    /// Dmax, the exponential extension below it.
+    pub fn compute_force(&self, separation: f64, c1: f64) -> Result<f64, String> {
+        if separation >= self.dmax {
+            let c2 = 1. / (4.0 * c1 * self.r_avg);
+            let mut ret = self.fn_;
+            let mut i = 0;
+            loop {
+                let ret_old = ret;
+                let g = (ret * c2).ln();
+                let f = separation * c1 - ret * g;
+                let df = g + 1.0;
+                ret += f / df;
+                let residual = if ret <= 0.0 {
+                    ret = 0.9 * ret.abs();
+                    self.newton_tol * 2.0
+                } else {
+                    (ret - ret_old).abs() / ret_old
+                };
+                let over = i > self.newton_iter;
+                i += 1;
+                if over {
+                    return Err("BubblePhys::computeForce: no convergence".into());
+                }
+                // `while (residual > newtonTol)`: a NaN residual ends the loop too
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(residual > self.newton_tol) {
+                    return Ok(ret);
+                }
+            }
+        } else {
+            Ok(self.coeff_a * (self.coeff_b * separation).exp())
         }
     }
 }

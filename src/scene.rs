@@ -42,6 +42,18 @@ pub struct InteractionLoop {
     pub cohfrict_phys: Option<phys::CohFrictIp2>,
     /// `Ip2_ViscElMat_ViscElMat_ViscElPhys` present.
     pub viscel_phys: bool,
+    /// Its MatchMakers (tc, en, et, frictAngle).
+    pub viscel_ip2: phys::ViscElIp2,
+    /// `Ip2_LudingMat_LudingMat_LudingPhys` present.
+    pub luding_phys: bool,
+    /// `Law2_ScGeom_LudingPhys_Basic` present.
+    pub luding_basic: bool,
+    /// `Ip2_BubbleMat_BubbleMat_BubblePhys` present.
+    pub bubble_phys: bool,
+    /// `Law2_ScGeom_BubblePhys_Bubble` and its state.
+    pub bubble: Option<law::bubble::Params>,
+    /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
+    pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
     pub cundall_strack: Option<law::Params>,
     /// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`
@@ -54,6 +66,8 @@ pub struct InteractionLoop {
     pub gridco_gridco_frict: Option<law::grid::GridCoGridCoParams>,
     /// `Law2_ScGeom_ViscElPhys_Basic` present.
     pub viscel_basic: bool,
+    /// `Law2_ScGeom_MindlinPhys_Mindlin` and its attributes.
+    pub mindlin: Option<law::mindlin::Params>,
     /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
     pub energy_caches: [IdCache; LawFunctor::COUNT],
 }
@@ -115,12 +129,19 @@ impl InteractionLoop {
             frict_phys: false,
             cohfrict_phys: None,
             viscel_phys: false,
+            viscel_ip2: Default::default(),
+            luding_phys: false,
+            luding_basic: false,
+            bubble_phys: false,
+            bubble: None,
+            mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
             scgridco_frict: None,
             scgridco_cohfrict: None,
             gridco_gridco_frict: None,
             viscel_basic: false,
+            mindlin: None,
             energy_caches: Default::default(),
         }
     }
@@ -199,12 +220,19 @@ impl InteractionLoop {
                 PhysFunctor::CohFrict,
             ),
             (self.viscel_phys, MatClass::ViscElMat, PhysFunctor::ViscEl),
+            (self.luding_phys, MatClass::LudingMat, PhysFunctor::Luding),
+            (self.bubble_phys, MatClass::BubbleMat, PhysFunctor::Bubble),
+            (
+                self.mindlin_phys.is_some(),
+                MatClass::FrictMat,
+                PhysFunctor::Mindlin,
+            ),
         ];
         let mut buf = [Entry {
             a: MatClass::FrictMat,
             b: MatClass::FrictMat,
             f: PhysFunctor::Frict,
-        }; 3];
+        }; 6];
         let mut n = 0;
         for (on, m, f) in all {
             if on {
@@ -259,12 +287,30 @@ impl InteractionLoop {
                 PhysClass::ViscElPhys,
                 LawFunctor::ViscElBasic,
             ),
+            (
+                self.mindlin.is_some(),
+                GeomClass::ScGeom,
+                PhysClass::MindlinPhys,
+                LawFunctor::Mindlin,
+            ),
+            (
+                self.luding_basic,
+                GeomClass::ScGeom,
+                PhysClass::LudingPhys,
+                LawFunctor::LudingBasic,
+            ),
+            (
+                self.bubble.is_some(),
+                GeomClass::ScGeom,
+                PhysClass::BubblePhys,
+                LawFunctor::Bubble,
+            ),
         ];
         let mut buf = [Entry {
             a: GeomClass::ScGeom,
             b: PhysClass::FrictPhys,
             f: LawFunctor::CundallStrack,
-        }; 6];
+        }; 9];
         let mut n = 0;
         for (on, a, b, f) in all {
             if on {
@@ -283,6 +329,9 @@ enum PhysFunctor {
     Frict,
     CohFrict,
     ViscEl,
+    Mindlin,
+    Luding,
+    Bubble,
 }
 
 #[derive(Clone, Debug)]
@@ -295,6 +344,14 @@ pub enum Engine {
     Translation(Box<crate::kinematic::TranslationEngine>),
     Rotation(Box<crate::kinematic::RotationEngine>),
     ServoPid(Box<crate::kinematic::ServoPid>),
+    Helix(Box<crate::kinematic::HelixEngine>),
+    CombinedKinematic(Box<crate::kinematic::CombinedKinematicEngine>),
+    /// A kinematic engine without a variant of its own (InterpolatingHelixEngine, BicyclePedalEngine).
+    Kinematic(Box<crate::kinematic::KinematicPart>),
+    DirectedForce(Box<crate::force_engine::InterpolatingDirectedForceEngine>),
+    Force(Box<crate::force_engine::ForceEngine>),
+    HarmonicForce(Box<crate::force_engine::HarmonicForceEngine>),
+    TriaxialStress(Box<crate::triax::TriaxialStressController>),
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
@@ -314,6 +371,13 @@ impl Engine {
             Engine::Translation(_) => "TranslationEngine",
             Engine::Rotation(_) => "RotationEngine",
             Engine::ServoPid(_) => "ServoPIDController",
+            Engine::Helix(_) => "HelixEngine",
+            Engine::CombinedKinematic(_) => "CombinedKinematicEngine",
+            Engine::Kinematic(k) => k.class_name(),
+            Engine::DirectedForce(_) => "InterpolatingDirectedForceEngine",
+            Engine::Force(_) => "ForceEngine",
+            Engine::HarmonicForce(_) => "HarmonicForceEngine",
+            Engine::TriaxialStress(_) => "TriaxialStressController",
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
@@ -589,6 +653,41 @@ impl Scene {
                 s.action(&mut self.bodies, &self.forces, self.iter);
                 Ok(())
             }
+            Engine::Helix(h) => {
+                h.action(&mut self.bodies, self.dt);
+                Ok(())
+            }
+            Engine::CombinedKinematic(c) => c
+                .action(
+                    &mut self.bodies,
+                    &self.forces,
+                    self.dt,
+                    self.iter,
+                    self.time,
+                )
+                .map(|_| ())
+                .map_err(err),
+            Engine::Kinematic(c) => c
+                .action(
+                    &mut self.bodies,
+                    &self.forces,
+                    self.dt,
+                    self.iter,
+                    self.time,
+                )
+                .map_err(err),
+            Engine::DirectedForce(f) => f
+                .action(&mut self.forces, self.bodies.len(), self.time)
+                .map_err(err),
+            Engine::Force(f) => {
+                f.action(&mut self.forces, self.bodies.len());
+                Ok(())
+            }
+            Engine::HarmonicForce(h) => {
+                h.action(&mut self.forces, self.bodies.len(), self.time);
+                Ok(())
+            }
+            Engine::TriaxialStress(t) => t.action(self).map_err(err),
             Engine::Piston(pc) => {
                 activated = pc.periodic.is_activated(self.iter);
                 if activated {
@@ -1517,6 +1616,7 @@ impl Scene {
             Some(PhysFunctor::ViscEl) => {
                 if it.phys.is_none() {
                     let (fp, vp) = phys::ip2_viscel(
+                        &il.viscel_ip2,
                         m1,
                         m2,
                         b.mass[id1],
@@ -1526,6 +1626,36 @@ impl Scene {
                     )?;
                     it.phys = Some(fp);
                     it.ext_mut().viscel = Some(vp);
+                }
+            }
+            Some(PhysFunctor::Bubble) => {
+                if it.phys.is_none() {
+                    it.phys = Some(phys::FrictPhys::default());
+                    it.ext_mut().bubble = Some(phys::BubblePhys::default());
+                }
+            }
+            Some(PhysFunctor::Luding) => {
+                if it.phys.is_none() {
+                    let (fp, lp) = phys::ip2_luding(
+                        m1,
+                        m2,
+                        b.shape[id1].sphere_radius(),
+                        b.shape[id2].sphere_radius(),
+                    )?;
+                    it.phys = Some(fp);
+                    it.ext_mut().luding = Some(lp);
+                }
+            }
+            Some(PhysFunctor::Mindlin) => {
+                if it.phys.is_none() {
+                    let (fp, mp) = phys::ip2_mindlin(
+                        il.mindlin_phys.as_ref().unwrap(),
+                        m1,
+                        m2,
+                        it.geom.as_ref().unwrap(),
+                    )?;
+                    it.phys = Some(fp);
+                    it.ext_mut().mindlin = Some(mp);
                 }
             }
             None => {
@@ -1568,6 +1698,12 @@ impl Scene {
             PhysClass::CohFrictPhys
         } else if it.viscel().is_some() {
             PhysClass::ViscElPhys
+        } else if it.mindlin().is_some() {
+            PhysClass::MindlinPhys
+        } else if it.luding().is_some() {
+            PhysClass::LudingPhys
+        } else if it.ext.as_ref().is_some_and(|e| e.bubble.is_some()) {
+            PhysClass::BubblePhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1585,6 +1721,9 @@ impl Scene {
                         "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack()",
                     (_, PhysClass::CohFrictPhys) => "Law2_ScGeom6D_CohFrictPhys_CohesionMoment()",
                     (_, PhysClass::ViscElPhys) => "Law2_ScGeom_ViscElPhys_Basic()",
+                    (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
+                    (_, PhysClass::LudingPhys) => "Law2_ScGeom_LudingPhys_Basic()",
+                    (_, PhysClass::BubblePhys) => "Law2_ScGeom_BubblePhys_Bubble()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1701,6 +1840,91 @@ impl Scene {
                         true
                     }
                     None => false,
+                }
+            }
+            LawFunctor::Bubble => {
+                let bp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.bubble.as_mut())
+                    .ok_or_else(|| bad("BubblePhys"))?;
+                match law::bubble::load(
+                    il.bubble.as_mut().unwrap(),
+                    fresh,
+                    &g,
+                    ph,
+                    bp,
+                    &b.pos[id1],
+                    &b.pos[id2],
+                    self.cell.is_some(),
+                )? {
+                    Some(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
+                }
+            }
+            LawFunctor::LudingBasic => {
+                let lp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.luding.as_mut())
+                    .ok_or_else(|| bad("LudingPhys"))?;
+                let (shift_vel, shift2) = match &self.cell {
+                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
+                    None => (Vec3::zeros(), Vec3::zeros()),
+                };
+                let vb = law::viscel::Bodies {
+                    pos1: b.pos[id1],
+                    pos2: b.pos[id2],
+                    vel1: b.vel[id1],
+                    vel2: b.vel[id2],
+                    ang_vel1: b.ang_vel[id1],
+                    ang_vel2: b.ang_vel[id2],
+                    shift2,
+                    shift_vel,
+                };
+                match law::luding::load(self.dt, fresh, &g, ph, lp, &vb) {
+                    Some(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    None => false,
+                }
+            }
+            LawFunctor::Mindlin => {
+                let mp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.mindlin.as_mut())
+                    .ok_or_else(|| bad("MindlinPhys"))?;
+                let (shift_vel, shift2) = match &self.cell {
+                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
+                    None => (Vec3::zeros(), Vec3::zeros()),
+                };
+                let mb = law::mindlin::Bodies {
+                    s1: geom::Kin::of(b, id1),
+                    s2: geom::Kin::of(b, id2),
+                    mass1: b.mass[id1],
+                    mass2: b.mass[id2],
+                    dynamic1: b.is_dynamic(id1),
+                    dynamic2: b.is_dynamic(id2),
+                    shift2,
+                    shift_vel,
+                    periodic: self.cell.is_some(),
+                };
+                match law::mindlin::load(il.mindlin.as_ref().unwrap(), self.dt, &g, ph, mp, &mb) {
+                    law::mindlin::Outcome::Erase => false,
+                    law::mindlin::Outcome::Keep => true,
+                    law::mindlin::Outcome::Apply(l, moment) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        if let Some(m) = moment {
+                            self.forces.add_torque(id1, &(-m));
+                            self.forces.add_torque(id2, &m);
+                        }
+                        true
+                    }
                 }
             }
             LawFunctor::GridCoGridCoFrict => {

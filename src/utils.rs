@@ -16,6 +16,10 @@ pub fn pwave_time_step(scene: &Scene) -> Option<f64> {
     for id in 0..b.len() {
         // every Sphere-derived shape counts, grid nodes and connections included (YADE's dynamic_cast)
         if let Some(radius) = b.shape[id].sphere_radius() {
+            let mat = &scene.materials[b.material[id]];
+            if mat.luding.is_some() || mat.bubble.is_some() {
+                continue; // not an ElastMat: YADE skips it
+            }
             let density = b.mass[id] / ((4.0 / 3.0) * std::f64::consts::PI * radius.powf(3.0));
             let young = scene.materials[b.material[id]].young;
             let d = radius / (young / density).sqrt();

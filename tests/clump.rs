@@ -141,6 +141,8 @@ fn unsupported_clumps_are_refused_clearly() {
         density: 2600.0,
         coh: None,
         viscel: None,
+        luding: None,
+        bubble: None,
     }];
     let mut b = Bodies::default();
     for x in [0.0, 0.015, 0.5] {

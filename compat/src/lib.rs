@@ -1248,106 +1248,41 @@ impl Sim {
     /// Change one attribute of a built-in engine (value as JSON) without resetting its state.
     fn engine_set(&mut self, idx: usize, key: &str, json: &str) -> PyResult<()> {
         let v: Value = serde_json::from_str(json).map_err(err)?;
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)))
-        };
         let e = self
             .scene
             .engines
             .get_mut(idx)
             .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
-        let unsupported = |cls: &str| {
-            PyKeyError::new_err(format!(
-                "changing {}.{} during a run is not supported by ryade yet",
-                cls, key
-            ))
+        engine_set_attr(e, key, &v)
+    }
+    /// `TriaxialStressController::computeStressStrain` of the controller at slot `idx` (what
+    /// TriaxialStateRecorder calls off the controller's period).
+    fn triax_compute_stress_strain(&mut self, idx: usize) -> PyResult<()> {
+        let e = self
+            .scene
+            .engines
+            .get_mut(idx)
+            .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
+        let Engine::TriaxialStress(t) = e else {
+            return Err(PyValueError::new_err(format!(
+                "engine #{} is not a TriaxialStressController",
+                idx
+            )));
         };
-        match e {
-            Engine::Newton(n) => match key {
-                "damping" => n.damping = num()?,
-                "gravity" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    n.gravity = vec(a)
-                }
-                "dampGravity" => n.damp_gravity = boolean()?,
-                _ => return Err(unsupported("NewtonIntegrator")),
-            },
-            Engine::TimeStepper(t) => match key {
-                "active" => t.active = boolean()?,
-                "timeStepUpdateInterval" => t.time_step_update_interval = num()? as u32,
-                "defaultDt" => t.default_dt = num()?,
-                "maxDt" => t.max_dt = num()?,
-                "timestepSafetyCoefficient" => t.timestep_safety_coefficient = num()?,
-                "previousDt" => t.previous_dt = num()?,
-                _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
-            },
-            Engine::Translation(t) => match key {
-                "ids" => t.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "velocity" => t.velocity = num()?,
-                "translationAxis" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    t.translation_axis = vec(a) // normalised on the Python side
-                }
-                _ => return Err(unsupported("TranslationEngine")),
-            },
-            Engine::Rotation(r) => match key {
-                "ids" => r.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "angularVelocity" => r.angular_velocity = num()?,
-                "rotateAroundZero" => r.rotate_around_zero = boolean()?,
-                "rotationAxis" | "zeroPoint" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    if key == "rotationAxis" {
-                        r.rotation_axis = vec(a) // normalised on the Python side
-                    } else {
-                        r.zero_point = vec(a)
-                    }
-                }
-                _ => return Err(unsupported("RotationEngine")),
-            },
-            Engine::ServoPid(s) => match key {
-                "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
-                "axis" | "current" | "translationAxis" => {
-                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
-                    match key {
-                        "axis" => s.axis = vec(a),
-                        "current" => s.current = vec(a),
-                        _ => s.translation_axis = vec(a),
-                    }
-                }
-                "target" => s.target = num()?,
-                "kP" => s.kp = num()?,
-                "kI" => s.ki = num()?,
-                "kD" => s.kd = num()?,
-                "iTerm" => s.i_term = num()?,
-                "curVel" => s.cur_vel = num()?,
-                "errorCur" => s.error_cur = num()?,
-                "errorPrev" => s.error_prev = num()?,
-                "maxVelocity" => s.max_velocity = num()?,
-                "iterPeriod" => s.iter_period = num()? as i64,
-                "iterPrevStart" => s.iter_prev_start = num()? as i64,
-                "velocity" => s.velocity = num()?,
-                _ => return Err(unsupported("ServoPIDController")),
-            },
-            // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
-            Engine::Piston(pc) => pc.set(key, &v).map_err(PyValueError::new_err)?,
-            Engine::PeriTriax(p) => peri_triax_set(p, key, &v).map_err(|e| match e {
-                None => unsupported("PeriTriaxController"),
-                Some(e) => PyValueError::new_err(e),
-            })?,
-            Engine::Collider(c) => match key {
-                "verletDist" => c.p.verlet_dist = num()?,
-                "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
-                "doSort" => c.do_sort = boolean()?,
-                _ => return Err(unsupported("InsertionSortCollider")),
-            },
-            other => return Err(unsupported(other.class_name())),
+        let mut t = t.clone();
+        let r = t.compute_stress_strain(&self.scene);
+        self.scene.engines[idx] = Engine::TriaxialStress(t);
+        r.map_err(PyRuntimeError::new_err)
+    }
+    /// `TriaxialStressController.strainRate()` (JSON vector).
+    fn triax_strain_rate(&self, idx: usize) -> PyResult<String> {
+        match self.scene.engines.get(idx) {
+            Some(Engine::TriaxialStress(t)) => Ok(v3json(&t.strain_rate(&self.scene)).to_string()),
+            _ => Err(PyValueError::new_err(format!(
+                "engine #{} is not a TriaxialStressController",
+                idx
+            ))),
         }
-        Ok(())
     }
     /// Read an attribute of a built-in engine (JSON).
     fn engine_get(&self, idx: usize, key: &str) -> PyResult<String> {
@@ -1356,73 +1291,7 @@ impl Sim {
             .engines
             .get(idx)
             .ok_or_else(|| PyIndexError::new_err(format!("no engine #{}", idx)))?;
-        let v = match (e, key) {
-            (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
-            (Engine::Newton(n), "gravity") => {
-                serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
-            }
-            (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
-            (Engine::Newton(n), "prevVelGrad") => {
-                let m = &n.prev_vel_grad;
-                serde_json::json!([
-                    [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-                    [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-                    [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
-                ])
-            }
-            (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
-            (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
-            (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
-            (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
-            (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
-            (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
-            (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
-            (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
-            (Engine::Rotation(r), "ids") => serde_json::json!(r.ids),
-            (Engine::Rotation(r), "angularVelocity") => serde_json::json!(r.angular_velocity),
-            (Engine::Rotation(r), "rotationAxis") => v3json(&r.rotation_axis),
-            (Engine::Rotation(r), "rotateAroundZero") => serde_json::json!(r.rotate_around_zero),
-            (Engine::Rotation(r), "zeroPoint") => v3json(&r.zero_point),
-            (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
-            (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
-                PyKeyError::new_err(format!(
-                    "PeriTriaxController has no readable attribute '{}' in ryade",
-                    k
-                ))
-            })?,
-            (Engine::ServoPid(s), k) => match k {
-                "ids" => serde_json::json!(s.ids),
-                "axis" => v3json(&s.axis),
-                "current" => v3json(&s.current),
-                "translationAxis" => v3json(&s.translation_axis),
-                "target" => serde_json::json!(s.target),
-                "kP" => serde_json::json!(s.kp),
-                "kI" => serde_json::json!(s.ki),
-                "kD" => serde_json::json!(s.kd),
-                "iTerm" => serde_json::json!(s.i_term),
-                "curVel" => serde_json::json!(s.cur_vel),
-                "errorCur" => serde_json::json!(s.error_cur),
-                "errorPrev" => serde_json::json!(s.error_prev),
-                "maxVelocity" => serde_json::json!(s.max_velocity),
-                "iterPeriod" => serde_json::json!(s.iter_period),
-                "iterPrevStart" => serde_json::json!(s.iter_prev_start),
-                "velocity" => serde_json::json!(s.velocity),
-                _ => {
-                    return Err(PyKeyError::new_err(format!(
-                        "ServoPIDController has no readable attribute '{}' in ryade",
-                        key
-                    )))
-                }
-            },
-            _ => {
-                return Err(PyKeyError::new_err(format!(
-                    "{} has no readable attribute '{}' in ryade",
-                    e.class_name(),
-                    key
-                )))
-            }
-        };
-        Ok(v.to_string())
+        Ok(engine_get_attr(e, key)?.to_string())
     }
 
     /// `RyadePistonController.takeSteps()`: the `steps.csv` samples buffered by the piston engine at
@@ -1821,10 +1690,53 @@ impl Sim {
             "CohFrictPhys"
         } else if ext.and_then(|e| e.viscel.as_ref()).is_some() {
             "ViscElPhys"
+        } else if ext.and_then(|e| e.mindlin.as_ref()).is_some() {
+            "MindlinPhys"
+        } else if ext.and_then(|e| e.luding.as_ref()).is_some() {
+            "LudingPhys"
+        } else if ext.and_then(|e| e.bubble.as_ref()).is_some() {
+            "BubblePhys"
         } else {
             "FrictPhys"
         };
         Ok((g.to_string(), p.to_string()))
+    }
+    /// A `MindlinPhys` attribute as JSON (None when the physics is not a MindlinPhys or has no such
+    /// attribute).
+    fn intr_mindlin(&self, a: u32, b: u32, field: &str) -> PyResult<Option<String>> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let Some(m) = it.ext.as_deref().and_then(|e| e.mindlin.as_ref()) else {
+            return Ok(None);
+        };
+        use serde_json::json as j;
+        let v = match field {
+            "kno" => j!(m.kno),
+            "kso" => j!(m.kso),
+            "maxBendPl" => j!(m.max_bend_pl),
+            "normalViscous" => v3json(&m.normal_viscous),
+            "shearViscous" => v3json(&m.shear_viscous),
+            "shearElastic" => v3json(&m.shear_elastic),
+            "usElastic" => v3json(&m.us_elastic),
+            "usTotal" => v3json(&m.us_total),
+            "momentBend" => v3json(&m.moment_bend),
+            "momentTwist" => v3json(&m.moment_twist),
+            "radius" => {
+                if m.radius.is_nan() {
+                    j!("nan")
+                } else {
+                    j!(m.radius)
+                }
+            }
+            "adhesionForce" => j!(m.adhesion_force),
+            "isAdhesive" => j!(m.is_adhesive),
+            "isSliding" => j!(m.is_sliding),
+            "betan" => j!(m.betan),
+            "betas" => j!(m.betas),
+            "kr" => j!(m.kr),
+            "ktw" => j!(m.ktw),
+            _ => return Ok(None),
+        };
+        Ok(Some(v.to_string()))
     }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {
@@ -2035,6 +1947,413 @@ fn inscribed_circle_center(v0: V3, v1: V3, v2: V3) -> V3 {
         &vec(v1),
         &vec(v2),
     ))
+}
+
+/// Change one attribute of a built-in engine (value as JSON) without resetting its state; a member of a
+/// `CombinedKinematicEngine` is addressed as `comb.N.attr`.
+fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
+    let num = || {
+        v.as_f64()
+            .ok_or_else(|| PyValueError::new_err(format!("{} must be a number", key)))
+    };
+    let boolean = || {
+        v.as_bool()
+            .ok_or_else(|| PyValueError::new_err(format!("{} must be a bool", key)))
+    };
+    let unsupported = |cls: &str| {
+        PyKeyError::new_err(format!(
+            "changing {}.{} during a run is not supported by ryade yet",
+            cls, key
+        ))
+    };
+    match e {
+        Engine::Newton(n) => match key {
+            "damping" => n.damping = num()?,
+            "gravity" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                n.gravity = vec(a)
+            }
+            "dampGravity" => n.damp_gravity = boolean()?,
+            _ => return Err(unsupported("NewtonIntegrator")),
+        },
+        Engine::TimeStepper(t) => match key {
+            "active" => t.active = boolean()?,
+            "timeStepUpdateInterval" => t.time_step_update_interval = num()? as u32,
+            "defaultDt" => t.default_dt = num()?,
+            "maxDt" => t.max_dt = num()?,
+            "timestepSafetyCoefficient" => t.timestep_safety_coefficient = num()?,
+            "previousDt" => t.previous_dt = num()?,
+            _ => return Err(unsupported("GlobalStiffnessTimeStepper")),
+        },
+        Engine::Translation(t) => match key {
+            "ids" => t.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "velocity" => t.velocity = num()?,
+            "translationAxis" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                t.translation_axis = vec(a) // normalised on the Python side
+            }
+            _ => return Err(unsupported("TranslationEngine")),
+        },
+        Engine::Rotation(r) => match key {
+            "ids" => r.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "angularVelocity" => r.angular_velocity = num()?,
+            "rotateAroundZero" => r.rotate_around_zero = boolean()?,
+            "rotationAxis" | "zeroPoint" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                if key == "rotationAxis" {
+                    r.rotation_axis = vec(a) // normalised on the Python side
+                } else {
+                    r.zero_point = vec(a)
+                }
+            }
+            _ => return Err(unsupported("RotationEngine")),
+        },
+        Engine::ServoPid(s) => match key {
+            "ids" => s.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "axis" | "current" | "translationAxis" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                match key {
+                    "axis" => s.axis = vec(a),
+                    "current" => s.current = vec(a),
+                    _ => s.translation_axis = vec(a),
+                }
+            }
+            "target" => s.target = num()?,
+            "kP" => s.kp = num()?,
+            "kI" => s.ki = num()?,
+            "kD" => s.kd = num()?,
+            "iTerm" => s.i_term = num()?,
+            "curVel" => s.cur_vel = num()?,
+            "errorCur" => s.error_cur = num()?,
+            "errorPrev" => s.error_prev = num()?,
+            "maxVelocity" => s.max_velocity = num()?,
+            "iterPeriod" => s.iter_period = num()? as i64,
+            "iterPrevStart" => s.iter_prev_start = num()? as i64,
+            "velocity" => s.velocity = num()?,
+            _ => return Err(unsupported("ServoPIDController")),
+        },
+        // every attribute of the ryade extension is live (src/piston.rs `PistonController::set`)
+        Engine::Piston(pc) => pc.set(key, v).map_err(PyValueError::new_err)?,
+        Engine::PeriTriax(p) => peri_triax_set(p, key, v).map_err(|e| match e {
+            None => unsupported("PeriTriaxController"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
+        Engine::Collider(c) => match key {
+            "verletDist" => c.p.verlet_dist = num()?,
+            "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
+            "doSort" => c.do_sort = boolean()?,
+            "targetInterv" => c.p.target_interv = num()? as i32,
+            _ => return Err(unsupported("InsertionSortCollider")),
+        },
+        Engine::Helix(h) => match key {
+            "linearVelocity" => h.linear_velocity = num()?,
+            "angleTurned" => h.angle_turned = num()?,
+            _ => {
+                let mut r = Engine::Rotation(Box::new(h.rot.clone()));
+                engine_set_attr(&mut r, key, v).map_err(|_| unsupported("HelixEngine"))?;
+                if let Engine::Rotation(r) = r {
+                    h.rot = *r;
+                }
+            }
+        },
+        Engine::Force(f) => match key {
+            "ids" => f.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "force" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                f.force = vec(a)
+            }
+            _ => return Err(unsupported("ForceEngine")),
+        },
+        Engine::HarmonicForce(h) => match key {
+            "ids" => h.ids = serde_json::from_value(v.clone()).map_err(err)?,
+            "A" | "f" | "fi" => {
+                let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                match key {
+                    "A" => h.a = vec(a),
+                    "f" => h.f = vec(a),
+                    _ => h.fi = vec(a),
+                }
+            }
+            _ => return Err(unsupported("HarmonicForceEngine")),
+        },
+        Engine::InteractionLoop(il) => {
+            // a number (a constant MatchMaker) or a MatchMaker object (its JSON)
+            let opt = || -> PyResult<Option<ryade::phys::MatchMaker>> {
+                if v.is_null() {
+                    Ok(None)
+                } else if v.is_number() {
+                    Ok(Some(ryade::phys::MatchMaker {
+                        matches: Vec::new(),
+                        algo: "val".into(),
+                        val: num()?,
+                    }))
+                } else {
+                    scene_json::match_maker_of(v)
+                        .map(Some)
+                        .map_err(|e| PyValueError::new_err(e.to_string()))
+                }
+            };
+            match key.split_once('.') {
+                Some(("Ip2_FrictMat_FrictMat_MindlinPhys", k)) if il.mindlin_phys.is_some() => {
+                    let p = il.mindlin_phys.as_mut().unwrap();
+                    match k {
+                        "gamma" => p.gamma = num()?,
+                        "eta" => p.eta = num()?,
+                        "krot" => p.krot = num()?,
+                        "ktwist" => p.ktwist = num()?,
+                        "en" => p.en = opt()?,
+                        "es" => p.es = opt()?,
+                        "betan" => p.betan = opt()?,
+                        "betas" => p.betas = opt()?,
+                        "frictAngle" => p.frict_angle = opt()?,
+                        _ => return Err(unsupported("InteractionLoop")),
+                    }
+                }
+                Some(("Law2_ScGeom_MindlinPhys_Mindlin", k)) if il.mindlin.is_some() => {
+                    let p = il.mindlin.as_mut().unwrap();
+                    match k {
+                        "includeAdhesion" => p.include_adhesion = boolean()?,
+                        "includeMoment" => p.include_moment = boolean()?,
+                        "neverErase" => p.never_erase = boolean()?,
+                        _ => return Err(unsupported("InteractionLoop")),
+                    }
+                }
+                _ => return Err(unsupported("InteractionLoop")),
+            }
+        }
+        Engine::Kinematic(k) => {
+            use ryade::kinematic::KinematicPart as K;
+            let list = || -> PyResult<Vec<f64>> { serde_json::from_value(v.clone()).map_err(err) };
+            match (&mut **k, key) {
+                (K::InterpolatingHelix(h), "times") => h.times = list()?,
+                (K::InterpolatingHelix(h), "angularVelocities") => h.angular_velocities = list()?,
+                (K::InterpolatingHelix(h), "wrap") => h.wrap = boolean()?,
+                (K::InterpolatingHelix(h), "slope") => h.slope = num()?,
+                (K::InterpolatingHelix(h), _) => {
+                    let mut e = Engine::Helix(Box::new(h.helix.clone()));
+                    engine_set_attr(&mut e, key, v)
+                        .map_err(|_| unsupported("InterpolatingHelixEngine"))?;
+                    if let Engine::Helix(x) = e {
+                        h.helix = *x;
+                    }
+                }
+                (K::BicyclePedal(b), "ids") => {
+                    b.ids = serde_json::from_value(v.clone()).map_err(err)?
+                }
+                (K::BicyclePedal(b), "angularVelocity") => b.angular_velocity = num()?,
+                (K::BicyclePedal(b), "radius") => b.radius = num()?,
+                (K::BicyclePedal(b), "fi") => b.fi = num()?,
+                (K::BicyclePedal(b), "rotationAxis") => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    b.rotation_axis = vec(a) // normalised on the Python side
+                }
+                (k, _) => return Err(unsupported(k.class_name())),
+            }
+        }
+        Engine::DirectedForce(f) => {
+            let list = || -> PyResult<Vec<f64>> { serde_json::from_value(v.clone()).map_err(err) };
+            match key {
+                "ids" => f.base.ids = serde_json::from_value(v.clone()).map_err(err)?,
+                "times" => f.times = list()?,
+                "magnitudes" => f.magnitudes = list()?,
+                "wrap" => f.wrap = boolean()?,
+                "force" | "direction" => {
+                    let a: V3 = serde_json::from_value(v.clone()).map_err(err)?;
+                    if key == "force" {
+                        f.base.force = vec(a)
+                    } else {
+                        f.direction = vec(a)
+                    }
+                }
+                _ => return Err(unsupported("InterpolatingDirectedForceEngine")),
+            }
+        }
+        Engine::TriaxialStress(t) => t.set(key, v).map_err(|e| match e {
+            None => unsupported("TriaxialStressController"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
+        Engine::CombinedKinematic(c) => {
+            if key == "ids" {
+                c.ids = serde_json::from_value(v.clone()).map_err(err)?;
+            } else if let Some((n, sub)) = key
+                .strip_prefix("comb.")
+                .and_then(|r| r.split_once('.'))
+                .and_then(|(n, sub)| n.parse::<usize>().ok().map(|n| (n, sub)))
+                .filter(|(n, _)| *n < c.comb.len())
+            {
+                if sub == "dead" {
+                    c.comb_dead[n] = boolean()?;
+                } else {
+                    let mut part = part_engine(c.comb[n].clone());
+                    engine_set_attr(&mut part, sub, v)?;
+                    c.comb[n] = engine_part(part);
+                }
+            } else {
+                return Err(unsupported("CombinedKinematicEngine"));
+            }
+        }
+        other => return Err(unsupported(other.class_name())),
+    }
+    Ok(())
+}
+
+/// Read an attribute of a built-in engine (JSON); a member of a `CombinedKinematicEngine` as
+/// `comb.N.attr`.
+fn engine_get_attr(e: &Engine, key: &str) -> PyResult<Value> {
+    let v = match (e, key) {
+        (Engine::Newton(n), "damping") => serde_json::json!(n.damping),
+        (Engine::Newton(n), "gravity") => {
+            serde_json::json!([n.gravity[0], n.gravity[1], n.gravity[2]])
+        }
+        (Engine::Newton(n), "maxVelocitySq") => serde_json::json!(n.max_velocity_sq),
+        (Engine::Newton(n), "prevVelGrad") => {
+            let m = &n.prev_vel_grad;
+            serde_json::json!([
+                [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+                [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+                [m[(2, 0)], m[(2, 1)], m[(2, 2)]]
+            ])
+        }
+        (Engine::Collider(c), "verletDist") => serde_json::json!(c.p.verlet_dist),
+        (Engine::Collider(c), "numAction") => serde_json::json!(c.num_action),
+        (Engine::TimeStepper(t), "previousDt") => serde_json::json!(t.previous_dt),
+        (Engine::TimeStepper(t), "defaultDt") => serde_json::json!(t.default_dt),
+        (Engine::TimeStepper(t), "active") => serde_json::json!(t.active),
+        (Engine::Translation(t), "ids") => serde_json::json!(t.ids),
+        (Engine::Translation(t), "velocity") => serde_json::json!(t.velocity),
+        (Engine::Translation(t), "translationAxis") => v3json(&t.translation_axis),
+        (Engine::Rotation(r), "ids") => serde_json::json!(r.ids),
+        (Engine::Rotation(r), "angularVelocity") => serde_json::json!(r.angular_velocity),
+        (Engine::Rotation(r), "rotationAxis") => v3json(&r.rotation_axis),
+        (Engine::Rotation(r), "rotateAroundZero") => serde_json::json!(r.rotate_around_zero),
+        (Engine::Rotation(r), "zeroPoint") => v3json(&r.zero_point),
+        (Engine::Piston(pc), k) => pc.get(k).map_err(PyKeyError::new_err)?,
+        (Engine::PeriTriax(p), k) => peri_triax_get(p, k).ok_or_else(|| {
+            PyKeyError::new_err(format!(
+                "PeriTriaxController has no readable attribute '{}' in ryade",
+                k
+            ))
+        })?,
+        (Engine::ServoPid(s), k) => match k {
+            "ids" => serde_json::json!(s.ids),
+            "axis" => v3json(&s.axis),
+            "current" => v3json(&s.current),
+            "translationAxis" => v3json(&s.translation_axis),
+            "target" => serde_json::json!(s.target),
+            "kP" => serde_json::json!(s.kp),
+            "kI" => serde_json::json!(s.ki),
+            "kD" => serde_json::json!(s.kd),
+            "iTerm" => serde_json::json!(s.i_term),
+            "curVel" => serde_json::json!(s.cur_vel),
+            "errorCur" => serde_json::json!(s.error_cur),
+            "errorPrev" => serde_json::json!(s.error_prev),
+            "maxVelocity" => serde_json::json!(s.max_velocity),
+            "iterPeriod" => serde_json::json!(s.iter_period),
+            "iterPrevStart" => serde_json::json!(s.iter_prev_start),
+            "velocity" => serde_json::json!(s.velocity),
+            _ => {
+                return Err(PyKeyError::new_err(format!(
+                    "ServoPIDController has no readable attribute '{}' in ryade",
+                    key
+                )))
+            }
+        },
+        (Engine::Helix(h), "linearVelocity") => serde_json::json!(h.linear_velocity),
+        (Engine::Helix(h), "angleTurned") => serde_json::json!(h.angle_turned),
+        (Engine::Helix(h), k) => engine_get_attr(&Engine::Rotation(Box::new(h.rot.clone())), k)?,
+        (Engine::Force(f), "ids") => serde_json::json!(f.ids),
+        (Engine::Force(f), "force") => v3json(&f.force),
+        (Engine::HarmonicForce(h), "ids") => serde_json::json!(h.ids),
+        (Engine::HarmonicForce(h), "A") => v3json(&h.a),
+        (Engine::HarmonicForce(h), "f") => v3json(&h.f),
+        (Engine::HarmonicForce(h), "fi") => v3json(&h.fi),
+        (Engine::Kinematic(k), key) => {
+            use ryade::kinematic::KinematicPart as K;
+            match (&**k, key) {
+                (K::InterpolatingHelix(h), "times") => serde_json::json!(h.times),
+                (K::InterpolatingHelix(h), "angularVelocities") => {
+                    serde_json::json!(h.angular_velocities)
+                }
+                (K::InterpolatingHelix(h), "wrap") => serde_json::json!(h.wrap),
+                (K::InterpolatingHelix(h), "slope") => serde_json::json!(h.slope),
+                (K::InterpolatingHelix(h), _) => {
+                    engine_get_attr(&Engine::Helix(Box::new(h.helix.clone())), key)?
+                }
+                (K::BicyclePedal(b), "ids") => serde_json::json!(b.ids),
+                (K::BicyclePedal(b), "angularVelocity") => serde_json::json!(b.angular_velocity),
+                (K::BicyclePedal(b), "radius") => serde_json::json!(b.radius),
+                (K::BicyclePedal(b), "fi") => serde_json::json!(b.fi),
+                (K::BicyclePedal(b), "rotationAxis") => v3json(&b.rotation_axis),
+                (k, _) => {
+                    return Err(PyKeyError::new_err(format!(
+                        "{} has no readable attribute '{}' in ryade",
+                        k.class_name(),
+                        key
+                    )))
+                }
+            }
+        }
+        (Engine::DirectedForce(f), "ids") => serde_json::json!(f.base.ids),
+        (Engine::DirectedForce(f), "force") => v3json(&f.base.force),
+        (Engine::DirectedForce(f), "direction") => v3json(&f.direction),
+        (Engine::DirectedForce(f), "times") => serde_json::json!(f.times),
+        (Engine::DirectedForce(f), "magnitudes") => serde_json::json!(f.magnitudes),
+        (Engine::DirectedForce(f), "wrap") => serde_json::json!(f.wrap),
+        (Engine::TriaxialStress(t), k) => t.get(k).ok_or_else(|| {
+            PyKeyError::new_err(format!(
+                "TriaxialStressController has no readable attribute '{}' in ryade",
+                k
+            ))
+        })?,
+        (Engine::CombinedKinematic(c), "ids") => serde_json::json!(c.ids),
+        (Engine::CombinedKinematic(c), k)
+            if k.strip_prefix("comb.")
+                .and_then(|r| r.split_once('.'))
+                .and_then(|(n, _)| n.parse::<usize>().ok())
+                .is_some_and(|n| n < c.comb.len()) =>
+        {
+            let (n, sub) = k["comb.".len()..].split_once('.').unwrap();
+            let n: usize = n.parse().unwrap();
+            if sub == "dead" {
+                serde_json::json!(c.comb_dead[n])
+            } else {
+                engine_get_attr(&part_engine(c.comb[n].clone()), sub)?
+            }
+        }
+        _ => {
+            return Err(PyKeyError::new_err(format!(
+                "{} has no readable attribute '{}' in ryade",
+                e.class_name(),
+                key
+            )))
+        }
+    };
+    Ok(v)
+}
+
+/// A member of a `CombinedKinematicEngine` as the engine it stands for (to reuse the attribute code).
+fn part_engine(p: ryade::kinematic::KinematicPart) -> Engine {
+    use ryade::kinematic::KinematicPart as K;
+    match p {
+        K::Translation(t) => Engine::Translation(Box::new(t)),
+        K::Rotation(r) => Engine::Rotation(Box::new(r)),
+        K::Helix(h) => Engine::Helix(Box::new(h)),
+        K::ServoPid(s) => Engine::ServoPid(Box::new(s)),
+        k => Engine::Kinematic(Box::new(k)),
+    }
+}
+
+/// The inverse of `part_engine` (only kinematic engines come back).
+fn engine_part(e: Engine) -> ryade::kinematic::KinematicPart {
+    use ryade::kinematic::KinematicPart as K;
+    match e {
+        Engine::Translation(t) => K::Translation(*t),
+        Engine::Rotation(r) => K::Rotation(*r),
+        Engine::Helix(h) => K::Helix(*h),
+        Engine::ServoPid(s) => K::ServoPid(*s),
+        Engine::Kinematic(k) => *k,
+        _ => unreachable!("engine_part on a non-kinematic engine"),
+    }
 }
 
 #[pymodule]

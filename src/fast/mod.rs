@@ -305,6 +305,7 @@ impl FastSim {
                     let ok = ss.is_some_and(|p| {
                         p.interaction_detection_factor == 1.0 && p.avoid_granular_ratcheting
                     }) && il.sphere_sphere_6d.is_none()
+                        && il.mindlin_phys.is_none()
                         && il.frict_phys
                         && il
                             .cundall_strack
@@ -357,7 +358,7 @@ impl FastSim {
         }
         let mut mats = Vec::with_capacity(scene.materials.len());
         for m in &scene.materials {
-            if m.coh.is_some() || m.viscel.is_some() {
+            if m.coh.is_some() || m.viscel.is_some() || m.luding.is_some() || m.bubble.is_some() {
                 return unsupported(m.class_name().into());
             }
             mats.push(Mat {

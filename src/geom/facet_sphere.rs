@@ -7,6 +7,8 @@ use crate::shape::Facet;
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Params {
     pub shrink_factor: f64,
+    /// `hertzian`: the facet's equivalent radius (refR1) is 1e8 times the sphere's instead of twice it.
+    pub hertzian: bool,
 }
 
 /// Body 1 is the facet, body 2 the sphere of radius `r`. A new contact needs a strictly positive
@@ -70,7 +72,7 @@ pub fn go(p: &mut Params, facet: &Facet, r: f64, pr: &Pair, geom: &mut Option<Sc
         let n_global = mat_vec(&axis_t, &normal);
         g.contact_point = s2.pos + shift2 - n_global * (r - 0.5 * pen);
         g.pen = pen;
-        g.radius1 = 2.0 * r;
+        g.radius1 = if p.hertzian { 1e8 * r } else { 2.0 * r };
         g.radius2 = r;
         g.precompute(s1, s2, &pr.ctx, &n_global, is_new, shift2, false);
         return true;

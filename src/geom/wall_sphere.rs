@@ -6,11 +6,16 @@ use crate::math::Vec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     pub no_ratch: bool,
+    /// `hertzian`: the wall's equivalent radius (refR1) is 1e8 times the sphere's instead of the sphere's.
+    pub hertzian: bool,
 }
 
 impl Default for Params {
     fn default() -> Self {
-        Params { no_ratch: true }
+        Params {
+            no_ratch: true,
+            hertzian: false,
+        }
     }
 }
 
@@ -45,7 +50,7 @@ pub fn go(
     let is_new = geom.is_none();
     let g = geom.get_or_insert_with(ScGeom::default);
     // the wall's "radius" is the sphere's (non-Hertzian default)
-    g.radius1 = r;
+    g.radius1 = if p.hertzian { 1e8 * r } else { r };
     g.radius2 = r;
     g.contact_point = cp;
     g.pen = -(dist.abs() - r);

@@ -12,6 +12,7 @@ use crate::geom;
 use crate::geom::{Fict, GeomExt, GridCoGridCo, Rot6D, ScGeom, ScGridCo};
 use crate::integrator::Newton;
 use crate::interaction::{Interaction, IntrExt};
+use crate::kinematic::KinematicPart;
 use crate::law;
 use crate::material::CohFrictParams;
 use crate::material::FrictMat;
@@ -425,9 +426,9 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
-        "ViscElMat" => None,
+        "ViscElMat" | "LudingMat" | "BubbleMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat)",
             cls
         ),
     };
@@ -460,6 +461,30 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     } else {
         None
     };
+    let nan_or = |k: &str| -> Result<f64> {
+        match m.get(k) {
+            None | Some(Value::Null) => Ok(f64::NAN),
+            Some(_) => f(m, k),
+        }
+    };
+    let luding = if cls == "LudingMat" {
+        Some(Box::new(crate::material::LudingParams {
+            k1: nan_or("k1")?,
+            kp: nan_or("kp")?,
+            kc: nan_or("kc")?,
+            ks: nan_or("ks")?,
+            phi_f: nan_or("PhiF")?,
+            g0: nan_or("G0")?,
+        }))
+    } else {
+        None
+    };
+    let bubble = if cls == "BubbleMat" {
+        Some(fo(m, "surfaceTension", 0.07197)?)
+    } else {
+        None
+    };
+    let lud = luding.is_some() || bubble.is_some();
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
         label: m
@@ -467,17 +492,26 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
             .and_then(Value::as_str)
             .unwrap_or("")
             .to_string(),
-        young: f(m, "young")?,
-        poisson: f(m, "poisson")?,
-        friction_angle: f(m, "frictionAngle")?,
+        young: if lud { f64::NAN } else { f(m, "young")? },
+        poisson: if lud { f64::NAN } else { f(m, "poisson")? },
+        friction_angle: if lud {
+            nan_or("frictionAngle")?
+        } else {
+            f(m, "frictionAngle")?
+        },
         density: f(m, "density")?,
         coh,
         viscel,
+        luding,
+        bubble,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
         if let Some(i) = mats.iter().position(|x| x.id == fm.id) {
-            if mats[i] != fm {
+            // (compared as JSON: a NaN, a value not given, equals itself there)
+            if mats[i] != fm
+                && serde_json::to_value(&mats[i]).ok() != serde_json::to_value(&fm).ok()
+            {
                 bail!("two different materials share YADE id {}", fm.id);
             }
             return Ok(i);
@@ -695,7 +729,8 @@ fn quat_of(v: &Value) -> Result<Quat> {
 }
 
 pub fn engine(e: &Value) -> Result<Engine> {
-    Ok(match class(e)? {
+    let cls = class(e)?;
+    Ok(match cls {
         "ForceResetter" => Engine::ForceResetter,
         "External" => Engine::External(
             e.get("id")
@@ -743,11 +778,13 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     "Ig2_Facet_Sphere_ScGeom" => {
                         il.facet_sphere = Some(geom::facet_sphere::Params {
                             shrink_factor: fo(&g, "shrinkFactor", 0.0)?,
+                            hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
                     "Ig2_Wall_Sphere_ScGeom" => {
                         il.wall_sphere = Some(geom::wall_sphere::Params {
                             no_ratch: bo(&g, "noRatch", true)?,
+                            hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
                     "Ig2_Box_Sphere_ScGeom" => {
@@ -795,12 +832,40 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     "Ip2_ViscElMat_ViscElMat_ViscElPhys" => {
-                        for mm in ["tc", "en", "et", "frictAngle"] {
-                            if p.get(mm).is_some_and(|x| !x.is_null()) {
-                                bail!("Ip2_ViscElMat_ViscElMat_ViscElPhys.{} (MatchMaker) is not supported by ryade yet", mm);
-                            }
-                        }
+                        il.viscel_ip2 = crate::phys::ViscElIp2 {
+                            tc: match_maker(&p, "tc")?,
+                            en: match_maker(&p, "en")?,
+                            et: match_maker(&p, "et")?,
+                            frict_angle: match_maker(&p, "frictAngle")?,
+                        };
                         il.viscel_phys = true
+                    }
+                    "Ip2_LudingMat_LudingMat_LudingPhys" => il.luding_phys = true,
+                    "Ip2_BubbleMat_BubbleMat_BubblePhys" => il.bubble_phys = true,
+                    "Ip2_FrictMat_FrictMat_MindlinPhys" => {
+                        // a number stands for a constant MatchMaker (algo 'val')
+                        let opt = |k: &str| -> Result<Option<crate::phys::MatchMaker>> {
+                            Ok(match p.get(k) {
+                                None | Some(Value::Null) => None,
+                                Some(v) if v.is_number() => Some(crate::phys::MatchMaker {
+                                    matches: Vec::new(),
+                                    algo: "val".into(),
+                                    val: fo(&p, k, 0.0)?,
+                                }),
+                                Some(_) => match_maker(&p, k)?,
+                            })
+                        };
+                        il.mindlin_phys = Some(crate::phys::MindlinIp2 {
+                            gamma: fo(&p, "gamma", 0.0)?,
+                            eta: fo(&p, "eta", 0.0)?,
+                            krot: fo(&p, "krot", 0.0)?,
+                            ktwist: fo(&p, "ktwist", 0.0)?,
+                            en: opt("en")?,
+                            es: opt("es")?,
+                            betan: opt("betan")?,
+                            betas: opt("betas")?,
+                            frict_angle: opt("frictAngle")?,
+                        })
                     }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
                 }
@@ -842,6 +907,24 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
+                    "Law2_ScGeom_LudingPhys_Basic" => il.luding_basic = true,
+                    "Law2_ScGeom_BubblePhys_Bubble" => {
+                        il.bubble = Some(law::bubble::Params {
+                            pct_max_force: fo(&l, "pctMaxForce", 0.1)?,
+                            surface_tension: fo(&l, "surfaceTension", 0.07197)?,
+                            c1: 0.0,
+                        })
+                    }
+                    "Law2_ScGeom_MindlinPhys_Mindlin" => {
+                        if bo(&l, "calcEnergy", false)? {
+                            bail!("Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy is not supported by ryade yet");
+                        }
+                        il.mindlin = Some(law::mindlin::Params {
+                            include_adhesion: bo(&l, "includeAdhesion", false)?,
+                            include_moment: bo(&l, "includeMoment", false)?,
+                            never_erase: bo(&l, "neverErase", false)?,
+                        })
+                    }
                     other => bail!("law functor '{}' is not supported by ryade yet", other),
                 }
             }
@@ -868,21 +951,72 @@ pub fn engine(e: &Value) -> Result<Engine> {
             mask: fo(e, "mask", -1.0)? as i32,
             ..Default::default()
         })),
-        "TranslationEngine" => Engine::Translation(Box::new(crate::kinematic::TranslationEngine {
+        "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine"
+        | "InterpolatingHelixEngine" | "BicyclePedalEngine" => match kinematic_part(e, cls)? {
+            KinematicPart::Translation(t) => Engine::Translation(Box::new(t)),
+            KinematicPart::Rotation(r) => Engine::Rotation(Box::new(r)),
+            KinematicPart::ServoPid(p) => Engine::ServoPid(Box::new(p)),
+            KinematicPart::Helix(h) => Engine::Helix(Box::new(h)),
+            k => Engine::Kinematic(Box::new(k)),
+        },
+        "InterpolatingDirectedForceEngine" => Engine::DirectedForce(Box::new(
+            crate::force_engine::InterpolatingDirectedForceEngine {
+                base: crate::force_engine::ForceEngine {
+                    ids: ids(e)?,
+                    force: vec3_or(e, "force", Vec3::zeros())?,
+                },
+                times: f64_list(e, "times")?,
+                magnitudes: f64_list(e, "magnitudes")?,
+                direction: vec3_or(e, "direction", Vec3::new(1.0, 0.0, 0.0))?,
+                wrap: bo(e, "wrap", false)?,
+                pos: fo(e, "_pos", 0.0)? as usize,
+            },
+        )),
+        "ForceEngine" => Engine::Force(Box::new(crate::force_engine::ForceEngine {
+            ids: ids(e)?,
+            force: vec3_or(e, "force", Vec3::zeros())?,
+        })),
+        "HarmonicForceEngine" => Engine::HarmonicForce(Box::new(crate::force_engine::HarmonicForceEngine {
+            ids: ids(e)?,
+            a: vec3_or(e, "A", Vec3::zeros())?,
+            f: vec3_or(e, "f", Vec3::zeros())?,
+            fi: vec3_or(e, "fi", Vec3::zeros())?,
+        })),
+        "TriaxialStressController" => Engine::TriaxialStress(Box::new(
+            crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
+        "CombinedKinematicEngine" => {
+            let mut c = crate::kinematic::CombinedKinematicEngine {
+                ids: ids(e)?,
+                ..Default::default()
+            };
+            for p in e.get("comb").and_then(|v| v.as_array()).cloned().unwrap_or_default() {
+                let pc = p.get("class").and_then(|v| v.as_str()).unwrap_or("");
+                c.comb.push(kinematic_part(&p, pc)?);
+                c.comb_dead.push(bo(&p, "dead", false)?);
+            }
+            Engine::CombinedKinematic(Box::new(c))
+        }
+        // a ryade extension (not a YADE class): the study's piston law, src/piston.rs
+        "RyadePistonController" => Engine::Piston(Box::new(
+            crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
+        "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
+        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, HelixEngine, CombinedKinematicEngine, ServoPIDController, ForceEngine, HarmonicForceEngine, PeriTriaxController, TriaxialStressController; ryade's own: RyadePistonController)", other),
+    })
+}
+
+/// A kinematic engine of KinematicEngines.cpp (alone or a member of a `CombinedKinematicEngine`).
+fn kinematic_part(e: &Value, cls: &str) -> Result<KinematicPart> {
+    Ok(match cls {
+        "TranslationEngine" => KinematicPart::Translation(crate::kinematic::TranslationEngine {
             ids: ids(e)?,
             velocity: fo(e, "velocity", 0.0)?,
             // taken as stored: YADE's postLoad normalisation already happened where the file was written
             translation_axis: vec3_or(e, "translationAxis", Vec3::zeros())?,
-        })),
-        "RotationEngine" => Engine::Rotation(Box::new(crate::kinematic::RotationEngine {
-            ids: ids(e)?,
-            angular_velocity: fo(e, "angularVelocity", 0.0)?,
-            // taken as stored (normalised where the file was written, as for TranslationEngine)
-            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
-            rotate_around_zero: bo(e, "rotateAroundZero", false)?,
-            zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
-        })),
-        "ServoPIDController" => Engine::ServoPid(Box::new(crate::kinematic::ServoPid {
+        }),
+        "RotationEngine" => KinematicPart::Rotation(rotation(e)?),
+        "ServoPIDController" => KinematicPart::ServoPid(crate::kinematic::ServoPid {
             ids: ids(e)?,
             axis: vec3_or(e, "axis", Vec3::zeros())?,
             target: fo(e, "target", 0.0)?,
@@ -897,14 +1031,164 @@ pub fn engine(e: &Value) -> Result<Engine> {
             iter_period: fo(e, "iterPeriod", 100.0)? as i64,
             iter_prev_start: fo(e, "iterPrevStart", -1.0)? as i64,
             ..Default::default()
-        })),
-        // a ryade extension (not a YADE class): the study's piston law, src/piston.rs
-        "RyadePistonController" => Engine::Piston(Box::new(
-            crate::piston::PistonController::from_json(e).map_err(|m| anyhow!(m))?,
-        )),
-        "PeriTriaxController" => Engine::PeriTriax(Box::new(peri_triax(e)?)),
-        other => bail!("engine '{}' is not supported by ryade yet (supported: ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, GlobalStiffnessTimeStepper, TranslationEngine, RotationEngine, ServoPIDController, PeriTriaxController; ryade's own: RyadePistonController)", other),
+        }),
+        "HelixEngine" => KinematicPart::Helix(helix(e)?),
+        "InterpolatingHelixEngine" => {
+            KinematicPart::InterpolatingHelix(crate::kinematic::InterpolatingHelixEngine {
+                helix: helix(e)?,
+                times: f64_list(e, "times")?,
+                angular_velocities: f64_list(e, "angularVelocities")?,
+                wrap: bo(e, "wrap", false)?,
+                slope: fo(e, "slope", 0.0)?,
+                pos: fo(e, "_pos", 0.0)? as usize,
+            })
+        }
+        "BicyclePedalEngine" => KinematicPart::BicyclePedal(crate::kinematic::BicyclePedalEngine {
+            ids: ids(e)?,
+            angular_velocity: fo(e, "angularVelocity", 0.0)?,
+            rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+            radius: fo(e, "radius", -1.0)?,
+            fi: fo(e, "fi", std::f64::consts::PI / 2.0)?,
+        }),
+        other => bail!("kinematic engine '{}' is not supported by ryade yet", other),
     })
+}
+
+/// A functor's MatchMaker attribute: `null`/missing, or `{"matches": [[id1, id2, value], ..], "algo": ..,
+/// "val": ..}`.
+fn match_maker(p: &Value, key: &str) -> Result<Option<crate::phys::MatchMaker>> {
+    let Some(m) = p.get(key).filter(|x| !x.is_null()) else {
+        return Ok(None);
+    };
+    let mut matches = Vec::new();
+    for it in m
+        .get("matches")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default()
+    {
+        let a = it.as_array().filter(|a| a.len() == 3).ok_or_else(|| {
+            anyhow!(
+                "{}.matches: each item must be [id1, id2, value], got {}",
+                key,
+                short(&it)
+            )
+        })?;
+        let num = |x: &Value| {
+            x.as_f64()
+                .ok_or_else(|| anyhow!("{}.matches: not a number: {}", key, x))
+        };
+        matches.push((num(&a[0])? as i32, num(&a[1])? as i32, num(&a[2])?));
+    }
+    let algo = m
+        .get("algo")
+        .and_then(Value::as_str)
+        .unwrap_or("avg")
+        .to_string();
+    if !["val", "zero", "avg", "min", "max", "harmAvg"].contains(&algo.as_str()) {
+        bail!(
+            "MatchMaker:: algo '{}' not recognized (possible values: val, avg, min, max, harmAvg).",
+            algo
+        );
+    }
+    let val = match m.get("val") {
+        Some(Value::String(s)) if s == "nan" => f64::NAN,
+        Some(v) if v.is_number() => v.as_f64().unwrap(),
+        _ => f64::NAN,
+    };
+    Ok(Some(crate::phys::MatchMaker { matches, algo, val }))
+}
+
+/// A MatchMaker's JSON object (see `match_maker`).
+pub fn match_maker_of(v: &Value) -> Result<crate::phys::MatchMaker> {
+    let w = serde_json::json!({ "m": v });
+    Ok(match_maker(&w, "m")?.expect("not null"))
+}
+
+fn match_maker_value(m: &Option<crate::phys::MatchMaker>) -> Value {
+    use serde_json::json;
+    match m {
+        None => Value::Null,
+        Some(m) => {
+            json!({"matches": m.matches.iter().map(|x| json!([x.0, x.1, x.2])).collect::<Vec<_>>(),
+            "algo": m.algo, "val": if m.val.is_nan() { json!("nan") } else { json!(m.val) }})
+        }
+    }
+}
+
+fn helix(e: &Value) -> Result<crate::kinematic::HelixEngine> {
+    Ok(crate::kinematic::HelixEngine {
+        rot: rotation(e)?,
+        linear_velocity: fo(e, "linearVelocity", 0.0)?,
+        angle_turned: fo(e, "angleTurned", 0.0)?,
+    })
+}
+
+/// A list of numbers (missing: empty).
+fn f64_list(e: &Value, key: &str) -> Result<Vec<f64>> {
+    match e.get(key) {
+        None | Some(Value::Null) => Ok(Vec::new()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|x| {
+                x.as_f64()
+                    .ok_or_else(|| anyhow!("'{}' must hold numbers, got {}", key, x))
+            })
+            .collect(),
+        Some(x) => bail!("'{}' must be a list of numbers, got {}", key, short(x)),
+    }
+}
+
+fn rotation(e: &Value) -> Result<crate::kinematic::RotationEngine> {
+    Ok(crate::kinematic::RotationEngine {
+        ids: ids(e)?,
+        angular_velocity: fo(e, "angularVelocity", 0.0)?,
+        // taken as stored (normalised where the file was written, as for TranslationEngine)
+        rotation_axis: vec3_or(e, "rotationAxis", Vec3::new(1.0, 0.0, 0.0))?,
+        rotate_around_zero: bo(e, "rotateAroundZero", false)?,
+        zero_point: vec3_or(e, "zeroPoint", Vec3::zeros())?,
+    })
+}
+
+/// A kinematic engine's JSON (alone or as a member of a `CombinedKinematicEngine`).
+fn kinematic_value(k: &KinematicPart) -> Value {
+    use serde_json::json;
+    let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
+
+    match k {
+        KinematicPart::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
+                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
+                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
+        KinematicPart::Translation(t) => {
+            json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
+                "translationAxis": v3(&t.translation_axis)})
+        }
+        KinematicPart::ServoPid(p) => {
+            json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
+                "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
+                "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
+                "iterPrevStart": p.iter_prev_start})
+        }
+        KinematicPart::InterpolatingHelix(ih) => {
+            let mut v = kinematic_value(&KinematicPart::Helix(ih.helix.clone()));
+            v["class"] = json!("InterpolatingHelixEngine");
+            v["times"] = json!(ih.times);
+            v["angularVelocities"] = json!(ih.angular_velocities);
+            v["wrap"] = json!(ih.wrap);
+            v["slope"] = json!(ih.slope);
+            v["_pos"] = json!(ih.pos);
+            v
+        }
+        KinematicPart::BicyclePedal(b) => json!({"class": "BicyclePedalEngine", "ids": b.ids,
+            "angularVelocity": b.angular_velocity, "rotationAxis": v3(&b.rotation_axis), "radius": b.radius,
+            "fi": b.fi}),
+        KinematicPart::Helix(h) => {
+            let r = &h.rot;
+            json!({"class": "HelixEngine", "ids": r.ids, "angularVelocity": r.angular_velocity,
+                "rotationAxis": v3(&r.rotation_axis), "rotateAroundZero": r.rotate_around_zero,
+                "zeroPoint": v3(&r.zero_point), "linearVelocity": h.linear_velocity, "angleTurned": h.angle_turned})
+        }
+    }
 }
 
 /// A number that may be NaN, written as `null` (JSON has no NaN); missing: `default`.
@@ -1122,6 +1406,23 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     mat[k] = v;
                 }
             }
+            if let Some(st) = m.bubble {
+                mat["surfaceTension"] = json!(st);
+            }
+            if let Some(l) = &m.luding {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, x) in [
+                    ("k1", l.k1),
+                    ("kp", l.kp),
+                    ("kc", l.kc),
+                    ("ks", l.ks),
+                    ("PhiF", l.phi_f),
+                    ("G0", l.g0),
+                    ("frictionAngle", m.friction_angle),
+                ] {
+                    mat[k] = nn(x);
+                }
+            }
             if let Some(v) = &m.viscel {
                 let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
                 for (k, x) in [
@@ -1196,10 +1497,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     geom.push(json!({"class": "Ig2_Sphere_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor, "avoidGranularRatcheting": g.avoid_granular_ratcheting}));
                 }
                 if let Some(g) = &il.facet_sphere {
-                    geom.push(json!({"class": "Ig2_Facet_Sphere_ScGeom", "shrinkFactor": g.shrink_factor}));
+                    geom.push(json!({"class": "Ig2_Facet_Sphere_ScGeom", "shrinkFactor": g.shrink_factor, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.wall_sphere {
-                    geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch}));
+                    geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.box_sphere {
                     geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
@@ -1229,7 +1530,26 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     phys.push(json!({"class": "Ip2_FrictMat_FrictMat_FrictPhys"}));
                 }
                 if il.viscel_phys {
-                    phys.push(json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"}));
+                    let mut f = json!({"class": "Ip2_ViscElMat_ViscElMat_ViscElPhys"});
+                    let v = &il.viscel_ip2;
+                    for (k, m) in [("tc", &v.tc), ("en", &v.en), ("et", &v.et), ("frictAngle", &v.frict_angle)] {
+                        if m.is_some() {
+                            f[k] = match_maker_value(m);
+                        }
+                    }
+                    phys.push(f);
+                }
+                if il.luding_phys {
+                    phys.push(json!({"class": "Ip2_LudingMat_LudingMat_LudingPhys"}));
+                }
+                if il.bubble_phys {
+                    phys.push(json!({"class": "Ip2_BubbleMat_BubbleMat_BubblePhys"}));
+                }
+                if let Some(p) = &il.mindlin_phys {
+                    phys.push(json!({"class": "Ip2_FrictMat_FrictMat_MindlinPhys", "gamma": p.gamma, "eta": p.eta,
+                        "krot": p.krot, "ktwist": p.ktwist, "en": match_maker_value(&p.en), "es": match_maker_value(&p.es),
+                        "betan": match_maker_value(&p.betan), "betas": match_maker_value(&p.betas),
+                        "frictAngle": match_maker_value(&p.frict_angle)}));
                 }
                 let mut law: Vec<Value> = Vec::new();
                 if let Some(l) = &il.cohesion_moment {
@@ -1254,6 +1574,17 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.viscel_basic {
                     law.push(json!({"class": "Law2_ScGeom_ViscElPhys_Basic"}));
                 }
+                if il.luding_basic {
+                    law.push(json!({"class": "Law2_ScGeom_LudingPhys_Basic"}));
+                }
+                if let Some(l) = &il.bubble {
+                    law.push(json!({"class": "Law2_ScGeom_BubblePhys_Bubble", "pctMaxForce": l.pct_max_force,
+                        "surfaceTension": l.surface_tension}));
+                }
+                if let Some(l) = &il.mindlin {
+                    law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,
+                        "includeMoment": l.include_moment, "neverErase": l.never_erase}));
+                }
                 json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
             }
             Engine::Newton(n) => {
@@ -1266,15 +1597,26 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::TimeStepper(t) => json!({"class": "GlobalStiffnessTimeStepper", "active": t.active,
                 "timeStepUpdateInterval": t.time_step_update_interval, "defaultDt": t.default_dt,
                 "maxDt": t.max_dt, "timestepSafetyCoefficient": t.timestep_safety_coefficient}),
-            Engine::Rotation(r) => json!({"class": "RotationEngine", "ids": r.ids,
-                "angularVelocity": r.angular_velocity, "rotationAxis": v3(&r.rotation_axis),
-                "rotateAroundZero": r.rotate_around_zero, "zeroPoint": v3(&r.zero_point)}),
-            Engine::Translation(t) => json!({"class": "TranslationEngine", "ids": t.ids, "velocity": t.velocity,
-                "translationAxis": v3(&t.translation_axis)}),
-            Engine::ServoPid(p) => json!({"class": "ServoPIDController", "ids": p.ids, "axis": v3(&p.axis), "target": p.target,
-                "kP": p.kp, "kI": p.ki, "kD": p.kd, "iTerm": p.i_term, "curVel": p.cur_vel, "errorCur": p.error_cur,
-                "errorPrev": p.error_prev, "maxVelocity": p.max_velocity, "iterPeriod": p.iter_period,
-                "iterPrevStart": p.iter_prev_start}),
+            Engine::Rotation(r) => kinematic_value(&KinematicPart::Rotation((**r).clone())),
+            Engine::Translation(t) => kinematic_value(&KinematicPart::Translation((**t).clone())),
+            Engine::ServoPid(p) => kinematic_value(&KinematicPart::ServoPid((**p).clone())),
+            Engine::Helix(h) => kinematic_value(&KinematicPart::Helix((**h).clone())),
+            Engine::Force(f) => json!({"class": "ForceEngine", "ids": f.ids, "force": v3(&f.force)}),
+            Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
+                "f": v3(&h.f), "fi": v3(&h.fi)}),
+            Engine::TriaxialStress(t) => t.to_json(),
+            Engine::Kinematic(k) => kinematic_value(k),
+            Engine::DirectedForce(f) => json!({"class": "InterpolatingDirectedForceEngine", "ids": f.base.ids,
+                "force": v3(&f.base.force), "times": f.times, "magnitudes": f.magnitudes,
+                "direction": v3(&f.direction), "wrap": f.wrap, "_pos": f.pos}),
+            Engine::CombinedKinematic(c) => {
+                let comb: Vec<Value> = c.comb.iter().zip(&c.comb_dead).map(|(p, &dead)| {
+                    let mut v = kinematic_value(p);
+                    v["dead"] = json!(dead);
+                    v
+                }).collect();
+                json!({"class": "CombinedKinematicEngine", "ids": c.ids, "comb": comb})
+            }
             Engine::Piston(p) => p.to_json(),
             Engine::PeriTriax(p) => peri_triax_value(p),
             // a Python-side engine (PyRunner...): the file records its place; loading it needs the runner

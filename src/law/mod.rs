@@ -2,10 +2,13 @@
 //! (pkg/dem/ElasticContactLaw.cpp): linear normal spring, incremental shear spring with a Coulomb
 //! cap. `cohesion_moment`: the cohesive law with moments (grid bonds, rolling resistance); `grid`:
 //! the sphere-connection and connection-connection laws that put the force on the grid nodes; `viscel`:
-//! the viscoelastic law of ViscElMat.
+//! the viscoelastic law of ViscElMat; `mindlin`: Hertz-Mindlin.
 
+pub mod bubble;
 pub mod cohesion_moment;
 pub mod grid;
+pub mod luding;
+pub mod mindlin;
 pub mod viscel;
 
 use crate::energy::{EnergyTracker, IdCache};
@@ -64,11 +67,17 @@ pub enum LawFunctor {
     GridCoGridCoFrict,
     /// `Law2_ScGeom_ViscElPhys_Basic`
     ViscElBasic,
+    /// `Law2_ScGeom_MindlinPhys_Mindlin`
+    Mindlin,
+    /// `Law2_ScGeom_LudingPhys_Basic`
+    LudingBasic,
+    /// `Law2_ScGeom_BubblePhys_Bubble`
+    Bubble,
 }
 
 impl LawFunctor {
     /// Number of law functors (the size of `LawEnergy::caches`).
-    pub const COUNT: usize = 6;
+    pub const COUNT: usize = 9;
 
     pub fn class_name(&self) -> &'static str {
         match self {
@@ -78,6 +87,9 @@ impl LawFunctor {
             LawFunctor::ScGridCoCohFrict => "Law2_ScGridCoGeom_CohFrictPhys_CundallStrack",
             LawFunctor::GridCoGridCoFrict => "Law2_GridCoGridCoGeom_FrictPhys_CundallStrack",
             LawFunctor::ViscElBasic => "Law2_ScGeom_ViscElPhys_Basic",
+            LawFunctor::Mindlin => "Law2_ScGeom_MindlinPhys_Mindlin",
+            LawFunctor::LudingBasic => "Law2_ScGeom_LudingPhys_Basic",
+            LawFunctor::Bubble => "Law2_ScGeom_BubblePhys_Bubble",
         }
     }
 }

@@ -163,6 +163,14 @@ def _material(b, grid=False):
             d[a] = _num_or_null(getattr(m, a))
         d['mR'], d['mRtype'] = float(m.mR), int(m.mRtype)
         return d
+    if c == 'BubbleMat':
+        return {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label),
+                'surfaceTension': float(m.surfaceTension)}
+    if c == 'LudingMat':
+        d = {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label)}
+        for a in ('k1', 'kp', 'kc', 'ks', 'PhiF', 'G0', 'frictionAngle'):
+            d[a] = _num_or_null(getattr(m, a))
+        return d
     if c != 'FrictMat':
         raise UnsupportedScene('body %d: material class %s is not supported (only FrictMat)' % (b.id, c))
     return {'id': int(m.id), 'class': 'FrictMat', 'young': float(m.young), 'poisson': float(m.poisson),
@@ -232,14 +240,24 @@ def _geom_functor(f, grid=False):
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor),
                 'avoidGranularRatcheting': bool(f.avoidGranularRatcheting)}
     if c == 'Ig2_Facet_Sphere_ScGeom':
-        _require(not f.hertzian, 'Ig2_Facet_Sphere_ScGeom.hertzian=True is not supported')
-        return {'class': c, 'shrinkFactor': float(f.shrinkFactor)}
+        d = {'class': c, 'shrinkFactor': float(f.shrinkFactor)}
+        if f.hertzian:
+            d['hertzian'] = True
+        return d
     if c == 'Ig2_Wall_Sphere_ScGeom':
-        _require(not f.hertzian, 'Ig2_Wall_Sphere_ScGeom.hertzian=True is not supported')
-        return {'class': c, 'noRatch': bool(f.noRatch)}
+        d = {'class': c, 'noRatch': bool(f.noRatch)}
+        if f.hertzian:
+            d['hertzian'] = True
+        return d
     if c == 'Ig2_Box_Sphere_ScGeom':
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
     raise UnsupportedScene('geometry functor class %s is not supported' % c)
+
+
+def _match_maker(m):
+    """A MatchMaker as golden/FORMAT.md describes it."""
+    return {'matches': [[int(x[0]), int(x[1]), float(x[2])] for x in m.matches], 'algo': str(m.algo),
+            'val': 'nan' if m.val != m.val else float(m.val)}
 
 
 def _phys_functor(f, grid=False):
@@ -250,9 +268,29 @@ def _phys_functor(f, grid=False):
         return {'class': c, 'setCohesionNow': bool(f.setCohesionNow),
                 'setCohesionOnNewContacts': bool(f.setCohesionOnNewContacts)}
     if c == 'Ip2_ViscElMat_ViscElMat_ViscElPhys':
+        d = {'class': c}
         for a in ('tc', 'en', 'et', 'frictAngle'):
-            _require(getattr(f, a) is None, '%s.%s (MatchMaker) is not supported' % (c, a))
+            m = getattr(f, a)
+            if m is not None:
+                d[a] = _match_maker(m)
+        return d
+    if c == 'Ip2_BubbleMat_BubbleMat_BubblePhys':
         return {'class': c}
+    if c == 'Ip2_LudingMat_LudingMat_LudingPhys':
+        return {'class': c}
+    if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
+        d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
+             'ktwist': float(f.ktwist)}
+        for a in ('en', 'es', 'betan', 'betas', 'frictAngle'):
+            m = getattr(f, a)
+            if m is None:
+                if a != 'frictAngle':
+                    d[a] = None
+            elif len(m.matches) == 0 and m.algo == 'val':
+                d[a] = float(m.val)  # a number given for it
+            else:
+                d[a] = _match_maker(m)
+        return d
     if c == 'Ip2_FrictMat_FrictMat_FrictPhys':
         for a in ('kn', 'ks', 'frictAngle'):
             _require(getattr(f, a) is None, 'Ip2_FrictMat_FrictMat_FrictPhys.%s (MatchMaker) is not supported' % a)
@@ -276,6 +314,14 @@ def _law_functor(f, grid=False):
         return {'class': c, 'neverErase': bool(f.neverErase), 'sphericalBodies': bool(f.sphericalBodies)}
     if c == 'Law2_ScGeom_ViscElPhys_Basic':
         return {'class': c}
+    if c == 'Law2_ScGeom_BubblePhys_Bubble':
+        return {'class': c, 'pctMaxForce': float(f.pctMaxForce), 'surfaceTension': float(f.surfaceTension)}
+    if c == 'Law2_ScGeom_LudingPhys_Basic':
+        return {'class': c}
+    if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
+        _require(not f.calcEnergy, '%s.calcEnergy is not supported' % c)
+        return {'class': c, 'includeAdhesion': bool(f.includeAdhesion), 'includeMoment': bool(f.includeMoment),
+                'neverErase': bool(f.neverErase)}
     raise UnsupportedScene('law functor class %s is not supported' % c)
 
 
@@ -317,6 +363,59 @@ def _engine(e, grid=False):
         return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
                 'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
                 'zeroPoint': _v3(e.zeroPoint)}
+    if c == 'GlobalStiffnessTimeStepper':
+        for k in ('densityScaling', 'viscEl'):
+            _require(not getattr(e, k), 'GlobalStiffnessTimeStepper.%s is not supported' % k)
+        return {'class': c, 'active': bool(e.active), 'timeStepUpdateInterval': int(e.timeStepUpdateInterval),
+                'defaultDt': float(e.defaultDt), 'maxDt': float(e.maxDt),
+                'timestepSafetyCoefficient': float(e.timestepSafetyCoefficient)}
+    if c == 'TriaxialStressController':
+        d = {'class': c}
+        for k in ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'stressMask'):
+            d[k] = int(getattr(e, k))
+        for k in ('internalCompaction', 'updatePorosity'):
+            d[k] = bool(getattr(e, k))
+        for k in ('stressDamping', 'strainDamping', 'thickness', 'height', 'width', 'depth', 'height0', 'width0',
+                  'depth0', 'goal1', 'goal2', 'goal3', 'maxMultiplier', 'finalMaxMultiplier', 'max_vel',
+                  'previousStress', 'previousMultiplier', 'meanStress', 'volumetricStrain', 'externalWork'):
+            d[k] = float(getattr(e, k))
+        for w in ('left', 'right', 'bottom', 'top', 'back', 'front'):
+            d['wall_%s_id' % w] = int(getattr(e, 'wall_%s_id' % w))
+            d['wall_%s_activated' % w] = bool(getattr(e, 'wall_%s_activated' % w))
+        return d
+    if c == 'ForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}
+    if c == 'HarmonicForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'A': _v3(e.A), 'f': _v3(e.f), 'fi': _v3(e.fi)}
+    if c == 'InterpolatingHelixEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint), 'linearVelocity': float(e.linearVelocity),
+                'angleTurned': float(e.angleTurned), 'times': [float(x) for x in e.times],
+                'angularVelocities': [float(x) for x in e.angularVelocities], 'wrap': bool(e.wrap),
+                'slope': float(e.slope)}
+    if c == 'BicyclePedalEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'radius': float(e.radius), 'fi': float(e.fi)}
+    if c == 'InterpolatingDirectedForceEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force),
+                'times': [float(x) for x in e.times], 'magnitudes': [float(x) for x in e.magnitudes],
+                'direction': _v3(e.direction), 'wrap': bool(e.wrap)}
+    if c == 'HelixEngine':
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'angularVelocity': float(e.angularVelocity),
+                'rotationAxis': _v3(e.rotationAxis), 'rotateAroundZero': bool(e.rotateAroundZero),
+                'zeroPoint': _v3(e.zeroPoint), 'linearVelocity': float(e.linearVelocity),
+                'angleTurned': float(e.angleTurned)}
+    if c == 'CombinedKinematicEngine':
+        comb = []
+        for m in e.comb:
+            dead = bool(m.dead)
+            m.dead = False  # _engine refuses dead engines; a member's dead flag is recorded here
+            d = _engine(m, grid)
+            m.dead = dead
+            d['dead'] = dead
+            comb.append(d)
+        return {'class': c, 'ids': [int(i) for i in e.ids], 'comb': comb}
     if c == 'ServoPIDController':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'axis': _v3(e.axis), 'target': float(e.target),
                 'kP': float(e.kP), 'kI': float(e.kI), 'kD': float(e.kD), 'iTerm': float(e.iTerm),
@@ -607,10 +706,11 @@ def _write_intrs(out, step, intrs):
         cp = g.contactPoint
         si = g.shearInc
         fn = ph.normalForce
-        fs = ph.shearForce
+        # a physics without shear force or stiffnesses (BubblePhys, an IPhys): zeros, as ryade keeps them
+        fs = getattr(ph, 'shearForce', (0.0, 0.0, 0.0))
         out.write(INTR_FMT % (step, k, I.id1, I.id2, n[0], n[1], n[2], g.penetrationDepth,
                               cp[0], cp[1], cp[2], si[0], si[1], si[2],
-                              fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], ph.kn, ph.ks))
+                              fn[0], fn[1], fn[2], fs[0], fs[1], fs[2], getattr(ph, 'kn', 0.0), getattr(ph, 'ks', 0.0)))
 
 
 def _write_intrs6d(out, step, intrs):

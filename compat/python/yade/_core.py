@@ -12,7 +12,7 @@ import sys
 from . import _ryade
 from ._errors import bridge_json, unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, Vector3i, to_vec3
-from .wrapper import Engine, FrictMat, Material, Serializable, YADE_CLASSES
+from .wrapper import BubbleMat, Engine, FrictMat, LudingMat, Material, Serializable, YADE_CLASSES
 
 
 def _blocked_bits(s):
@@ -386,7 +386,7 @@ class BodyContainer(object):
         if mat is None:
             mat = o.materials._default()
             b._values['material'] = mat
-        if not isinstance(mat, FrictMat):
+        if not isinstance(mat, (FrictMat, LudingMat, BubbleMat)):
             unsupported('material class %s' % type(mat).__name__)
         if o._sim.in_step():
             unsupported('adding bodies from inside a PyRunner during a step', 'add them between O.run calls')
@@ -492,7 +492,7 @@ class MaterialContainer(object):
             return [self.append(x) for x in m]
         if not isinstance(m, Material):
             raise TypeError('O.materials.append takes a Material')
-        if not isinstance(m, FrictMat):
+        if not isinstance(m, (FrictMat, LudingMat, BubbleMat)):
             unsupported('material class %s' % type(m).__name__)
         mid = len(self._mats)
         m._values['id'] = mid
@@ -566,7 +566,20 @@ class _PhysView(_GeomView):
     _ext = {'kr': 's', 'ktw': 's', 'unp': 's', 'unpMax': 's', 'normalAdhesion': 's', 'shearAdhesion': 's',
             'cohesionBroken': 'b', 'momentRotationLaw': 'b', 'moment_twist': 'v', 'moment_bending': 'v'}
 
+    _mindlin = ('kno', 'kso', 'maxBendPl', 'normalViscous', 'shearViscous', 'shearElastic', 'usElastic', 'usTotal',
+                'momentBend', 'momentTwist', 'radius', 'adhesionForce', 'isAdhesive', 'isSliding', 'betan', 'betas',
+                'kr', 'ktw')
+
     def __getattr__(self, k):
+        if k in self._mindlin:
+            omega, a, b = self._k
+            v = omega._sim.intr_mindlin(a, b, k)
+            if v is not None:
+                import json
+                v = json.loads(v)
+                if isinstance(v, list):
+                    return Vector3(*v)
+                return float('nan') if v == 'nan' else v
         if k in self._ext:
             omega, a, b = self._k
             v = omega._sim.intr_get_ext(a, b, k)

@@ -122,6 +122,42 @@ class VTKExporter(object):
                 self._what(f, bodies, what, 'b')
         self.facetsSnapCount += 1
 
+    def exportFacetsAsMesh(self, ids='all', connectivityTable=None, what={}, comment="comment", numLabel=None):
+        """YADE's exportFacetsAsMesh: the facets as one mesh whose nodes are numbered by `connectivityTable`
+        (one (n1, n2, n3) per facet, as `ymport.unv(..., returnConnectivityTable=True)` gives). As in YADE,
+        the facet matched with table entry k is `bodies[id]` of the selected facets, `id` being the k-th
+        selected body's id."""
+        bodies = self._bodies(ids, Facet)
+        if not bodies:
+            return
+        sel = [b.id for b in bodies]
+        if connectivityTable is None:
+            print("Warning (yade.export.VTKExporter.exportFacetsAsMesh): 'connectivityTable' not specified")
+            return
+        if len(bodies) != len(connectivityTable):
+            print("Warning (yade.export.VTKExporter.exportFacetsAsMesh): length of 'connectivityTable' does not "
+                  "match length of 'ids', no export")
+            return
+        nodes = [Vector3(0, 0, 0)] * (max(max(e) for e in connectivityTable) + 1)
+        for i, e in zip(sel, connectivityTable):
+            b = bodies[i]
+            p, o = b.state.pos, b.state.ori
+            for k in range(3):
+                nodes[e[k]] = p + o * b.shape.vertices[k]
+        fName = self.baseName + '-facets-%08d' % (numLabel if numLabel else self.facetsSnapCount) + '.vtk'
+        with open(fName, 'w') as f:
+            f.write("# vtk DataFile Version 3.0.\n%s\nASCII\n\nDATASET POLYDATA\nPOINTS %d double\n" % (comment, len(nodes)))
+            for v in nodes:
+                f.write("%g %g %g\n" % (v[0], v[1], v[2]))
+            n = len(connectivityTable)
+            f.write("\nPOLYGONS %d %d\n" % (n, 4 * n))
+            for e in connectivityTable:
+                f.write("3 %d %d %d\n" % tuple(e))
+            if what:
+                f.write("\nCELL_DATA %d" % len(bodies))
+                self._what(f, bodies, what, 'b')
+        self.facetsSnapCount += 1
+
     def exportInteractions(self, ids='all', what={}, verticesWhat={}, comment="comment", numLabel=None, useRef=False):
         if ids != 'all' or verticesWhat or useRef:
             unsupported('VTKExporter.exportInteractions(ids/verticesWhat/useRef)')

@@ -129,6 +129,32 @@ class SpherePack(object):
     def toList(self):
         return [(Vector3(*c), r) for c, r in self._sp]
 
+    def psd(self, bins=50, mass=True):
+        """`SpherePack::psd` (preprocessing/dem/SpherePack.cpp): (bin edges of the diameters, cumulative
+        fraction by mass or by number), with YADE's operation order."""
+        if not self._sp:
+            return ([], [])
+        inf = float('inf')
+        min_d, max_d, vol = inf, -inf, 0.0
+        n = len(self._sp)
+        for _, r in self._sp:
+            max_d = max(2 * r, max_d)
+            min_d = min(2 * r, min_d)
+            vol += _math.pow(r, 3)
+        if min_d == max_d:
+            min_d -= .5
+            max_d += .5
+        bins = int(bins)
+        hist = [0.0] * bins
+        cumm = [0.0] * (bins + 1)
+        edges = [min_d + i * (max_d - min_d) / bins for i in range(bins + 1)]
+        for _, r in self._sp:
+            b = min(int(bins * (2 * r - min_d) / (max_d - min_d)), bins - 1)
+            hist[b] += _math.pow(r, 3) / vol if mass else 1. / n
+        for i in range(bins):
+            cumm[i + 1] = min(1., cumm[i] + hist[i])
+        return (edges, cumm)
+
     def __getattr__(self, k):
         if k.startswith('_'):
             raise AttributeError(k)

@@ -52,7 +52,7 @@ def name_error_message(e):
     return 'ryade does not support %s yet%s' % (what, where)
 
 
-def _namespace(mod):
+def _namespace(mod, script=None, args=()):
     import yade
     from yade import geom, pack, utils
     ns = mod.__dict__
@@ -80,6 +80,12 @@ def _namespace(mod):
         ns['numpy'] = numpy
     except ImportError:
         pass
+    # YADE's parsed command line (`yade -n -x SCRIPT ARGS`), which its scripts read as `opts`
+    ns['opts'] = argparse.Namespace(
+        version=False, threads=None, cores=None, updateScripts=None, nice=None, exitAfter=True, verbosity=None,
+        nogui=True, test=False, check=False, checkall=False, performance=False, quickperformance=False,
+        stdperformance=None, script=script, args=([script] if script else []) + list(args), impLibraries=None,
+        mpi_mode=False)
     ns['__ryade_script__'] = True
 
 
@@ -120,11 +126,13 @@ def run(script, args, mode='check'):
     _errors.SCRIPT = path
     sys.argv = [script] + list(args)
     sys.path.insert(0, os.path.dirname(path))
+    # stand-ins for `past`/`future` (YADE's Python has python3-future), after everything installed
+    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), '_fallback'))
     mod = types.ModuleType('__main__')
     mod.__file__ = path
     mod.__builtins__ = __builtins__
     sys.modules['__main__'] = mod
-    _namespace(mod)
+    _namespace(mod, path, args)
     with open(path, 'rb') as f:
         code = compile(f.read(), path, 'exec')
     import signal

@@ -13,7 +13,7 @@ from ._table import (TableParamReader, loadVars, readParamsFromTable, runningInB
                      waitIfBatch)  # YADE exports them from utils
 
 __all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDim', 'defaultMaterial', 'PWaveTimeStep',
-           'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor',
+           'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor', 'randomOrientation',
            'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
            'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques',
            'getStress']
@@ -25,6 +25,17 @@ def _O():
 
 def defaultMaterial():
     return FrictMat(density=1e3, young=1e7, poisson=.3, frictionAngle=.5, label='defaultMat')
+
+
+def randomOrientation():
+    """A uniformly distributed random orientation (YADE's utils.randomOrientation, after Eigen's
+    Quaternion::UnitRandom), drawn with Python's `random` in YADE's order: u1, then u2 and u3 scaled by
+    pi, giving (w, x, y, z) = (a sin u2, a cos u2, b sin u3, b cos u3) with a = sqrt(1 - u1), b = sqrt(u1)."""
+    u1 = random.random()
+    u2 = random.random() * math.pi
+    u3 = random.random() * math.pi
+    a, b = math.sqrt(1 - u1), math.sqrt(u1)
+    return Quaternion(a * math.sin(u2), a * math.cos(u2), b * math.sin(u3), b * math.cos(u3))
 
 
 def randomColor(seed=None):

@@ -65,6 +65,11 @@ class Serializable(object):
         if k in self._all_attrs():
             self._assign(k, v)
             return
+        name = type(self).__name__
+        known = _yade_attrs(name).union(*[_yade_attrs(b) for b in YADE_CLASSES.get(name, {}).get('bases', ())])
+        if name in YADE_CLASSES and k not in known and k not in YADE_CLASSES[name].get('methods', ()):
+            object.__setattr__(self, k, v)  # YADE's objects take attributes of the script's own
+            return
         self._missing(k)
 
     def _assign(self, k, v):
@@ -124,8 +129,16 @@ class Functor(Serializable):
                 d[k] = _jsonable(self._values[k])
         return d
 
+    #: attributes the Rust core takes on a live engine (as `Class.attr` of the owning engine's slot)
+    _live = ()
+
     def _changed(self, k):
         if self._owner is not None and k != 'label':
+            if k in self._live and getattr(self._owner, '_owner', None) is not None:
+                omega, index = self._owner._owner
+                omega._sim.engine_set(index, '%s.%s' % (type(self).__name__, k),
+                                      bridge_json(_jsonable(self._values[k]), '%s.%s' % (type(self).__name__, k)))
+                return
             unsupported('changing %s.%s after O.engines was assigned' % (type(self).__name__, k),
                         'set it before assigning O.engines')
 
@@ -162,18 +175,16 @@ class Ig2_Facet_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'shrinkFactor': 0.0, 'hertzian': False}
 
     def _json(self):
-        if self._values['hertzian']:
-            unsupported('Ig2_Facet_Sphere_ScGeom.hertzian=True')
-        return {'class': 'Ig2_Facet_Sphere_ScGeom', 'shrinkFactor': self._values['shrinkFactor']}
+        return {'class': 'Ig2_Facet_Sphere_ScGeom', 'shrinkFactor': self._values['shrinkFactor'],
+                'hertzian': bool(self._values['hertzian'])}
 
 
 class Ig2_Wall_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'noRatch': True, 'hertzian': False}
 
     def _json(self):
-        if self._values['hertzian']:
-            unsupported('Ig2_Wall_Sphere_ScGeom.hertzian=True')
-        return {'class': 'Ig2_Wall_Sphere_ScGeom', 'noRatch': self._values['noRatch']}
+        return {'class': 'Ig2_Wall_Sphere_ScGeom', 'noRatch': self._values['noRatch'],
+                'hertzian': bool(self._values['hertzian'])}
 
 
 class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
@@ -226,18 +237,172 @@ class Ip2_FrictMat_FrictMat_FrictPhys(IPhysFunctor):
         return {'class': 'Ip2_FrictMat_FrictMat_FrictPhys'}
 
 
+class MatchMaker(Serializable):
+    """YADE's MatchMaker (pkg/common/MatchMaker.cpp): a value per pair of material ids (`matches`, either
+    order), else the fallback `algo` of two values ('avg', 'min', 'max', 'harmAvg') or without them
+    ('val': `val`, 'zero'). A number given where a functor takes a MatchMaker becomes algo 'val'."""
+    _attrs = {'matches': [], 'algo': 'avg', 'val': float('nan')}
+    _ALGOS = ('val', 'zero', 'avg', 'min', 'max', 'harmAvg')
+
+    def _convert(self, k, v):
+        if k == 'matches':
+            out = []
+            for m in v:
+                m = tuple(m)
+                if len(m) != 3:
+                    raise TypeError('MatchMaker.matches takes (id1, id2, value) items, got %r' % (m,))
+                out.append((float(m[0]), float(m[1]), float(m[2])))
+            return out
+        if k == 'algo':
+            if v not in self._ALGOS:
+                raise ValueError("MatchMaker:: algo '%s' not recognized (possible values: val, avg, min, max, harmAvg)." % v)
+            return v
+        if k == 'val':
+            return float(v)
+        return v
+
+    def _read(self, k):
+        if k == 'matches':
+            from .minieigen import Vector3
+            return [Vector3(*m) for m in self._values['matches']]
+        return self._values[k]
+
+    def computeFallback(self, v1, v2):
+        a = self._values['algo']
+        if a == 'val':
+            return self._values['val']
+        if a == 'zero':
+            return 0.
+        if a == 'avg':
+            return (v1 + v2) / 2.
+        if a == 'min':
+            return v2 if v2 < v1 else v1
+        if a == 'max':
+            return v2 if v1 < v2 else v1
+        return 2 * v1 * v2 / (v1 + v2)
+
+    def __call__(self, id1, id2, val1=float('nan'), val2=float('nan')):
+        lo, hi = min(int(id1), int(id2)), max(int(id1), int(id2))
+        for m in self._values['matches']:
+            if (min(int(m[0]), int(m[1])), max(int(m[0]), int(m[1]))) == (lo, hi):
+                return m[2]
+        if self._values['algo'] not in ('val', 'zero') and (val1 != val1 or val2 != val2):
+            raise ValueError("MatchMaker: no match for (%d,%d), and values required for algo computation '%s' not "
+                             "specified." % (int(id1), int(id2), self._values['algo']))
+        return self.computeFallback(val1, val2)
+
+    def _json(self):
+        return {'matches': [list(m) for m in self._values['matches']], 'algo': self._values['algo'],
+                'val': _float_json(self._values['val'])}
+
+
+def _match_maker(cls, k, v):
+    """A functor's MatchMaker attribute: None, a MatchMaker, or a number (algo 'val', as YADE converts)."""
+    if v is None or isinstance(v, MatchMaker):
+        return v
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return MatchMaker(algo='val', val=float(v))
+    raise TypeError('%s.%s takes a MatchMaker or a number, got %s' % (cls, k, type(v).__name__))
+
+
 class Ip2_ViscElMat_ViscElMat_ViscElPhys(IPhysFunctor):
     _attrs = {'tc': None, 'en': None, 'et': None, 'frictAngle': None}
 
+    def _convert(self, k, v):
+        if k in ('tc', 'en', 'et', 'frictAngle'):
+            return _match_maker('Ip2_ViscElMat_ViscElMat_ViscElPhys', k, v)
+        return v
+
     def _json(self):
+        d = {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
         for k in ('tc', 'en', 'et', 'frictAngle'):
             if self._values[k] is not None:
-                unsupported('Ip2_ViscElMat_ViscElMat_ViscElPhys.%s (MatchMaker)' % k)
-        return {'class': 'Ip2_ViscElMat_ViscElMat_ViscElPhys'}
+                d[k] = self._values[k]._json()
+        return d
+
+
+class Ip2_FrictMat_FrictMat_MindlinPhys(IPhysFunctor):
+    """Hertz-Mindlin contact physics (HertzMindlin.cpp; Rust core `phys::ip2_mindlin`). en, es, betan,
+    betas, frictAngle are MatchMakers (a number becomes a constant one, as in YADE)."""
+    _attrs = {'gamma': 0.0, 'eta': 0.0, 'krot': 0.0, 'ktwist': 0.0, 'en': None, 'es': None, 'betan': None,
+              'betas': None, 'frictAngle': None}
+    _live = ('gamma', 'eta', 'krot', 'ktwist', 'en', 'es', 'betan', 'betas', 'frictAngle')
+    _mm = ('en', 'es', 'betan', 'betas', 'frictAngle')
+
+    def _convert(self, k, v):
+        if k in self._mm:
+            return _match_maker('Ip2_FrictMat_FrictMat_MindlinPhys', k, v)
+        if k in ('gamma', 'eta', 'krot', 'ktwist'):
+            return float(v)
+        return v
+
+    def _changed(self, k):
+        if k in self._mm and self._owner is not None and getattr(self._owner, '_owner', None) is not None:
+            omega, index = self._owner._owner
+            v = self._values[k]
+            omega._sim.engine_set(index, 'Ip2_FrictMat_FrictMat_MindlinPhys.%s' % k,
+                                  json.dumps(None if v is None else v._json()))
+            return
+        IPhysFunctor._changed(self, k)
+
+    def _json(self):
+        d = {'class': 'Ip2_FrictMat_FrictMat_MindlinPhys'}
+        for k in self._live:
+            v = self._values[k]
+            d[k] = v._json() if isinstance(v, MatchMaker) else v
+        return d
+
+
+class Ip2_BubbleMat_BubbleMat_BubblePhys(IPhysFunctor):
+    def _json(self):
+        return {'class': 'Ip2_BubbleMat_BubbleMat_BubblePhys'}
+
+
+class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
+    def _json(self):
+        return {'class': 'Ip2_LudingMat_LudingMat_LudingPhys'}
 
 
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_BubblePhys_Bubble(LawFunctor):
+    """Chan's bubble-bubble law (BubbleMat.cpp; Rust core `law::bubble`); its own surfaceTension is used."""
+    _attrs = {'pctMaxForce': 0.1, 'surfaceTension': 0.07197}
+
+    def _json(self):
+        return {'class': 'Law2_ScGeom_BubblePhys_Bubble', 'pctMaxForce': float(self._values['pctMaxForce']),
+                'surfaceTension': float(self._values['surfaceTension'])}
+
+
+class Law2_ScGeom_LudingPhys_Basic(LawFunctor):
+    def _json(self):
+        return {'class': 'Law2_ScGeom_LudingPhys_Basic'}
+
+
+class Law2_ScGeom_MindlinPhys_Mindlin(LawFunctor):
+    """Hertz-Mindlin contact law (HertzMindlin.cpp; Rust core `law::mindlin`)."""
+    _attrs = {'includeAdhesion': False, 'calcEnergy': False, 'includeMoment': False, 'neverErase': False,
+              'nothing': False}
+    _live = ('includeAdhesion', 'includeMoment', 'neverErase')
+
+    @property
+    def preventGranularRatcheting(self):
+        return self.nothing
+
+    @preventGranularRatcheting.setter
+    def preventGranularRatcheting(self, v):
+        # YADE's deprecated attribute: a warning, then it sets `nothing` (unused)
+        print("WARN: Law2_ScGeom_MindlinPhys_Mindlin.preventGranularRatcheting is deprecated, use "
+              "Law2_ScGeom_MindlinPhys_Mindlin.nothing instead. (this value is no longer used, don't define it.)")
+        self.nothing = v
+
+    def _json(self):
+        if self._values['calcEnergy']:
+            unsupported('Law2_ScGeom_MindlinPhys_Mindlin.calcEnergy=True')
+        return {'class': 'Law2_ScGeom_MindlinPhys_Mindlin', 'includeAdhesion': bool(self._values['includeAdhesion']),
+                'includeMoment': bool(self._values['includeMoment']), 'neverErase': bool(self._values['neverErase'])}
 
 
 class Law2_ScGeom_ViscElPhys_Basic(LawFunctor):
@@ -379,7 +544,7 @@ class InsertionSortCollider(GlobalEngine):
               'sortAxis': 0, 'sortThenCollide': False, 'overlapTolerance': 1e-7, 'avoidSelfInteractionMask': 0,
               'doSort': False, 'smartInsertErase': False, 'keepListsShort': False}
     _positional = ('_bounds',)
-    _live = ('verletDist', 'allowBiggerThanPeriod', 'doSort')
+    _live = ('verletDist', 'allowBiggerThanPeriod', 'doSort', 'targetInterv')
 
     def __init__(self, *args, **kw):
         object.__setattr__(self, '_bounds_list', [Bo1_Sphere_Aabb(), Bo1_Facet_Aabb(), Bo1_Box_Aabb()] if not args else None)
@@ -390,6 +555,11 @@ class InsertionSortCollider(GlobalEngine):
             object.__setattr__(self, '_bounds_list', list(v))
             return
         Serializable.__setattr__(self, k, v)
+
+    def _convert(self, k, v):
+        if k in ('avoidSelfInteractionMask', 'targetInterv', 'sortAxis'):
+            return int(v)  # int attributes in YADE (a bool such as avoidSelfInteractionMask=True is 1)
+        return v
 
     @property
     def boundDispatcher(self):
@@ -455,6 +625,25 @@ class InteractionLoop(GlobalEngine):
 class _Dispatcher(object):
     def __init__(self, functors):
         self.functors = functors
+
+    def dispMatrix(self, names=True):
+        """YADE's dispatch matrix as a dict: the classes each functor declares (a geometry functor of two
+        different shapes both ways round) -> the functor's name. Entries YADE adds for derived classes
+        once they were dispatched are not listed."""
+        if not names:
+            unsupported('dispMatrix(names=False) (YADE class indices)')
+        out = {}
+        for f in self.functors:
+            n = type(f).__name__
+            parts = n.split('_')
+            if parts[0] == 'Bo1' and len(parts) >= 3:
+                out[(parts[1],)] = n
+            elif parts[0] in ('Ig2', 'Ip2', 'Law2') and len(parts) >= 4:
+                a, b = parts[1], parts[2]
+                out[(a, b)] = n
+                if parts[0] == 'Ig2' and a != b:
+                    out[(b, a)] = n
+        return out
 
 
 class NewtonIntegrator(GlobalEngine):
@@ -545,7 +734,8 @@ class PartialEngine(Engine):
 
 class KinematicEngine(PartialEngine):
     def __add__(self, other):
-        unsupported('combining kinematic engines with + (CombinedKinematicEngine)')
+        # YADE CombinedKinematicEngine::fromTwo: a new combination with the first engine's ids
+        return CombinedKinematicEngine._from_two(self, other)
 
 
 def _eigen_normalized(v):
@@ -629,6 +819,161 @@ class ServoPIDController(TranslationEngine):
              'iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPeriod', 'iterPrevStart')
     _vectors = ('translationAxis', 'axis', 'current')
     _state = ('iTerm', 'curVel', 'errorCur', 'errorPrev', 'iterPrevStart', 'velocity')
+
+
+class HelixEngine(RotationEngine):
+    """RotationEngine plus a velocity linearVelocity along the axis, always about zeroPoint (its apply sets
+    rotateAroundZero); angleTurned counts the angle. Run in the Rust core (`kinematic::HelixEngine`)."""
+    _attrs = {'linearVelocity': 0.0, 'angleTurned': 0.0}
+    _live = RotationEngine._live + ('linearVelocity', 'angleTurned')
+    _state = ('angleTurned', 'rotateAroundZero')
+
+
+class ForceEngine(PartialEngine):
+    """A constant force added to the listed bodies every step (ForceEngine.cpp; Rust core
+    `force_engine::ForceEngine`)."""
+    _attrs = {'force': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'force')
+    _axis = None
+    _vectors = ('force',)
+    _state = ()
+    _convert = _AxisEngine._convert
+    _read = _AxisEngine._read
+    _json = _AxisEngine._json
+
+
+class HarmonicForceEngine(PartialEngine):
+    """A force A_i sin(2 pi f_i t + fi_i) per axis added to the listed bodies every step (ForceEngine.cpp;
+    Rust core `force_engine::HarmonicForceEngine`)."""
+    _attrs = {'A': (0.0, 0.0, 0.0), 'f': (0.0, 0.0, 0.0), 'fi': (0.0, 0.0, 0.0)}
+    _live = ('ids', 'A', 'f', 'fi')
+    _axis = None
+    _vectors = ('A', 'f', 'fi')
+    _state = ()
+    _convert = _AxisEngine._convert
+    _read = _AxisEngine._read
+    _json = _AxisEngine._json
+
+
+def _float_list(cls, k, v):
+    try:
+        return [float(x) for x in v]
+    except TypeError:
+        raise TypeError('%s.%s must be a list of numbers' % (cls, k))
+
+
+class InterpolatingHelixEngine(HelixEngine):
+    """HelixEngine with the angular velocity interpolated in `times`/`angularVelocities` (wrapped with
+    `wrap`) and the axial velocity `slope` times it (KinematicEngines.cpp; Rust core
+    `kinematic::InterpolatingHelixEngine`)."""
+    _attrs = {'times': [], 'angularVelocities': [], 'wrap': False, 'slope': 0.0}
+    _live = HelixEngine._live + ('times', 'angularVelocities', 'wrap', 'slope')
+    _state = ('angleTurned', 'rotateAroundZero', 'angularVelocity', 'linearVelocity')
+
+    def _convert(self, k, v):
+        if k in ('times', 'angularVelocities'):
+            return _float_list('InterpolatingHelixEngine', k, v)
+        return HelixEngine._convert(self, k, v)
+
+
+class BicyclePedalEngine(_AxisEngine):
+    """Bodies carried round a circle of `radius` about `rotationAxis` without turning, at
+    `angularVelocity`, phase `fi` (KinematicEngines.cpp; Rust core `kinematic::BicyclePedalEngine`)."""
+    _attrs = {'angularVelocity': 0.0, 'rotationAxis': (1.0, 0.0, 0.0), 'radius': -1.0, 'fi': math.pi / 2.0}
+    _live = ('ids', 'angularVelocity', 'rotationAxis', 'radius', 'fi')
+    _axis = 'rotationAxis'
+    _vectors = ('rotationAxis',)
+    _state = ('fi',)
+
+
+class InterpolatingDirectedForceEngine(ForceEngine):
+    """ForceEngine with the magnitude interpolated in `times`/`magnitudes` (wrapped with `wrap`) along
+    `direction`, normalised at every step (ForceEngine.cpp; Rust core
+    `force_engine::InterpolatingDirectedForceEngine`)."""
+    _attrs = {'times': [], 'magnitudes': [], 'direction': (1.0, 0.0, 0.0), 'wrap': False}
+    _live = ('ids', 'force', 'times', 'magnitudes', 'direction', 'wrap')
+    _vectors = ('force', 'direction')
+    _state = ('force', 'direction')
+
+    def _convert(self, k, v):
+        if k in ('times', 'magnitudes'):
+            return _float_list('InterpolatingDirectedForceEngine', k, v)
+        return ForceEngine._convert(self, k, v)
+
+
+class _MemberSim(object):
+    """The Rust engine slot of a CombinedKinematicEngine seen from one of its members: attribute
+    `k` of member `n` is `comb.n.k` of the combination."""
+
+    def __init__(self, sim, n):
+        self._sim, self._n = sim, n
+
+    def engine_set(self, index, k, v):
+        self._sim.engine_set(index, 'comb.%d.%s' % (self._n, k), v)
+
+    def engine_get(self, index, k):
+        return self._sim.engine_get(index, 'comb.%d.%s' % (self._n, k))
+
+    def set_engine_dead(self, index, dead):
+        self._sim.engine_set(index, 'comb.%d.dead' % self._n, json.dumps(bool(dead)))
+
+
+class _MemberOwner(object):
+    def __init__(self, omega, n):
+        self._sim = _MemberSim(omega._sim, n)
+
+
+class CombinedKinematicEngine(PartialEngine):
+    """YADE's combination of kinematic engines (`a + b + c`, KinematicEngines.cpp): the listed bodies'
+    velocities are reset once, then every member that is not dead adds its motion, in order, on the
+    combination's ids (the first engine's). Members stay live: `comb[k].attr = v` reaches the run."""
+    _attrs = {'comb': []}
+    _live = ('ids',)
+
+    @classmethod
+    def _from_two(cls, first, second):
+        c = cls()
+        c._values['ids'] = list(first._values['ids'])
+        c._values['comb'] = [first, second]
+        return c
+
+    def __add__(self, other):
+        # YADE appendOne: this object, one member more
+        if not isinstance(other, KinematicEngine):
+            raise TypeError('only a KinematicEngine can be added to a CombinedKinematicEngine, got %s' % type(other).__name__)
+        if self._owner is not None:
+            unsupported('adding to a CombinedKinematicEngine after O.engines was assigned')
+        self._values['comb'].append(other)
+        return self
+
+    def _convert(self, k, v):
+        if k == 'comb':
+            out = list(v)
+            for e in out:
+                if not isinstance(e, KinematicEngine):
+                    raise TypeError('CombinedKinematicEngine.comb takes KinematicEngines, got %s' % type(e).__name__)
+            return out
+        return PartialEngine._convert(self, k, v)
+
+    def _changed(self, k):
+        if k == 'comb' and self._owner is not None:
+            unsupported('changing CombinedKinematicEngine.comb after O.engines was assigned')
+        PartialEngine._changed(self, k)
+
+    def _bind(self, omega, index):
+        Engine._bind(self, omega, index)
+        for n, e in enumerate(self._values['comb']):
+            object.__setattr__(e, '_owner', (_MemberOwner(omega, n), index))
+
+    def _json(self):
+        comb = []
+        for e in self._values['comb']:
+            if not isinstance(e, (TranslationEngine, RotationEngine, BicyclePedalEngine)):
+                unsupported('%s in a CombinedKinematicEngine' % type(e).__name__)
+            d = e._json()
+            d['dead'] = bool(e._values['dead'])
+            comb.append(d)
+        return {'class': 'CombinedKinematicEngine', 'ids': list(self._values['ids']), 'comb': comb}
 
 
 def _float_json(v):
@@ -828,6 +1173,100 @@ class PeriTriaxController(BoundaryController):
             exec(compile(hook, '<PeriTriaxController.doneHook>', 'exec'), sys.modules['__main__'].__dict__)
 
 
+class TriaxialStressController(BoundaryController):
+    """YADE's stress/strain controller of six walls around a packing, or internal compaction by growing
+    the spheres (pkg/dem/TriaxialStressController.cpp), run in the Rust core (`ryade::triax`). Values the
+    engine updates (height, meanStress, ...) are read from the run."""
+    _attrs = {'stiffnessUpdateInterval': 10, 'radiusControlInterval': 10, 'computeStressStrainInterval': 10,
+              'stressDamping': 0.25, 'strainDamping': 0.99, 'thickness': -1.0, 'wall_bottom_id': 2, 'wall_top_id': 3,
+              'wall_left_id': 0, 'wall_right_id': 1, 'wall_front_id': 5, 'wall_back_id': 4,
+              'wall_bottom_activated': True, 'wall_top_activated': True, 'wall_left_activated': True,
+              'wall_right_activated': True, 'wall_front_activated': True, 'wall_back_activated': True,
+              'height': 0.0, 'width': 0.0, 'depth': 0.0, 'height0': 0.0, 'width0': 0.0, 'depth0': 0.0,
+              'goal1': 0.0, 'goal2': 0.0, 'goal3': 0.0, 'stressMask': 7, 'maxMultiplier': 1.001,
+              'finalMaxMultiplier': 1.00001, 'max_vel': 1.0, 'previousStress': 0.0, 'previousMultiplier': 1.0,
+              'internalCompaction': True, 'meanStress': 0.0, 'volumetricStrain': 0.0, 'externalWork': 0.0,
+              'updatePorosity': False}
+    _ints = ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'wall_bottom_id',
+             'wall_top_id', 'wall_left_id', 'wall_right_id', 'wall_front_id', 'wall_back_id', 'stressMask')
+    _bools = ('wall_bottom_activated', 'wall_top_activated', 'wall_left_activated', 'wall_right_activated',
+              'wall_front_activated', 'wall_back_activated', 'internalCompaction', 'updatePorosity')
+    _own = tuple(_attrs)
+    _class = 'TriaxialStressController'
+
+    def _convert(self, k, v):
+        if k in self._ints:
+            return int(v)
+        if k in self._bools:
+            return bool(v)
+        if k in self._own:
+            return float(v)
+        return v
+
+    def _get(self, k):
+        omega, index = self._owner
+        return json.loads(omega._sim.engine_get(index, k))
+
+    def _read(self, k):
+        if self._owner is not None and k in self._own:
+            return self._get(k)
+        return self._values[k]
+
+    def _changed(self, k):
+        if self._owner is not None and k in self._own:
+            omega, index = self._owner
+            omega._sim.engine_set(index, k, json.dumps(self._values[k]))
+            return
+        BoundaryController._changed(self, k)
+
+    def _timing_detach(self):
+        if self._owner is not None:
+            for k in self._own:
+                self._values[k] = self._get(k)
+        BoundaryController._timing_detach(self)
+
+    def _json(self):
+        d = {'class': self._class}
+        for k in self._own:
+            d[k] = self._values[k]
+        return d
+
+    def _state(self, k, default):
+        return self._get(k) if self._owner is not None else default
+
+    @property
+    def strain(self):
+        from .minieigen import Vector3
+        return Vector3(*self._state('strain', (0.0, 0.0, 0.0)))
+
+    porosity = property(lambda self: self._state('porosity', 1.0))
+    boxVolume = property(lambda self: self._state('boxVolume', 0.0))
+    particlesVolume = property(lambda self: self._state('particlesVolume', 0.0))
+    spheresVolume = property(lambda self: self._state('spheresVolume', 0.0))
+    max_vel1 = property(lambda self: self._state('max_vel1', 0.0))
+    max_vel2 = property(lambda self: self._state('max_vel2', 0.0))
+    max_vel3 = property(lambda self: self._state('max_vel3', 0.0))
+
+    def stress(self, id):
+        """The average stress on boundary `id` (0..5: left, right, bottom, top, back, front)."""
+        from .minieigen import Vector3
+        id = int(id)
+        if not 0 <= id <= 5:
+            raise IndexError('TriaxialStressController.stress: boundary id must be 0..5, got %d' % id)
+        return Vector3(*self._state('stress.%d' % id, (0.0, 0.0, 0.0)))
+
+    def strainRate(self):
+        from .minieigen import Vector3
+        if self._owner is None:
+            return Vector3(0, 0, 0)
+        omega, index = self._owner
+        return Vector3(*json.loads(omega._sim.triax_strain_rate(index)))
+
+    def _compute_stress_strain(self):
+        omega, index = self._owner
+        omega._sim.triax_compute_stress_strain(index)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -863,6 +1302,39 @@ class PeriodicEngine(GlobalEngine):
 
     def _json(self):
         return {'class': 'External'}
+
+
+class DomainLimiter(PeriodicEngine):
+    """YADE's DomainLimiter (pkg/dem/DomainLimiter.cpp): every period, spheres and clumps whose position
+    is outside [lo, hi] (and whose groupMask shares a bit with `mask` when mask > 0) are deleted. ryade
+    cannot erase bodies yet: the engine runs its check as YADE does and, when a body is to go, stops
+    the run with the "does not support" error naming it; otherwise nothing changes."""
+    _attrs = {'lo': (0.0, 0.0, 0.0), 'hi': (0.0, 0.0, 0.0), 'nDeleted': 0, 'mDeleted': 0.0, 'vDeleted': 0.0, 'mask': -1}
+
+    def _convert(self, k, v):
+        if k in ('lo', 'hi'):
+            return tuple(_vec3_attr('DomainLimiter', k, v))
+        return v
+
+    def _read(self, k):
+        if k in ('lo', 'hi'):
+            from .minieigen import Vector3
+            return Vector3(*self._values[k])
+        return self._values[k]
+
+    def _action(self, omega):
+        from ._core import Sphere
+        lo, hi, mask = self._values['lo'], self._values['hi'], self._values['mask']
+        out = []
+        for b in omega.bodies:
+            if b is None or (mask > 0 and (b.groupMask & mask) == 0) or b.isClumpMember:
+                continue
+            if isinstance(b.shape, Sphere) or b.isClump:
+                p = b.state.pos
+                if any(p[k] < lo[k] or p[k] > hi[k] for k in range(3)):
+                    out.append(b.id)
+        if out:
+            unsupported('DomainLimiter deleting bodies (#%s: O.bodies.erase)' % ', #'.join(str(i) for i in out[:10]))
 
 
 class PyRunner(PeriodicEngine):
@@ -961,6 +1433,41 @@ class ViscElMat(FrictMat):
         FrictMat._changed(self, k)
 
 
+class LudingMat(Material):
+    """YADE's LudingMat (pkg/dem/LudingPM.hpp): a Material (not an ElastMat) with Luding's hysteretic
+    contact parameters; NaN (YADE's default) for a value not given."""
+    _attrs = {'k1': float('nan'), 'kp': float('nan'), 'kc': float('nan'), 'ks': float('nan'), 'PhiF': float('nan'),
+              'G0': float('nan'), 'frictionAngle': float('nan')}
+
+    def _json(self):
+        v = self._values
+        d = {'class': 'LudingMat', 'id': v['id'], 'label': v['label'], 'density': float(v['density'])}
+        for k in LudingMat._attrs:
+            x = float(v[k])
+            d[k] = None if x != x else x  # NaN (not given) as null
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in LudingMat._attrs:
+            unsupported('changing LudingMat.%s after the material is in use' % k)
+        Material._changed(self, k)
+
+
+class BubbleMat(Material):
+    """YADE's BubbleMat (pkg/dem/BubbleMat.hpp): a Material for bubbles in a liquid of `surfaceTension`."""
+    _attrs = {'surfaceTension': 0.07197}
+
+    def _json(self):
+        v = self._values
+        return {'class': 'BubbleMat', 'id': v['id'], 'label': v['label'], 'density': float(v['density']),
+                'surfaceTension': float(v['surfaceTension'])}
+
+    def _changed(self, k):
+        if self._owner is not None and k == 'surfaceTension':
+            unsupported('changing BubbleMat.surfaceTension after the material is in use')
+        Material._changed(self, k)
+
+
 # ---------------------------------------------------------------- GUI stubs (harmless)
 
 class _GlStub(Serializable):
@@ -983,6 +1490,70 @@ def _jsonable(v):
     return v
 
 
+class Recorder(PeriodicEngine):
+    """YADE's Recorder: a periodic engine writing lines to `file` (opened in append mode, or truncated
+    first with `truncate`; `addIterNum` appends the iteration to the file name). It runs at its first
+    step too (YADE's constructor sets initRun)."""
+    _attrs = {'file': '', 'truncate': False, 'addIterNum': False, 'initRun': True}
+
+    def _out(self, omega):
+        f = self.__dict__.get('_fh')
+        if f is None:
+            name = self._values['file']
+            if not name:
+                raise IOError('%s.file must be set' % type(self).__name__)
+            if self._values['addIterNum']:
+                name = '%s-%d' % (name, omega.iter)
+            f = open(name, 'w' if self._values['truncate'] else 'a')
+            object.__setattr__(self, '_fh', f)
+        return f
+
+
+def _lexical(x):
+    """boost::lexical_cast<std::string>(double): 17 significant digits; a NaN keeps its sign (-nan)."""
+    if x != x:
+        return '-nan' if math.copysign(1.0, x) < 0 else 'nan'
+    return '%.17g' % x
+
+
+class TriaxialStateRecorder(Recorder):
+    """YADE's TriaxialStateRecorder (pkg/dem/TriaxialStateRecorder.cpp): every period a line with the
+    iteration, the stresses on the right, top and front walls, the strains, the unbalanced force, the
+    porosity of the dynamic spheres in the box and the kinetic energy, from the first triaxial controller
+    in O.engines."""
+    _attrs = {'porosity': 1.0}
+
+    def _action(self, omega):
+        from . import utils
+        f = self._out(omega)
+        if f.tell() == 0:
+            f.write('iteration s11 s22 s33 e11 e22 e33 unb_force porosity kineticE\n')
+        tsc = self.__dict__.get('_tsc')
+        if tsc is None:
+            for e in omega.engines:
+                if type(e).__name__ in ('TriaxialCompressionEngine', 'ThreeDTriaxialEngine', 'TriaxialStressController'):
+                    tsc = e
+            if tsc is None:
+                unsupported('TriaxialStateRecorder without a triaxial controller in O.engines (YADE crashes)')
+            object.__setattr__(self, '_tsc', tsc)
+        if omega.iter % tsc.computeStressStrainInterval != 0:
+            tsc._compute_stress_strain()
+        vs = 0.0
+        for b in omega.bodies:
+            if b is None or b.isClump:
+                continue
+            if b.dynamic:
+                vs += 1.3333333 * math.pi * math.pow(b.shape.radius, 3)
+        v = tsc.height * tsc.width * tsc.depth
+        self._values['porosity'] = (v - vs) / v
+        st = [tsc.stress(1)[0], tsc.stress(3)[1], tsc.stress(5)[2]]
+        e = tsc.strain
+        f.write(' '.join([str(omega.iter)] + [_lexical(x) for x in st + [e[0], e[1], e[2], utils.unbalancedForce(),
+                                                                          self._values['porosity'], utils.kineticEnergy()]]) + '\n')
+        f.flush()
+
+
+
 # ---------------------------------------------------------------- every other YADE class
 
 def _make_unsupported(name):
@@ -998,14 +1569,18 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
     ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
-    RyadePistonController,
-    BoundaryController, PeriTriaxController,
+    HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
+    InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
+    BoundaryController, PeriTriaxController, TriaxialStressController, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
     Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGridCoGeom_FrictPhys_CundallStrack,
     Law2_ScGridCoGeom_CohFrictPhys_CundallStrack, Law2_GridCoGridCoGeom_FrictPhys_CundallStrack,
-    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic]}
+    ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, LudingMat,
+    Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic, BubbleMat, Ip2_BubbleMat_BubbleMat_BubblePhys,
+    Law2_ScGeom_BubblePhys_Bubble]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)

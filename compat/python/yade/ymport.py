@@ -131,6 +131,83 @@ def gmsh(meshfile="file.mesh", shift=Vector3(0, 0, 0), scale=1.0, orientation=Qu
     return ret
 
 
+def textFacets(fileName, format='x1_y1_z1_x2_y2_z2_x3_y3_z3', shift=Vector3(0, 0, 0), scale=1.0, attrs=[], **kw):
+    """Facets from a text file (YADE's ymport.textFacets), one per line: 'x1_y1_z1_x2_y2_z2_x3_y3_z3'
+    (default), '..._matId' (the material by id), 'id_..._matId', or '..._attrs' (YADE appends the line's words from
+    the fifth on, as strings, to `attrs`); each vertex is shift + v * scale. A '#format NAME' line
+    switches the format; other lines starting with '#' are skipped. `kw` goes to utils.facet."""
+    with open(fileName, 'r') as f:
+        lines = f.readlines()
+    formats = ('x1_y1_z1_x2_y2_z2_x3_y3_z3', 'x1_y1_z1_x2_y2_z2_x3_y3_z3_matId', 'id_x1_y1_z1_x2_y2_z2_x3_y3_z3_matId',
+               'x1_y1_z1_x2_y2_z2_x3_y3_z3_attrs')
+    shift = Vector3(*shift)
+    out = []
+    for line in lines:
+        d = line.split()
+        if d[0] == '#format':  # (an empty line stops YADE with an IndexError, as here)
+            format = d[1]
+            continue
+        if d[0][0] == '#':
+            continue
+        if format not in formats:
+            raise RuntimeError('Please, specify a correct format output!')
+        first = 1 if format.startswith('id_') else 0
+        v = [Vector3(float(d[first + 3 * k]), float(d[first + 3 * k + 1]), float(d[first + 3 * k + 2])) for k in range(3)]
+        vs = tuple(shift + x * scale for x in v)
+        if format.endswith('matId'):
+            out.append(utils.facet(vs, material=int(d[first + 9]), **kw))
+        else:
+            out.append(utils.facet(vs, **kw))
+            if format.endswith('attrs'):
+                attrs.append(d[4:])  # as YADE: the line's words from the fifth on, as strings
+    return out
+
+
+def unv(fileName, shift=(0, 0, 0), scale=1.0, returnConnectivityTable=False, **kw):
+    """Triangles of an I-DEAS universal file (.unv, e.g. from Salome) as facets (YADE's ymport.unv):
+    dataset 2411 gives the nodes (shift + scale * coordinates), dataset 2412 the elements, of which the
+    triangles (type 41) are kept until the first other element after them. `kw` goes to utils.facet;
+    with `returnConnectivityTable`, also (nodes, elements with 0-based node ids)."""
+    nodes, elements = [], []
+    with open(fileName, 'r') as f:
+        lines = f.read().split('\n')
+    if lines and lines[-1] == '':
+        lines.pop()
+    mode = None  # 'nodes', 'elements', 'triangles' or 'skip'
+    k = 0
+
+    def next_fields():
+        nonlocal k
+        k += 1
+        return lines[k].split() if k < len(lines) else []
+    while k < len(lines):
+        fields = lines[k].split()
+        if len(fields) <= 1:
+            # a dataset delimiter (-1) or a dataset number (an empty line stops YADE with an IndexError)
+            tag = fields[0]
+            if tag != '-1':
+                mode = {'2411': 'nodes', '2412': 'elements'}.get(tag, 'skip')
+        elif mode == 'nodes':
+            c = next_fields()
+            nodes.append((shift[0] + scale * float(c[0]), shift[1] + scale * float(c[1]), shift[2] + scale * float(c[2])))
+        elif mode == 'elements' and fields[1] != '41':
+            next_fields()  # a beam element: a line of beam data, then its nodes
+            next_fields()
+        elif mode in ('elements', 'triangles'):
+            if fields[1] == '41':
+                mode = 'triangles'
+                c = next_fields()
+                elements.append((int(c[0]) - 1, int(c[1]) - 1, int(c[2]) - 1))
+            else:
+                next_fields()
+                mode = 'skip'
+        k += 1
+    facets = [utils.facet(tuple(nodes[i] for i in e), **kw) for e in elements]
+    if returnConnectivityTable:
+        return facets, nodes, elements
+    return facets
+
+
 def __getattr__(name):
     if name.startswith('__'):
         raise AttributeError(name)

@@ -1,0 +1,1 @@
+"""Stand-in for python3-future's `future` (see ../README.md)."""

@@ -1,0 +1,1 @@
+"""Stand-in for python3-future's `past` (see ../README.md)."""
