@@ -141,7 +141,7 @@ fn scoring_counts_none_right_only_under_the_floor() {
 /// medium library: the validation table.
 fn score_set(set: &str) -> String {
     let root = || PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let src = root().join(&format!("results/gap/{}", set));
+    let src = root().join(format!("results/gap/{}", set));
     let tmp = std::env::temp_dir().join(format!("ryade_gap_{}_{}", set, std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     for sub in ["cases", "truth"] {
