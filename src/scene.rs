@@ -1820,27 +1820,9 @@ impl Scene {
                     .as_mut()
                     .and_then(|e| e.viscel.as_mut())
                     .ok_or_else(|| bad("ViscElPhys"))?;
-                let (shift_vel, shift2) = match &self.cell {
-                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
-                    None => (Vec3::zeros(), Vec3::zeros()),
-                };
-                let vb = law::viscel::Bodies {
-                    pos1: b.pos[id1],
-                    pos2: b.pos[id2],
-                    vel1: b.vel[id1],
-                    vel2: b.vel[id2],
-                    ang_vel1: b.ang_vel[id1],
-                    ang_vel2: b.ang_vel[id2],
-                    shift2,
-                    shift_vel,
-                };
-                match law::viscel::load(self.dt, fresh, &g, ph, vp, &vb) {
-                    Some(l) => {
-                        law::apply(&mut self.forces, id1, id2, &l);
-                        true
-                    }
-                    None => false,
-                }
+                let vb = two_bodies(b, self.cell.as_ref(), &it.cell_dist, shift2, id1, id2);
+                let l = law::viscel::load(self.dt, fresh, &g, ph, vp, &vb);
+                apply_or_erase(&mut self.forces, id1, id2, l)
             }
             LawFunctor::Bubble => {
                 let bp = it
@@ -1848,7 +1830,7 @@ impl Scene {
                     .as_mut()
                     .and_then(|e| e.bubble.as_mut())
                     .ok_or_else(|| bad("BubblePhys"))?;
-                match law::bubble::load(
+                let l = law::bubble::load(
                     il.bubble.as_mut().unwrap(),
                     fresh,
                     &g,
@@ -1857,13 +1839,8 @@ impl Scene {
                     &b.pos[id1],
                     &b.pos[id2],
                     self.cell.is_some(),
-                )? {
-                    Some(l) => {
-                        law::apply(&mut self.forces, id1, id2, &l);
-                        true
-                    }
-                    None => false,
-                }
+                )?;
+                apply_or_erase(&mut self.forces, id1, id2, l)
             }
             LawFunctor::LudingBasic => {
                 let lp = it
@@ -1871,27 +1848,9 @@ impl Scene {
                     .as_mut()
                     .and_then(|e| e.luding.as_mut())
                     .ok_or_else(|| bad("LudingPhys"))?;
-                let (shift_vel, shift2) = match &self.cell {
-                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
-                    None => (Vec3::zeros(), Vec3::zeros()),
-                };
-                let vb = law::viscel::Bodies {
-                    pos1: b.pos[id1],
-                    pos2: b.pos[id2],
-                    vel1: b.vel[id1],
-                    vel2: b.vel[id2],
-                    ang_vel1: b.ang_vel[id1],
-                    ang_vel2: b.ang_vel[id2],
-                    shift2,
-                    shift_vel,
-                };
-                match law::luding::load(self.dt, fresh, &g, ph, lp, &vb) {
-                    Some(l) => {
-                        law::apply(&mut self.forces, id1, id2, &l);
-                        true
-                    }
-                    None => false,
-                }
+                let vb = two_bodies(b, self.cell.as_ref(), &it.cell_dist, shift2, id1, id2);
+                let l = law::luding::load(self.dt, fresh, &g, ph, lp, &vb);
+                apply_or_erase(&mut self.forces, id1, id2, l)
             }
             LawFunctor::Mindlin => {
                 let mp = it
@@ -1899,10 +1858,7 @@ impl Scene {
                     .as_mut()
                     .and_then(|e| e.mindlin.as_mut())
                     .ok_or_else(|| bad("MindlinPhys"))?;
-                let (shift_vel, shift2) = match &self.cell {
-                    Some(c) => (c.shift_vel(&it.cell_dist), *shift2),
-                    None => (Vec3::zeros(), Vec3::zeros()),
-                };
+                let (shift_vel, shift2) = shifts(self.cell.as_ref(), &it.cell_dist, shift2);
                 let mb = law::mindlin::Bodies {
                     s1: geom::Kin::of(b, id1),
                     s2: geom::Kin::of(b, id2),
@@ -2113,6 +2069,47 @@ fn pre_slot(
             )
         }
         _ => Some(Event::Visit(k)),
+    }
+}
+
+/// Body 2's period shift of velocity and position (zeros without a periodic cell).
+fn shifts(cell: Option<&Cell>, cell_dist: &[i32; 3], shift2: &Vec3) -> (Vec3, Vec3) {
+    match cell {
+        Some(c) => (c.shift_vel(cell_dist), *shift2),
+        None => (Vec3::zeros(), Vec3::zeros()),
+    }
+}
+
+/// The two bodies' kinematics as the viscous laws read them (ViscEl, Luding).
+fn two_bodies(
+    b: &Bodies,
+    cell: Option<&Cell>,
+    cell_dist: &[i32; 3],
+    shift2: &Vec3,
+    id1: usize,
+    id2: usize,
+) -> law::viscel::Bodies {
+    let (shift_vel, shift2) = shifts(cell, cell_dist, shift2);
+    law::viscel::Bodies {
+        pos1: b.pos[id1],
+        pos2: b.pos[id2],
+        vel1: b.vel[id1],
+        vel2: b.vel[id2],
+        ang_vel1: b.ang_vel[id1],
+        ang_vel2: b.ang_vel[id2],
+        shift2,
+        shift_vel,
+    }
+}
+
+/// Add a law's load (true: the contact stays), or report the erasure (false).
+fn apply_or_erase(forces: &mut Forces, id1: usize, id2: usize, l: Option<law::Load>) -> bool {
+    match l {
+        Some(l) => {
+            law::apply(forces, id1, id2, &l);
+            true
+        }
+        None => false,
     }
 }
 
