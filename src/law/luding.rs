@@ -5,7 +5,7 @@
 
 use super::Load;
 use crate::geom::ScGeom;
-use crate::math::{cross, dot, norm, norm2, Vec3};
+use crate::math::{cross, norm, norm2, Vec3};
 use crate::phys::{FrictPhys, LudingPhys};
 
 /// `Law2_ScGeom_LudingPhys_Basic::go` up to the forces it adds (None: apart, erase). `b` as in the
@@ -64,12 +64,7 @@ pub fn load(
         ph.shear_force = Vec3::zeros();
     }
     g.rotate(&mut ph.shear_force);
-    let c1x = g.contact_point - b.pos1;
-    let c2x = g.contact_point - b.pos2 - b.shift2;
-    let rel_vel =
-        (b.vel1 + cross(&b.ang_vel1, &c1x)) - (b.vel2 + cross(&b.ang_vel2, &c2x)) + b.shift_vel;
-    let normal_vel = dot(&g.normal, &rel_vel);
-    let shear_vel = rel_vel - g.normal * normal_vel;
+    let (c1x, c2x, normal_vel, shear_vel) = super::viscel::contact_velocity(g, b);
     ph.shear_force += shear_vel * (ph.ks * dt);
     let mut shear_visc = Vec3::zeros();
     ph.normal_force = g.normal * (force_hys + lp.g0 * normal_vel);

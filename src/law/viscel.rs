@@ -20,6 +20,19 @@ pub struct Bodies {
     pub shift_vel: Vec3,
 }
 
+/// The branches from the two centres to the contact point and the relative velocity there, split
+/// into its normal component and shear vector: (c1x, c2x, normal, shear) (ViscoelasticPM.cpp
+/// `computeForceTorqueViscEl`; LudingPM.cpp computes them the same way).
+#[inline(always)]
+pub(crate) fn contact_velocity(g: &ScGeom, b: &Bodies) -> (Vec3, Vec3, f64, Vec3) {
+    let c1x = g.contact_point - b.pos1;
+    let c2x = g.contact_point - b.pos2 - b.shift2;
+    let rel_vel =
+        (b.vel1 + cross(&b.ang_vel1, &c1x)) - (b.vel2 + cross(&b.ang_vel2, &c2x)) + b.shift_vel;
+    let normal_vel = dot(&g.normal, &rel_vel);
+    (c1x, c2x, normal_vel, rel_vel - g.normal * normal_vel)
+}
+
 /// `computeForceTorqueViscEl` (pkg/dem/ViscoelasticPM.cpp): None when the bodies are apart (the contact
 /// is erased), else the load (`force` on body 1, as `law::apply` adds it). `fresh`: the interaction
 /// became real this step (`Interaction::isFresh`).
@@ -38,12 +51,7 @@ pub fn load(
         ph.shear_force = Vec3::zeros();
     }
     g.rotate(&mut ph.shear_force);
-    let c1x = g.contact_point - b.pos1;
-    let c2x = g.contact_point - b.pos2 - b.shift2;
-    let rel_vel =
-        (b.vel1 + cross(&b.ang_vel1, &c1x)) - (b.vel2 + cross(&b.ang_vel2, &c2x)) + b.shift_vel;
-    let normal_vel = dot(&g.normal, &rel_vel);
-    let shear_vel = rel_vel - g.normal * normal_vel;
+    let (c1x, c2x, normal_vel, shear_vel) = contact_velocity(g, b);
     // the elastic shear force has a history; the viscous one is the present velocity's only
     ph.shear_force += shear_vel * (ph.ks * dt);
     let mut shear_visc = Vec3::zeros();
