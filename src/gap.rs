@@ -1396,9 +1396,14 @@ pub fn diagnose_with(
     };
     let mut below_floor = None;
     let best = match best {
-        Some(c) if c.ic < none_chi2 && evidence(&c) < DETECTABILITY_FLOOR => {
-            below_floor = Some((format_effects(&c.effects, " + ", Some(4)), evidence(&c)));
-            None
+        Some(c) if c.ic < none_chi2 => {
+            let e = evidence(&c);
+            if e < DETECTABILITY_FLOOR {
+                below_floor = Some((format_effects(&c.effects, " + ", Some(4)), e));
+                None
+            } else {
+                Some(c)
+            }
         }
         b => b,
     };

@@ -834,13 +834,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 std::fs::create_dir_all(&out)?;
                 let name = f.display().to_string();
                 // what this library can see comes before the diagnosis (issue 20)
-                let md = format!(
-                    "{}\n{}",
-                    gap::report_markdown(&name, &d, &lib),
-                    gap_run::format_detectability(&lib, fit_cycles)
-                );
-                print!("{}", gap_run::format_detectability(&lib, fit_cycles));
-                println!();
+                let report = gap::report_markdown(&name, &d, &lib);
+                let detect = gap_run::format_detectability(&lib, fit_cycles);
+                let md = format!("{}\n{}", report, detect);
+                println!("{}", detect);
                 std::fs::write(out.join("report.md"), &md)?;
                 std::fs::write(out.join("report.json"), serde_json::to_string_pretty(&d)?)?;
                 gap_run::write_plot_data(&out, &lib, &obs, &d)?;
@@ -850,7 +847,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     &plot.to_string_lossy(),
                     &png.to_string_lossy(),
                 ]);
-                print!("{}", gap::report_markdown(&name, &d, &lib));
+                print!("{}", report);
                 println!("report: {}/report.{{md,json,png}}", out.display());
                 return Ok(ExitCode::SUCCESS);
             }
