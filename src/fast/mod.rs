@@ -19,6 +19,7 @@
 //! the chaotic growth of differences in a dense packing. `write_back` returns the state to the
 //! `Scene`, contacts included, so both paths can be mixed.
 
+mod boundary;
 pub mod contact;
 pub mod neighbors;
 pub mod newton;
@@ -102,6 +103,8 @@ pub struct FastSim {
     shifts: Vec<V3>,
     shift_cells: Vec<[i32; 3]>,
     chunks: Vec<Chunk>,
+    /// Fixed walls, boxes and facets and their contacts with the spheres.
+    bnd: boundary::Boundaries,
     pool: Option<rayon::ThreadPool>,
     threads: usize,
     max_disp2: f64,
@@ -293,13 +296,15 @@ impl FastSim {
             return unsupported("energy tracking (O.trackEnergy)".into());
         }
         let mut newton = None;
-        let mut il_seen = false;
+        let mut il_seen = None;
+        let mut collider = None;
         for (k, e) in scene.engines.iter().enumerate() {
             if scene.is_dead(k) {
                 return unsupported(format!("dead engines ({})", e.class_name()));
             }
             match e {
-                Engine::ForceResetter | Engine::Collider(_) => {}
+                Engine::ForceResetter => {}
+                Engine::Collider(c) => collider = Some(&c.p),
                 Engine::InteractionLoop(il) => {
                     let ss = il.sphere_sphere.as_ref();
                     let ok = ss.is_some_and(|p| {
@@ -310,12 +315,12 @@ impl FastSim {
                         && il
                             .cundall_strack
                             .is_some_and(|l| !l.never_erase && l.spherical_bodies);
-                    if !ok || il_seen || newton.is_some() {
+                    if !ok || il_seen.is_some() || newton.is_some() {
                         return unsupported(
                             "this InteractionLoop (needs Ig2_Sphere_Sphere_ScGeom with default attributes, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack with default attributes, one loop before Newton)".into(),
                         );
                     }
-                    il_seen = true;
+                    il_seen = Some(il.as_ref());
                 }
                 Engine::Newton(n) => {
                     if n.mask > 0 || newton.is_some() {
@@ -329,9 +334,12 @@ impl FastSim {
         let Some(nw) = newton else {
             return unsupported("a scene without NewtonIntegrator".into());
         };
-        if !il_seen {
+        let Some(il) = il_seen else {
             return unsupported("a scene without InteractionLoop".into());
-        }
+        };
+        let Some(collider) = collider else {
+            return unsupported("a scene without InsertionSortCollider".into());
+        };
         let period = match &scene.cell {
             None => None,
             Some(c) => {
@@ -348,12 +356,34 @@ impl FastSim {
             }
         };
         let b = &scene.bodies;
-        let n = b.len();
-        let mut radius = Vec::with_capacity(n);
-        for id in 0..n {
-            match b.shape[id] {
-                Shape::Sphere { radius: r } => radius.push(r),
-                ref s => return unsupported(format!("{} bodies (#{})", s.class_name(), id)),
+        // spheres here, walls, boxes and facets in `boundary` (which refuses any other shape)
+        let bnd = boundary::Boundaries::from_scene(scene, il, collider)?;
+        let mut sphere_ids = Vec::new();
+        let mut radius = Vec::new();
+        for id in 0..b.len() {
+            if let Shape::Sphere { radius: r } = b.shape[id] {
+                if b.clump_id[id].is_some() {
+                    return unsupported(format!("clumps (sphere #{} is a clump member)", id));
+                }
+                sphere_ids.push(id as u32);
+                radius.push(r);
+            }
+        }
+        let n = sphere_ids.len();
+        // Collider::mayCollide's mask rule must let every two spheres meet (the Verlet list does
+        // not look at masks)
+        let mut masks: Vec<i32> = sphere_ids.iter().map(|&id| b.mask[id as usize]).collect();
+        masks.sort_unstable();
+        masks.dedup();
+        let avoid = collider.avoid_self_interaction_mask;
+        for &ma in &masks {
+            for &mb in &masks {
+                if (ma & mb) == 0 || (ma == mb && (ma & avoid) != 0) {
+                    return unsupported(format!(
+                        "sphere groupMasks that keep some spheres apart ({} and {})",
+                        ma, mb
+                    ));
+                }
             }
         }
         let mut mats = Vec::with_capacity(scene.materials.len());
@@ -374,8 +404,10 @@ impl FastSim {
                 return unsupported("spheres larger than a quarter of the periodic cell".into());
             }
         }
-        let inert = (0..n)
-            .map(|id| {
+        let inert = sphere_ids
+            .iter()
+            .map(|&id| {
+                let id = id as usize;
                 let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
                 let blocked = b.blocked[id];
                 if blocked != DOF_ALL && (b.mass[id] <= 0.0 || b.inertia[id].min() <= 0.0) {
@@ -418,14 +450,26 @@ impl FastSim {
             },
             period,
             skin: opt.skin * if rmin.is_finite() { rmin } else { 0.0 },
-            ids: (0..n as u32).collect(),
-            pos: b.pos.iter().map(v3).collect(),
-            vel: b.vel.iter().map(v3).collect(),
-            ang_vel: b.ang_vel.iter().map(v3).collect(),
-            ori: b.ori.clone(),
+            pos: sphere_ids
+                .iter()
+                .map(|&id| v3(&b.pos[id as usize]))
+                .collect(),
+            vel: sphere_ids
+                .iter()
+                .map(|&id| v3(&b.vel[id as usize]))
+                .collect(),
+            ang_vel: sphere_ids
+                .iter()
+                .map(|&id| v3(&b.ang_vel[id as usize]))
+                .collect(),
+            ori: sphere_ids.iter().map(|&id| b.ori[id as usize]).collect(),
+            mat: sphere_ids
+                .iter()
+                .map(|&id| b.material[id as usize] as u32)
+                .collect(),
+            ids: sphere_ids,
             radius,
             inert,
-            mat: b.material.iter().map(|&m| m as u32).collect(),
             x_ref: vec![],
             force: vec![[0.0; 3]; n],
             torque: vec![[0.0; 3]; n],
@@ -435,6 +479,7 @@ impl FastSim {
             shifts: vec![[0.0; 3]],
             shift_cells: vec![[0; 3]],
             chunks: vec![],
+            bnd,
             pool,
             threads,
             max_disp2: 0.0,
@@ -559,6 +604,8 @@ impl FastSim {
         } else {
             self.pairs.iter().map(state).collect()
         };
+        self.bnd
+            .rebuild(&self.ids, &self.pos, &self.radius, self.skin);
         self.x_ref = self.pos.clone();
         self.max_disp2 = 0.0;
         self.rebuilds += 1;
@@ -674,6 +721,7 @@ impl FastSim {
             ghosts,
         );
         debug_assert!(ghosts.is_empty());
+        self.boundary_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         let cfg = self.cfg;
@@ -688,7 +736,30 @@ impl FastSim {
             &mut self.ori,
             &self.x_ref,
         );
+        self.max_disp2 = self.max_disp2.max(self.bnd.advance(cfg.dt));
         self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    /// The boundary contacts (serial: a container's few), their loads added to the spheres'.
+    fn boundary_phase(&mut self) {
+        if self.bnd.is_empty() {
+            return;
+        }
+        let s = boundary::Spheres {
+            pos: &self.pos,
+            vel: &self.vel,
+            w: &self.ang_vel,
+            ori: &self.ori,
+            rad: &self.radius,
+            mat: &self.mat,
+        };
+        self.bnd.forces(
+            &s,
+            self.cfg.dt,
+            self.iter,
+            &mut self.force,
+            &mut self.torque,
+        );
     }
 
     /// One rayon `install` per step: both parallel phases run inside it.
@@ -743,6 +814,7 @@ impl FastSim {
                     );
                 });
         }
+        self.boundary_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         // integration over each chunk's own bodies (the thread that summed their forces, whose
@@ -787,7 +859,7 @@ impl FastSim {
                 integrate(&cfg, &inert[lo..hi], f, t, x, v, w, q, &x_ref[lo..hi])
             })
             .reduce(|| 0.0, f64::max);
-        self.max_disp2 = md;
+        self.max_disp2 = md.max(self.bnd.advance(cfg.dt));
         self.timing.newton += t1.elapsed().as_secs_f64();
     }
 
@@ -795,7 +867,7 @@ impl FastSim {
     /// as real interactions (the collider re-initialises on the next YADE-order step).
     pub fn write_back(&self, scene: &mut Scene) {
         let n = self.len();
-        scene.forces.resize(n);
+        scene.forces.resize(scene.bodies.len());
         for k in 0..n {
             let id = self.ids[k] as usize;
             let b = &mut scene.bodies;
@@ -844,5 +916,11 @@ impl FastSim {
             });
             scene.interactions.insert(it);
         }
+        self.bnd.write_back(scene, &self.ids);
+    }
+
+    /// Real wall, box and facet contacts now.
+    pub fn boundary_contacts(&self) -> usize {
+        self.bnd.real()
     }
 }

@@ -4,9 +4,12 @@
 machine load (issue 16: ">= 10x yade -n -x on the same script").
 
     python3 yade_ref/bench/fast_script_bench.py [--scene bench/scenes/dense8000.scene.json] [--steps 2000] [--reps 3]
+    python3 yade_ref/bench/fast_script_bench.py --deposit 4000 [--steps 2000] [--warmup 8000]
 
 The script is yade_ref/bench/run_scene.py: it builds the scene from the file with plain YADE calls and
 prints the seconds of its one O.run(steps, True) (warm-up steps first); that phase is what is compared.
+With --deposit NUM it is yade_ref/bench/deposit_script.py instead: NUM spheres fallen into an open facet
+box (makeCloud, geom.facetBox, gravity), the timed steps taken once the pile has formed.
 Prints per variant the seconds (min/median/max) and the ratio to YADE paired by repetition.
 """
 import argparse, os, re, statistics, subprocess, sys
@@ -29,12 +32,20 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('--scene', default=os.path.join(ROOT, 'bench/scenes/dense8000.scene.json'))
     ap.add_argument('--steps', type=int, default=2000)
-    ap.add_argument('--warmup', type=int, default=50)
+    ap.add_argument('--warmup', type=int, default=None, help='steps before the timed run (default 50; 8000 with --deposit)')
+    ap.add_argument('--deposit', type=int, metavar='NUM', help='time deposit_script.py with NUM spheres instead of a scene')
     ap.add_argument('--reps', type=int, default=3)
     ap.add_argument('--no-yade-order', action='store_true', help='skip the plain `compat run` variant')
     a = ap.parse_args(argv)
     env = dict(os.environ, OMP_NUM_THREADS='1', OMP_WAIT_POLICY='PASSIVE')
-    args = [SCRIPT, a.scene, str(a.steps), str(a.warmup)]
+    if a.deposit:
+        script = os.path.join(HERE, 'deposit_script.py')
+        args = [script, str(a.deposit), str(a.steps), str(8000 if a.warmup is None else a.warmup)]
+        what = 'deposit_script.py, %d spheres' % a.deposit
+    else:
+        script = SCRIPT
+        args = [script, a.scene, str(a.steps), str(50 if a.warmup is None else a.warmup)]
+        what = 'scene %s' % os.path.relpath(a.scene, ROOT)
     variants = [('yade', ['yade', '-n', '-x'] + args), ('ryade --fast', ['compat', 'run', '--fast'] + args)]
     if not a.no_yade_order:
         variants.append(('ryade (YADE-order)', ['compat', 'run'] + args))
@@ -46,7 +57,7 @@ def main(argv):
             for l in notes:
                 print('   ', l)
             print('rep %d %-20s %8.3f s  (%d contacts at the end)' % (r + 1, n, s, nc), flush=True)
-    print('\nscript %s, scene %s, %d steps (load average %s)' % (os.path.relpath(SCRIPT, ROOT), os.path.relpath(a.scene, ROOT), a.steps,
+    print('\nscript %s, %s, %d steps (load average %s)' % (os.path.relpath(script, ROOT), what, a.steps,
                                                                  ' '.join('%.2f' % x for x in os.getloadavg())))
     print('| variant | seconds min / median / max | ratio to YADE min / median / max |\n|---|---|---|')
     for n, _ in variants:

@@ -1,0 +1,408 @@
+//! The fast path's boundaries: fixed (or translating) walls, boxes and facets in contact with its
+//! spheres through FrictMat and Cundall-Strack.
+//!
+//! The contacts are the Scene's own: `ScGeom` made by the YADE-order path's Ig2 functors
+//! (`geom::{wall_sphere, box_sphere, facet_sphere}::go`), `FrictPhys` by `phys::ip2_frict`, forces
+//! by `law::load`; one formula, one place. Only the scheduling is the fast path's: the candidate
+//! spheres of each boundary are listed at each Verlet rebuild (those within `r + skin`), and the
+//! loads are added after the sphere-sphere phase, in list order. There are few boundary contacts
+//! (a container's walls), so they run serially.
+
+use super::contact::V3;
+use crate::geom::{self, GeomCtx, Kin, Pair, ScGeom};
+use crate::interaction::{GeomFunctor, Interaction};
+use crate::law;
+use crate::material::FrictMat;
+use crate::math::{mat_t_vec, Quat, Vec3};
+use crate::phys::FrictPhys;
+use crate::scene::{InteractionLoop, Scene};
+use crate::shape::{Facet, Shape};
+use rustc_hash::FxHashMap;
+
+/// The shape of a boundary, with the parameters of its Ig2 functor.
+#[derive(Clone, Debug)]
+enum BShape {
+    Wall {
+        axis: usize,
+        sense: i32,
+        p: geom::wall_sphere::Params,
+    },
+    Box {
+        ext: Vec3,
+        p: geom::box_sphere::Params,
+    },
+    Facet {
+        f: Box<Facet>,
+        p: geom::facet_sphere::Params,
+        /// Largest distance of a vertex from the facet's position.
+        reach: f64,
+    },
+}
+
+/// One boundary body: fixed in every DOF, not rotating, moved only by its velocity.
+#[derive(Clone, Debug)]
+struct Boundary {
+    id: u32,
+    shape: BShape,
+    /// Its Ig2 and Bo1 functors are in the scene's engines (else YADE never makes its contacts).
+    touch: bool,
+    pos: Vec3,
+    vel: Vec3,
+    ori: Quat,
+    mat: usize,
+    x_ref: Vec3,
+    force: Vec3,
+    torque: Vec3,
+}
+
+/// A boundary-sphere pair of the candidate list; `geom`/`phys` are the interaction's while it is real.
+#[derive(Clone, Debug)]
+struct BContact {
+    b: u32,
+    sphere: u32,
+    /// The sphere's slot in the fast path's (spatially sorted) arrays.
+    k: u32,
+    geom: Option<ScGeom>,
+    phys: Option<FrictPhys>,
+    made_real: i64,
+}
+
+/// What the boundary phase reads of the spheres (in the fast path's slots).
+pub(super) struct Spheres<'a> {
+    pub pos: &'a [V3],
+    pub vel: &'a [V3],
+    pub w: &'a [V3],
+    pub ori: &'a [Quat],
+    pub rad: &'a [f64],
+    pub mat: &'a [u32],
+}
+
+#[derive(Clone, Debug, Default)]
+pub(super) struct Boundaries {
+    list: Vec<Boundary>,
+    contacts: Vec<BContact>,
+    mats: Vec<FrictMat>,
+    law: law::Params,
+    /// Collider.avoidSelfInteractionMask
+    avoid_self: i32,
+    /// Every body's groupMask, by scene id.
+    masks: Vec<i32>,
+}
+
+fn v(a: &V3) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+impl Boundaries {
+    /// The scene's walls, boxes and facets, or why one is outside the fast path. `is_boundary(id)`
+    /// tells the caller which bodies are taken here.
+    pub(super) fn from_scene(
+        scene: &Scene,
+        il: &InteractionLoop,
+        collider: &crate::collider::ColliderParams,
+    ) -> Result<Boundaries, String> {
+        let bo1 = &collider.bounds;
+        let b = &scene.bodies;
+        let mut list = Vec::new();
+        for id in 0..b.len() {
+            let shape = match &b.shape[id] {
+                Shape::Sphere { .. } => continue,
+                Shape::Wall { axis, sense } => (
+                    BShape::Wall {
+                        axis: *axis,
+                        sense: *sense,
+                        p: il.wall_sphere.unwrap_or_default(),
+                    },
+                    il.wall_sphere.is_some() && bo1.wall,
+                ),
+                Shape::Box { extents } => (
+                    BShape::Box {
+                        ext: *extents,
+                        p: il.box_sphere.unwrap_or_default(),
+                    },
+                    il.box_sphere.is_some() && bo1.box_,
+                ),
+                Shape::Facet(f) => (
+                    BShape::Facet {
+                        reach: f.vertices.iter().map(|x| x.norm()).fold(0.0, f64::max),
+                        f: f.clone(),
+                        p: il.facet_sphere.unwrap_or_default(),
+                    },
+                    il.facet_sphere.is_some() && bo1.facet,
+                ),
+                s => {
+                    return Err(format!(
+                        "the fast path does not support {} bodies (#{})",
+                        s.class_name(),
+                        id
+                    ))
+                }
+            };
+            let what = b.shape[id].class_name();
+            if b.blocked[id] != crate::body::DOF_ALL {
+                return Err(format!(
+                    "the fast path does not support a {} that is not fixed (#{}: its blockedDOFs are not 'xyzXYZ')",
+                    what, id
+                ));
+            }
+            if b.ang_vel[id] != Vec3::zeros() {
+                return Err(format!(
+                    "the fast path does not support a rotating {} (#{} has an angular velocity)",
+                    what, id
+                ));
+            }
+            if scene.materials[b.material[id]].class() != crate::material::MatClass::FrictMat {
+                return Err(format!(
+                    "the fast path does not support a {} of material {} (#{})",
+                    what,
+                    scene.materials[b.material[id]].class_name(),
+                    id
+                ));
+            }
+            let (shape, touch) = shape;
+            list.push(Boundary {
+                id: id as u32,
+                shape,
+                touch,
+                pos: b.pos[id],
+                vel: b.vel[id],
+                ori: b.ori[id],
+                mat: b.material[id],
+                x_ref: b.pos[id],
+                force: Vec3::zeros(),
+                torque: Vec3::zeros(),
+            });
+        }
+        let mut bs = Boundaries {
+            list,
+            contacts: vec![],
+            mats: scene.materials.clone(),
+            law: il.cundall_strack.unwrap_or_default(),
+            avoid_self: collider.avoid_self_interaction_mask,
+            masks: b.mask.clone(),
+        };
+        // the scene's real boundary contacts carry over with their history
+        let at: FxHashMap<u32, u32> = bs
+            .list
+            .iter()
+            .enumerate()
+            .map(|(k, x)| (x.id, k as u32))
+            .collect();
+        for it in &scene.interactions.list {
+            let mixed = matches!(
+                it.functor,
+                GeomFunctor::WallSphere | GeomFunctor::BoxSphere | GeomFunctor::FacetSphere
+            );
+            if let (true, Some(g), Some(ph), None, Some(&bk)) =
+                (mixed, &it.geom, &it.phys, &it.ext, at.get(&it.id1))
+            {
+                bs.contacts.push(BContact {
+                    b: bk,
+                    sphere: it.id2,
+                    k: u32::MAX,
+                    geom: Some(*g),
+                    phys: Some(*ph),
+                    made_real: it.iter_made_real,
+                });
+            }
+        }
+        Ok(bs)
+    }
+
+    pub(super) fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// Real boundary contacts now.
+    pub(super) fn real(&self) -> usize {
+        self.contacts.iter().filter(|c| c.geom.is_some()).count()
+    }
+
+    /// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp).
+    fn may_collide(&self, a: u32, b: u32) -> bool {
+        let (ma, mb) = (self.masks[a as usize], self.masks[b as usize]);
+        (ma & mb) != 0 && !(ma == mb && (ma & self.avoid_self) != 0)
+    }
+
+    /// Is a sphere at `x` of radius `r` within `reach` of the boundary? (A cheap test, never false
+    /// for a sphere the Ig2 functor could touch before the next rebuild.)
+    fn near(bd: &Boundary, x: &Vec3, r: f64, skin: f64) -> bool {
+        let d = x - bd.pos;
+        match &bd.shape {
+            BShape::Wall { axis, .. } => d[*axis].abs() <= r + skin,
+            BShape::Box { ext, p } => {
+                // the outside branch makes contacts up to r (interactionDetectionFactor - 1) apart
+                let r = r * p.interaction_detection_factor.max(1.0);
+                let l = mat_t_vec(&bd.ori.to_rotation_matrix(), &d);
+                let mut q2 = 0.0;
+                for k in 0..3 {
+                    let o = (l[k].abs() - ext[k]).max(0.0);
+                    q2 += o * o;
+                }
+                q2 <= (r + skin) * (r + skin)
+            }
+            BShape::Facet { f, reach, .. } => {
+                let l = mat_t_vec(&bd.ori.to_rotation_matrix(), &d);
+                l.dot(&f.normal).abs() <= r + skin && l.norm() <= reach + r + skin
+            }
+        }
+    }
+
+    /// The candidate list again (after the spheres were re-sorted): every sphere near a boundary,
+    /// real contacts kept with their state.
+    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
+        let mut known: FxHashMap<(u32, u32), BContact> = FxHashMap::default();
+        for c in self.contacts.drain(..) {
+            if c.geom.is_some() {
+                known.insert((c.b, c.sphere), c);
+            }
+        }
+        let mut out = Vec::new();
+        for bd in self.list.iter_mut() {
+            bd.x_ref = bd.pos;
+        }
+        for (bk, bd) in self.list.iter().enumerate() {
+            if !bd.touch {
+                continue;
+            }
+            for (k, (&id, x)) in ids.iter().zip(pos).enumerate() {
+                let key = (bk as u32, id);
+                if let Some(mut c) = known.remove(&key) {
+                    c.k = k as u32;
+                    out.push(c);
+                } else if self.may_collide(bd.id, id) && Self::near(bd, &v(x), rad[k], skin) {
+                    out.push(BContact {
+                        b: bk as u32,
+                        sphere: id,
+                        k: k as u32,
+                        geom: None,
+                        phys: None,
+                        made_real: -1,
+                    });
+                }
+            }
+        }
+        self.contacts = out;
+    }
+
+    /// Geometry, physics and law of every candidate pair; the sphere's load is added to `f`, `t`
+    /// (after the sphere-sphere phase), the boundary's kept for `write_back`.
+    pub(super) fn forces(&mut self, s: &Spheres, dt: f64, iter: i64, f: &mut [V3], t: &mut [V3]) {
+        for bd in self.list.iter_mut() {
+            bd.force = Vec3::zeros();
+            bd.torque = Vec3::zeros();
+        }
+        let ctx = GeomCtx {
+            dt,
+            shift_vel: Vec3::zeros(),
+        };
+        for c in self.contacts.iter_mut() {
+            let bd = &mut self.list[c.b as usize];
+            let k = c.k as usize;
+            let r = s.rad[k];
+            let pr = Pair {
+                s1: Kin {
+                    pos: bd.pos,
+                    vel: bd.vel,
+                    ang_vel: Vec3::zeros(),
+                    ori: bd.ori,
+                },
+                s2: Kin {
+                    pos: v(&s.pos[k]),
+                    vel: v(&s.vel[k]),
+                    ang_vel: v(&s.w[k]),
+                    ori: s.ori[k],
+                },
+                shift2: Vec3::zeros(),
+                is_real: c.geom.is_some(),
+                ctx,
+            };
+            let g = &mut c.geom;
+            let made = match &mut bd.shape {
+                BShape::Wall { axis, sense, p } => {
+                    geom::wall_sphere::go(p, *axis, *sense, r, &pr, g)
+                }
+                BShape::Box { ext, p } => geom::box_sphere::go(p, ext, r, &pr, g),
+                BShape::Facet { f, p, .. } => geom::facet_sphere::go(p, f, r, &pr, g),
+            };
+            if !made {
+                continue;
+            }
+            let gg = c.geom.as_ref().unwrap();
+            if c.phys.is_none() {
+                c.phys = Some(crate::phys::ip2_frict(
+                    &self.mats[bd.mat],
+                    &self.mats[s.mat[k] as usize],
+                    gg,
+                ));
+                c.made_real = iter;
+            }
+            let bodies = law::LawBodies {
+                pos1: &bd.pos,
+                pos2_shifted: pr.s2.pos,
+            };
+            match law::load(&self.law, gg, c.phys.as_mut().unwrap(), &bodies, None) {
+                Some(l) => {
+                    bd.force += l.force;
+                    bd.torque += l.torque1;
+                    let fk = &mut f[k];
+                    *fk = [fk[0] - l.force[0], fk[1] - l.force[1], fk[2] - l.force[2]];
+                    let tk = &mut t[k];
+                    *tk = [
+                        tk[0] + l.torque2[0],
+                        tk[1] + l.torque2[1],
+                        tk[2] + l.torque2[2],
+                    ];
+                }
+                None => {
+                    c.geom = None;
+                    c.phys = None;
+                    c.made_real = -1;
+                }
+            }
+        }
+    }
+}
+
+impl Boundaries {
+    /// `NewtonIntegrator` on a body fixed in every DOF: x += v dt (no rotation: refused above).
+    /// Returns the largest squared displacement since the last rebuild.
+    pub(super) fn advance(&mut self, dt: f64) -> f64 {
+        let mut md: f64 = 0.0;
+        for bd in self.list.iter_mut() {
+            bd.pos += bd.vel * dt;
+            md = md.max((bd.pos - bd.x_ref).norm_squared());
+        }
+        md
+    }
+
+    /// The boundaries' state, forces of the last step and real contacts back into the scene
+    /// (`slot_of[k]`: the scene id of the sphere in slot k).
+    pub(super) fn write_back(&self, scene: &mut Scene, ids: &[u32]) {
+        for bd in &self.list {
+            let id = bd.id as usize;
+            scene.bodies.pos[id] = bd.pos;
+            scene.bodies.vel[id] = bd.vel;
+            *scene.forces.force_mut(id) = bd.force;
+            *scene.forces.torque_mut(id) = bd.torque;
+        }
+        for c in &self.contacts {
+            let (Some(g), Some(ph)) = (&c.geom, &c.phys) else {
+                continue;
+            };
+            let bd = &self.list[c.b as usize];
+            debug_assert_eq!(ids[c.k as usize], c.sphere);
+            // after the functor swap YADE keeps the boundary as id1
+            let mut it = Interaction::new(bd.id, c.sphere, [0; 3], c.made_real);
+            it.functor = match bd.shape {
+                BShape::Wall { .. } => GeomFunctor::WallSphere,
+                BShape::Box { .. } => GeomFunctor::BoxSphere,
+                BShape::Facet { .. } => GeomFunctor::FacetSphere,
+            };
+            it.iter_made_real = c.made_real;
+            it.geom = Some(*g);
+            it.phys = Some(*ph);
+            scene.interactions.insert(it);
+        }
+    }
+}
