@@ -249,6 +249,13 @@ fn fast_path_refuses_what_it_does_not_model() {
     s.bodies.mask[last] = 2;
     let e = refusal(&s);
     assert!(e.contains("groupMasks"), "{}", e);
+    // a facet in a periodic cell (its images are not searched)
+    let mut s = scene_json::load(&root().join("golden/micro/facet_face.scene.json"))
+        .unwrap()
+        .scene;
+    s.cell = Some(ryade::cell::Cell::set_box(Vec3::new(10.0, 10.0, 10.0)).unwrap());
+    let e = refusal(&s);
+    assert!(e.contains("Facet in a periodic cell"), "{}", e);
     // clumps
     let clump = scene_json::load(&root().join("golden/micro/clump.scene.json"))
         .unwrap()

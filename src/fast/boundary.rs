@@ -33,7 +33,6 @@ enum BShape {
     },
     Facet {
         f: Box<Facet>,
-        p: geom::facet_sphere::Params,
         /// Largest distance of a vertex from the facet's position.
         reach: f64,
     },
@@ -81,6 +80,9 @@ pub(super) struct Spheres<'a> {
 pub(super) struct Boundaries {
     list: Vec<Boundary>,
     contacts: Vec<BContact>,
+    /// The one `Ig2_Facet_Sphere_ScGeom` of the scene: its state (a shrinkFactor YADE resets when
+    /// too large) is shared by all facets, as in YADE.
+    facet_p: geom::facet_sphere::Params,
     mats: Vec<FrictMat>,
     law: law::Params,
     /// Collider.avoidSelfInteractionMask
@@ -126,7 +128,6 @@ impl Boundaries {
                     BShape::Facet {
                         reach: f.vertices.iter().map(|x| x.norm()).fold(0.0, f64::max),
                         f: f.clone(),
-                        p: il.facet_sphere.unwrap_or_default(),
                     },
                     il.facet_sphere.is_some() && bo1.facet,
                 ),
@@ -139,6 +140,12 @@ impl Boundaries {
                 }
             };
             let what = b.shape[id].class_name();
+            if scene.cell.is_some() {
+                return Err(format!(
+                    "the fast path does not support a {} in a periodic cell (#{})",
+                    what, id
+                ));
+            }
             if b.blocked[id] != crate::body::DOF_ALL {
                 return Err(format!(
                     "the fast path does not support a {} that is not fixed (#{}: its blockedDOFs are not 'xyzXYZ')",
@@ -176,6 +183,7 @@ impl Boundaries {
         let mut bs = Boundaries {
             list,
             contacts: vec![],
+            facet_p: il.facet_sphere.unwrap_or_default(),
             mats: scene.materials.clone(),
             law: il.cundall_strack.unwrap_or_default(),
             avoid_self: collider.avoid_self_interaction_mask,
@@ -323,7 +331,7 @@ impl Boundaries {
                     geom::wall_sphere::go(p, *axis, *sense, r, &pr, g)
                 }
                 BShape::Box { ext, p } => geom::box_sphere::go(p, ext, r, &pr, g),
-                BShape::Facet { f, p, .. } => geom::facet_sphere::go(p, f, r, &pr, g),
+                BShape::Facet { f, .. } => geom::facet_sphere::go(&mut self.facet_p, f, r, &pr, g),
             };
             if !made {
                 continue;
@@ -379,6 +387,13 @@ impl Boundaries {
     /// The boundaries' state, forces of the last step and real contacts back into the scene
     /// (`slot_of[k]`: the scene id of the sphere in slot k).
     pub(super) fn write_back(&self, scene: &mut Scene, ids: &[u32]) {
+        for e in scene.engines.iter_mut() {
+            if let crate::scene::Engine::InteractionLoop(il) = e {
+                if let Some(p) = il.facet_sphere.as_mut() {
+                    *p = self.facet_p;
+                }
+            }
+        }
         for bd in &self.list {
             let id = bd.id as usize;
             scene.bodies.pos[id] = bd.pos;
