@@ -207,7 +207,11 @@ impl InteractionLoop {
     }
 
     /// The physics functor for a material pair (None: no functor can handle it).
-    fn phys_functor(&self, a: MatClass, b: MatClass) -> Result<Option<PhysFunctor>, String> {
+    pub(crate) fn phys_functor(
+        &self,
+        a: MatClass,
+        b: MatClass,
+    ) -> Result<Option<PhysFunctor>, String> {
         if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
             return Ok(Some(PhysFunctor::Frict));
         }
@@ -325,7 +329,7 @@ impl InteractionLoop {
 
 /// Which Ip2 functor builds an interaction's physics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum PhysFunctor {
+pub(crate) enum PhysFunctor {
     Frict,
     CohFrict,
     ViscEl,

@@ -17,7 +17,11 @@ fn root() -> &'static Path {
 /// Largest difference over all steps and bodies, per column, relative to the largest |YADE value|
 /// of that column.
 fn micro_worst(name: &str, opt: FastOptions) -> (f64, String) {
-    let dir = root().join("golden/micro");
+    golden_worst("golden/micro", name, opt)
+}
+
+fn golden_worst(dir: &str, name: &str, opt: FastOptions) -> (f64, String) {
+    let dir = root().join(dir);
     let sf = scene_json::load(&dir.join(format!("{}.scene.json", name))).unwrap();
     let rows = golden::read_bodies(&dir.join(format!("{}.bodies.csv.gz", name))).unwrap();
     let mut by_step: HashMap<u64, Vec<&golden::BodyRow>> = HashMap::new();
@@ -73,6 +77,24 @@ fn fast_path_follows_yade_micro_goldens_with_boundaries() {
             let (w, at) = micro_worst(name, opt);
             let tol = if name == "pile" { 1e-7 } else { 1e-9 };
             assert!(w < tol, "{} {:?}: {:.3e} at {}", name, opt, w, at);
+        }
+    }
+}
+
+/// Rolling resistance (the study's aggregate model: ScGeom6D, CohFrictPhys, CohesionMoment with
+/// the total and the incremental form; a sphere spinning on another on a box floor): YADE's
+/// every-step values to 1e-9, one and two threads.
+#[test]
+fn fast_path_follows_yade_rolling_resistance_goldens() {
+    for name in ["rolling", "rolling_inc"] {
+        for threads in [1, 2] {
+            let opt = FastOptions {
+                threads,
+                ..Default::default()
+            };
+            let (w, at) = golden_worst("golden/micro_grid", name, opt);
+            eprintln!("{} {}t: {:.3e} at {}", name, threads, w, at);
+            assert!(w < 1e-9, "{} {:?}: {:.3e} at {}", name, opt, w, at);
         }
     }
 }

@@ -10,12 +10,12 @@
 
 use super::contact::V3;
 use crate::geom::{self, GeomCtx, Kin, Pair, ScGeom};
-use crate::interaction::{GeomFunctor, Interaction};
+use crate::interaction::{GeomFunctor, Interaction, IntrExt};
 use crate::law;
 use crate::material::FrictMat;
 use crate::math::{mat_t_vec, Quat, Vec3};
 use crate::phys::FrictPhys;
-use crate::scene::{InteractionLoop, Scene};
+use crate::scene::{InteractionLoop, PhysFunctor, Scene};
 use crate::shape::{Facet, Shape};
 use rustc_hash::FxHashMap;
 
@@ -63,6 +63,8 @@ struct BContact {
     k: u32,
     geom: Option<ScGeom>,
     phys: Option<FrictPhys>,
+    /// The CohFrictPhys part when the physics is Ip2_CohFrictMat_CohFrictMat_CohFrictPhys's.
+    ext: Option<Box<IntrExt>>,
     made_real: i64,
 }
 
@@ -84,6 +86,9 @@ pub(super) struct Boundaries {
     /// too large) is shared by all facets, as in YADE.
     facet_p: geom::facet_sphere::Params,
     mats: Vec<FrictMat>,
+    /// The physics functor of each (boundary material, sphere material) pair met, by the scene's
+    /// own dispatch (`InteractionLoop::phys_functor`).
+    coh_ip2: Option<crate::phys::CohFrictIp2>,
     law: law::Params,
     /// Collider.avoidSelfInteractionMask
     avoid_self: i32,
@@ -105,6 +110,12 @@ impl Boundaries {
     ) -> Result<Boundaries, String> {
         let bo1 = &collider.bounds;
         let b = &scene.bodies;
+        let mut sphere_mats: Vec<usize> = (0..b.len())
+            .filter(|&id| matches!(b.shape[id], Shape::Sphere { .. }))
+            .map(|id| b.material[id])
+            .collect();
+        sphere_mats.sort_unstable();
+        sphere_mats.dedup();
         let mut list = Vec::new();
         for id in 0..b.len() {
             let shape = match &b.shape[id] {
@@ -158,12 +169,31 @@ impl Boundaries {
                     what, id
                 ));
             }
-            if scene.materials[b.material[id]].class() != crate::material::MatClass::FrictMat {
+            // every (boundary, sphere) material pair must get FrictPhys or CohFrictPhys
+            let mb = &scene.materials[b.material[id]];
+            for &sm in &sphere_mats {
+                let ms = &scene.materials[sm];
+                match il.phys_functor(mb.class(), ms.class()) {
+                    Ok(Some(PhysFunctor::Frict)) | Ok(Some(PhysFunctor::CohFrict)) => {}
+                    _ => {
+                        return Err(format!(
+                            "the fast path does not support a {} of material {} against spheres of {} (#{})",
+                            what,
+                            mb.class_name(),
+                            ms.class_name(),
+                            id
+                        ))
+                    }
+                }
+            }
+            if il
+                .cohfrict_phys
+                .as_ref()
+                .is_some_and(|p| p.set_cohesion_now)
+            {
                 return Err(format!(
-                    "the fast path does not support a {} of material {} (#{})",
-                    what,
-                    scene.materials[b.material[id]].class_name(),
-                    id
+                    "the fast path does not support Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True) (with {} #{})",
+                    what, id
                 ));
             }
             let (shape, touch) = shape;
@@ -184,6 +214,7 @@ impl Boundaries {
             list,
             contacts: vec![],
             facet_p: il.facet_sphere.unwrap_or_default(),
+            coh_ip2: il.cohfrict_phys.clone(),
             mats: scene.materials.clone(),
             law: il.cundall_strack.unwrap_or_default(),
             avoid_self: collider.avoid_self_interaction_mask,
@@ -201,8 +232,9 @@ impl Boundaries {
                 it.functor,
                 GeomFunctor::WallSphere | GeomFunctor::BoxSphere | GeomFunctor::FacetSphere
             );
-            if let (true, Some(g), Some(ph), None, Some(&bk)) =
-                (mixed, &it.geom, &it.phys, &it.ext, at.get(&it.id1))
+            let plain_ext = it.ext.as_ref().is_none_or(|e| e.geom.is_none());
+            if let (true, true, Some(g), Some(ph), Some(&bk)) =
+                (mixed, plain_ext, &it.geom, &it.phys, at.get(&it.id1))
             {
                 bs.contacts.push(BContact {
                     b: bk,
@@ -210,6 +242,7 @@ impl Boundaries {
                     k: u32::MAX,
                     geom: Some(*g),
                     phys: Some(*ph),
+                    ext: it.ext.clone(),
                     made_real: it.iter_made_real,
                 });
             }
@@ -285,6 +318,7 @@ impl Boundaries {
                         k: k as u32,
                         geom: None,
                         phys: None,
+                        ext: None,
                         made_real: -1,
                     });
                 }
@@ -338,11 +372,25 @@ impl Boundaries {
             }
             let gg = c.geom.as_ref().unwrap();
             if c.phys.is_none() {
-                c.phys = Some(crate::phys::ip2_frict(
-                    &self.mats[bd.mat],
-                    &self.mats[s.mat[k] as usize],
-                    gg,
-                ));
+                let (m1, m2) = (&self.mats[bd.mat], &self.mats[s.mat[k] as usize]);
+                match (&self.coh_ip2, m1.coh.is_some() && m2.coh.is_some()) {
+                    // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys (no setCohesionNow: refused above,
+                    // so its state does not change; on a plain ScGeom there are no rotations to set)
+                    (Some(ip2), true) => {
+                        let mut ip2 = ip2.clone();
+                        let e = c.ext.get_or_insert_with(Default::default);
+                        ip2.go(
+                            iter,
+                            m1,
+                            m2,
+                            gg.radius1,
+                            gg.radius2,
+                            &mut c.phys,
+                            &mut e.coh,
+                        );
+                    }
+                    _ => c.phys = Some(crate::phys::ip2_frict(m1, m2, gg)),
+                }
                 c.made_real = iter;
             }
             let bodies = law::LawBodies {
@@ -365,6 +413,7 @@ impl Boundaries {
                 None => {
                     c.geom = None;
                     c.phys = None;
+                    c.ext = None;
                     c.made_real = -1;
                 }
             }
@@ -417,6 +466,7 @@ impl Boundaries {
             it.iter_made_real = c.made_real;
             it.geom = Some(*g);
             it.phys = Some(*ph);
+            it.ext = c.ext.clone();
             scene.interactions.insert(it);
         }
     }

@@ -23,6 +23,7 @@ mod boundary;
 pub mod contact;
 pub mod neighbors;
 pub mod newton;
+mod six;
 
 use crate::body::DOF_ALL;
 use crate::geom::ScGeom;
@@ -71,6 +72,12 @@ struct Ghost {
     t: V3,
 }
 
+/// Contact states kept over a Verlet rebuild, by scene ids (lower id first).
+struct Known {
+    plain: FxHashMap<(u32, u32), Contact>,
+    six: FxHashMap<(u32, u32), six::C6>,
+}
+
 /// Memory held by the fast path, in bytes.
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct Memory {
@@ -105,6 +112,10 @@ pub struct FastSim {
     chunks: Vec<Chunk>,
     /// Fixed walls, boxes and facets and their contacts with the spheres.
     bnd: boundary::Boundaries,
+    /// Rolling-resistance contacts (ScGeom6D + CohFrictPhys) instead of `contacts`.
+    six: Option<six::SixCfg>,
+    contacts6: Vec<six::C6>,
+    fmats: Vec<crate::material::FrictMat>,
     pool: Option<rayon::ThreadPool>,
     threads: usize,
     max_disp2: f64,
@@ -206,11 +217,116 @@ fn integrate_impl(
     md
 }
 
+/// One listed pair's work: the force on body i and the torques on i and j (None: no load).
+trait Kernel {
+    type C;
+    /// What the kernel keeps of body i while its pairs last.
+    type I: Copy;
+    fn body(&self, i: usize) -> Self::I;
+    fn pair(&self, bi: &Self::I, p: &Pair, c: &mut Self::C) -> Option<(V3, V3, V3)>;
+}
+
+/// The Cundall-Strack kernel (`contact::pair`).
+struct Plain<'a, 'b>(&'a View<'b>);
+
+impl Kernel for Plain<'_, '_> {
+    type C = Contact;
+    type I = (V3, V3, V3, f64);
+    #[inline(always)]
+    fn body(&self, i: usize) -> Self::I {
+        let v = self.0;
+        (v.pos[i], v.vel[i], v.w[i], v.rad[i])
+    }
+    #[inline(always)]
+    fn pair(&self, bi: &Self::I, pr: &Pair, c: &mut Contact) -> Option<(V3, V3, V3)> {
+        let v = self.0;
+        let (i, j) = (pr.i as usize, pr.j as usize);
+        let (xi, vi, wi, ri) = *bi;
+        let two = Two {
+            xi,
+            xj: contact::add(v.pos[j], v.shifts[pr.img as usize]),
+            vi,
+            vj: v.vel[j],
+            wi,
+            wj: v.w[j],
+            ri,
+            rj: v.rad[j],
+        };
+        let created = |c: &mut Contact| {
+            contact::create(
+                c,
+                &v.mats[v.mat[i] as usize],
+                &v.mats[v.mat[j] as usize],
+                ri,
+                two.rj,
+            )
+        };
+        contact::pair(c, &two, v.dt, created).map(|l| (l.f, l.ti, l.tj))
+    }
+}
+
+/// The rolling-resistance kernel (`six::pair`).
+struct Six<'a, 'b> {
+    cfg: &'a six::SixCfg,
+    b: &'a six::Bodies6<'b>,
+}
+
+impl Kernel for Six<'_, '_> {
+    type C = six::C6;
+    type I = ();
+    #[inline(always)]
+    fn body(&self, _: usize) {}
+    #[inline(always)]
+    fn pair(&self, _: &(), p: &Pair, c: &mut six::C6) -> Option<(V3, V3, V3)> {
+        six::pair(self.cfg, self.b, p, c)
+    }
+}
+
 #[inline(always)]
 fn chunk_forces_impl(
     v: &View,
     pairs: &[Pair],
     cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+    ghosts: &mut Vec<Ghost>,
+) {
+    chunk_loop(&Plain(v), pairs, cs, f, t, lo, ghosts)
+}
+
+avx2_dispatch! {
+    /// `chunk_forces` for rolling-resistance contacts.
+    fn chunk_forces6 / chunk_forces6_avx2 => chunk_forces6_impl(
+        k: &Six,
+        pairs: &[Pair],
+        cs: &mut [six::C6],
+        f: &mut [V3],
+        t: &mut [V3],
+        lo: usize,
+        ghosts: &mut Vec<Ghost>,
+    )
+}
+
+#[inline(always)]
+fn chunk_forces6_impl(
+    k: &Six,
+    pairs: &[Pair],
+    cs: &mut [six::C6],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+    ghosts: &mut Vec<Ghost>,
+) {
+    chunk_loop(k, pairs, cs, f, t, lo, ghosts)
+}
+
+/// The pair loop of one chunk (see `chunk_forces`).
+#[inline(always)]
+fn chunk_loop<K: Kernel>(
+    k: &K,
+    pairs: &[Pair],
+    cs: &mut [K::C],
     f: &mut [V3],
     t: &mut [V3],
     lo: usize,
@@ -228,42 +344,23 @@ fn chunk_forces_impl(
     let mut p = 0;
     while p < np {
         let i = pairs[p].i as usize;
-        let (xi, vi, wi, ri) = (v.pos[i], v.vel[i], v.w[i], v.rad[i]);
+        let bi = k.body(i);
         let (mut fi, mut ti) = ([0.0; 3], [0.0; 3]);
         while p < np && pairs[p].i as usize == i {
             let pr = pairs[p];
             let j = pr.j as usize;
-            let two = Two {
-                xi,
-                xj: contact::add(v.pos[j], v.shifts[pr.img as usize]),
-                vi,
-                vj: v.vel[j],
-                wi,
-                wj: v.w[j],
-                ri,
-                rj: v.rad[j],
-            };
-            let created = |c: &mut Contact| {
-                contact::create(
-                    c,
-                    &v.mats[v.mat[i] as usize],
-                    &v.mats[v.mat[j] as usize],
-                    ri,
-                    two.rj,
-                )
-            };
-            if let Some(l) = contact::pair(&mut cs[p], &two, v.dt, created) {
-                fi = contact::add(fi, l.f);
-                ti = contact::add(ti, l.ti);
+            if let Some((lf, lti, ltj)) = k.pair(&bi, &pr, &mut cs[p]) {
+                fi = contact::add(fi, lf);
+                ti = contact::add(ti, lti);
                 if j < hi {
                     let jj = j - lo;
-                    f[jj] = contact::sub(f[jj], l.f);
-                    t[jj] = contact::add(t[jj], l.tj);
+                    f[jj] = contact::sub(f[jj], lf);
+                    t[jj] = contact::add(t[jj], ltj);
                 } else {
                     ghosts.push(Ghost {
                         j: j as u32,
-                        f: [-l.f[0], -l.f[1], -l.f[2]],
-                        t: l.tj,
+                        f: [-lf[0], -lf[1], -lf[2]],
+                        t: ltj,
                     });
                 }
             }
@@ -273,6 +370,30 @@ fn chunk_forces_impl(
         f[ii] = contact::add(f[ii], fi);
         t[ii] = contact::add(t[ii], ti);
     }
+}
+
+/// The parallel contact phase: the contact states, forces and torques cut at the chunks' bounds,
+/// one chunk per task (`run(pairs range, states, forces, torques, first owned body, ghosts)`).
+fn par_contacts<C: Send>(
+    chunks: &mut [Chunk],
+    cs: &mut [C],
+    force: &mut [V3],
+    torque: &mut [V3],
+    run: impl Fn(std::ops::Range<usize>, &mut [C], &mut [V3], &mut [V3], usize, &mut Vec<Ghost>) + Sync,
+) {
+    let mut parts: Vec<(&mut [C], &mut [V3], &mut [V3])> = Vec::with_capacity(chunks.len());
+    let (mut rest_c, mut rest_f, mut rest_t) = (cs, force, torque);
+    for ch in chunks.iter() {
+        let (c, rc) = rest_c.split_at_mut(ch.pairs.len());
+        let (f, rf) = rest_f.split_at_mut(ch.hi - ch.lo);
+        let (t, rt) = rest_t.split_at_mut(ch.hi - ch.lo);
+        parts.push((c, f, t));
+        (rest_c, rest_f, rest_t) = (rc, rf, rt);
+    }
+    chunks
+        .par_iter_mut()
+        .zip(parts.into_par_iter())
+        .for_each(|(ch, (cs, f, t))| run(ch.pairs.clone(), cs, f, t, ch.lo, &mut ch.ghosts));
 }
 
 /// A contact seen from the other body.
@@ -298,6 +419,7 @@ impl FastSim {
         let mut newton = None;
         let mut il_seen = None;
         let mut collider = None;
+        let mut six_cfg = None;
         for (k, e) in scene.engines.iter().enumerate() {
             if scene.is_dead(k) {
                 return unsupported(format!("dead engines ({})", e.class_name()));
@@ -307,18 +429,40 @@ impl FastSim {
                 Engine::Collider(c) => collider = Some(&c.p),
                 Engine::InteractionLoop(il) => {
                     let ss = il.sphere_sphere.as_ref();
-                    let ok = ss.is_some_and(|p| {
+                    let cs_ok = il
+                        .cundall_strack
+                        .is_some_and(|l| !l.never_erase && l.spherical_bodies);
+                    let plain = ss.is_some_and(|p| {
                         p.interaction_detection_factor == 1.0 && p.avoid_granular_ratcheting
                     }) && il.sphere_sphere_6d.is_none()
                         && il.mindlin_phys.is_none()
                         && il.frict_phys
+                        && cs_ok;
+                    // rolling resistance (the study's aggregate): ScGeom6D, CohFrictPhys, CohesionMoment
+                    let six_ok = ss.is_none()
                         && il
-                            .cundall_strack
-                            .is_some_and(|l| !l.never_erase && l.spherical_bodies);
-                    if !ok || il_seen.is_some() || newton.is_some() {
+                            .sphere_sphere_6d
+                            .is_some_and(|p| p.ss.interaction_detection_factor == 1.0)
+                        && il
+                            .cohfrict_phys
+                            .as_ref()
+                            .is_some_and(|p| !p.set_cohesion_now)
+                        && il
+                            .cohesion_moment
+                            .is_some_and(|cm| !(cm.twist_creep && cm.use_incremental_form))
+                        && il.mindlin_phys.is_none()
+                        && (cs_ok || il.cundall_strack.is_none());
+                    if !(plain || six_ok) || il_seen.is_some() || newton.is_some() {
                         return unsupported(
-                            "this InteractionLoop (needs Ig2_Sphere_Sphere_ScGeom with default attributes, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack with default attributes, one loop before Newton)".into(),
+                            "this InteractionLoop (needs Ig2_Sphere_Sphere_ScGeom with default attributes, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack with default attributes; or Ig2_Sphere_Sphere_ScGeom6D, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys without setCohesionNow, Law2_ScGeom6D_CohFrictPhys_CohesionMoment; one loop before Newton)".into(),
                         );
+                    }
+                    if six_ok {
+                        six_cfg = Some(six::SixCfg {
+                            p6: il.sphere_sphere_6d.unwrap(),
+                            ip2: il.cohfrict_phys.clone().unwrap(),
+                            cm: il.cohesion_moment.unwrap(),
+                        });
                     }
                     il_seen = Some(il.as_ref());
                 }
@@ -387,9 +531,22 @@ impl FastSim {
             }
         }
         let mut mats = Vec::with_capacity(scene.materials.len());
-        for m in &scene.materials {
-            if m.coh.is_some() || m.viscel.is_some() || m.luding.is_some() || m.bubble.is_some() {
-                return unsupported(m.class_name().into());
+        let mut sphere_mat = vec![false; scene.materials.len()];
+        for &id in &sphere_ids {
+            sphere_mat[b.material[id as usize]] = true;
+        }
+        for (k, m) in scene.materials.iter().enumerate() {
+            // the spheres' materials: FrictMat (Cundall-Strack) or, with the 6-D loop, CohFrictMat
+            let wanted = if six_cfg.is_some() {
+                crate::material::MatClass::CohFrictMat
+            } else {
+                crate::material::MatClass::FrictMat
+            };
+            if sphere_mat[k] && m.class() != wanted {
+                return unsupported(format!(
+                    "spheres of {} with this InteractionLoop",
+                    m.class_name()
+                ));
             }
             mats.push(Mat {
                 young: m.young,
@@ -480,6 +637,9 @@ impl FastSim {
             shift_cells: vec![[0; 3]],
             chunks: vec![],
             bnd,
+            six: six_cfg,
+            contacts6: vec![],
+            fmats: scene.materials.clone(),
             pool,
             threads,
             max_disp2: 0.0,
@@ -508,7 +668,30 @@ impl FastSim {
                 }
             }
         }
-        sim.rebuild_with(known, false);
+        // (6-D contacts with their rotations and cohesive physics, as they are: body 1 the lower id)
+        let mut known6 = FxHashMap::default();
+        for it in &scene.interactions.list {
+            if let (true, GeomFunctor::SphereSphere6D, true) =
+                (it.is_real(), it.functor, sim.six.is_some())
+            {
+                known6.insert(
+                    (it.id1.min(it.id2), it.id1.max(it.id2)),
+                    six::C6 {
+                        geom: it.geom,
+                        phys: it.phys,
+                        ext: it.ext.clone(),
+                        made_real: it.iter_made_real,
+                    },
+                );
+            }
+        }
+        sim.rebuild_with(
+            Known {
+                plain: known,
+                six: known6,
+            },
+            false,
+        );
         Ok(sim)
     }
 
@@ -523,6 +706,7 @@ impl FastSim {
     /// Contacts (touching pairs) now.
     pub fn active_contacts(&self) -> usize {
         self.contacts.iter().filter(|c| c.active).count()
+            + self.contacts6.iter().filter(|c| c.is_real()).count()
     }
 
     /// Pairs in the Verlet list.
@@ -555,7 +739,14 @@ impl FastSim {
     }
 
     /// The active contacts keyed by scene ids (lower id first, state seen from the lower id).
-    fn known_contacts(&self) -> FxHashMap<(u32, u32), Contact> {
+    fn known_contacts(&mut self) -> Known {
+        let mut six = FxHashMap::default();
+        for (p, c) in self.pairs.iter().zip(self.contacts6.drain(..)) {
+            if c.is_real() {
+                let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
+                six.insert((a.min(b), a.max(b)), c);
+            }
+        }
         let mut known = FxHashMap::default();
         for (p, c) in self.pairs.iter().zip(&self.contacts) {
             if c.active {
@@ -567,11 +758,15 @@ impl FastSim {
                 }
             }
         }
-        known
+        Known { plain: known, six }
     }
 
     /// Build the Verlet list again (bodies re-sorted), keeping every contact's state.
-    fn rebuild_with(&mut self, known: FxHashMap<(u32, u32), Contact>, par: bool) {
+    fn rebuild_with(&mut self, known: Known, par: bool) {
+        let Known {
+            plain: known,
+            six: mut known6,
+        } = known;
         let built = neighbors::build(&self.pos, &self.radius, self.period, self.skin, par);
         let ord = &built.order;
         fn perm<T: Copy>(v: &mut Vec<T>, ord: &[u32]) {
@@ -599,11 +794,23 @@ impl FastSim {
                 known.get(&(b, a)).map(flipped).unwrap_or_default()
             }
         };
-        self.contacts = if par {
-            self.pairs.par_iter().map(state).collect()
+        if self.six.is_some() {
+            self.contacts = vec![];
+            self.contacts6 = self
+                .pairs
+                .iter()
+                .map(|p| {
+                    let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
+                    known6.remove(&(a.min(b), a.max(b))).unwrap_or_default()
+                })
+                .collect();
         } else {
-            self.pairs.iter().map(state).collect()
-        };
+            self.contacts = if par {
+                self.pairs.par_iter().map(state).collect()
+            } else {
+                self.pairs.iter().map(state).collect()
+            };
+        }
         self.bnd
             .rebuild(&self.ids, &self.pos, &self.radius, self.skin);
         self.x_ref = self.pos.clone();
@@ -617,13 +824,18 @@ impl FastSim {
         let np = self.pairs.len();
         let t = self.threads;
         // cut at equal estimated cost: a touching pair (the full law) costs about 4 distance tests
-        let cost = |c: &Contact| if c.active { 4 } else { 1 };
-        let total: usize = self.contacts.iter().map(cost).sum();
+        let active: Vec<bool> = if self.six.is_some() {
+            self.contacts6.iter().map(|c| c.is_real()).collect()
+        } else {
+            self.contacts.iter().map(|c| c.active).collect()
+        };
+        let cost = |a: &bool| if *a { 4 } else { 1 };
+        let total: usize = active.iter().map(cost).sum();
         let mut cuts = vec![0usize; t + 1];
         cuts[t] = np;
         if t > 1 {
             let (mut acc, mut k) = (0usize, 1usize);
-            for (m, c) in self.contacts.iter().enumerate() {
+            for (m, c) in active.iter().enumerate() {
                 while k < t && acc >= total * k / t {
                     cuts[k] = m;
                     k += 1;
@@ -711,15 +923,41 @@ impl FastSim {
             dt: self.cfg.dt,
         };
         let ghosts = &mut self.chunks[0].ghosts;
-        chunk_forces(
-            &view,
-            &self.pairs,
-            &mut self.contacts,
-            &mut self.force,
-            &mut self.torque,
-            0,
-            ghosts,
-        );
+        match &self.six {
+            None => chunk_forces(
+                &view,
+                &self.pairs,
+                &mut self.contacts,
+                &mut self.force,
+                &mut self.torque,
+                0,
+                ghosts,
+            ),
+            Some(cfg) => {
+                let b6 = six::Bodies6 {
+                    pos: &self.pos,
+                    vel: &self.vel,
+                    w: &self.ang_vel,
+                    ori: &self.ori,
+                    rad: &self.radius,
+                    mat: &self.mat,
+                    ids: &self.ids,
+                    shifts: &self.shifts,
+                    mats: &self.fmats,
+                    dt: self.cfg.dt,
+                    iter: self.iter,
+                };
+                chunk_forces6(
+                    &Six { cfg, b: &b6 },
+                    &self.pairs,
+                    &mut self.contacts6,
+                    &mut self.force,
+                    &mut self.torque,
+                    0,
+                    ghosts,
+                )
+            }
+        }
         debug_assert!(ghosts.is_empty());
         self.boundary_phase();
         let t1 = std::time::Instant::now();
@@ -773,46 +1011,48 @@ impl FastSim {
         let t0 = std::time::Instant::now();
         let dt = self.cfg.dt;
         // contact phase: each chunk sums its owned bodies' forces in place and queues the others
-        {
-            let mut parts: Vec<(&mut [Contact], &mut [V3], &mut [V3])> =
-                Vec::with_capacity(self.chunks.len());
-            let mut rest_c: &mut [Contact] = &mut self.contacts;
-            let mut rest_f: &mut [V3] = &mut self.force;
-            let mut rest_t: &mut [V3] = &mut self.torque;
-            for ch in &self.chunks {
-                let (c, rc) = rest_c.split_at_mut(ch.pairs.len());
-                let (f, rf) = rest_f.split_at_mut(ch.hi - ch.lo);
-                let (t, rt) = rest_t.split_at_mut(ch.hi - ch.lo);
-                parts.push((c, f, t));
-                rest_c = rc;
-                rest_f = rf;
-                rest_t = rt;
+        let view = View {
+            pos: &self.pos,
+            vel: &self.vel,
+            w: &self.ang_vel,
+            rad: &self.radius,
+            mats: &self.mats,
+            mat: &self.mat,
+            shifts: &self.shifts,
+            dt,
+        };
+        let pairs = &self.pairs;
+        match &self.six {
+            None => par_contacts(
+                &mut self.chunks,
+                &mut self.contacts,
+                &mut self.force,
+                &mut self.torque,
+                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, f, t, lo, g),
+            ),
+            Some(cfg) => {
+                let b6 = six::Bodies6 {
+                    pos: &self.pos,
+                    vel: &self.vel,
+                    w: &self.ang_vel,
+                    ori: &self.ori,
+                    rad: &self.radius,
+                    mat: &self.mat,
+                    ids: &self.ids,
+                    shifts: &self.shifts,
+                    mats: &self.fmats,
+                    dt,
+                    iter: self.iter,
+                };
+                let k = Six { cfg, b: &b6 };
+                par_contacts(
+                    &mut self.chunks,
+                    &mut self.contacts6,
+                    &mut self.force,
+                    &mut self.torque,
+                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, f, t, lo, g),
+                )
             }
-            let view = View {
-                pos: &self.pos,
-                vel: &self.vel,
-                w: &self.ang_vel,
-                rad: &self.radius,
-                mats: &self.mats,
-                mat: &self.mat,
-                shifts: &self.shifts,
-                dt,
-            };
-            let pairs = &self.pairs;
-            self.chunks
-                .par_iter_mut()
-                .zip(parts.into_par_iter())
-                .for_each(|(ch, (cs, f, t))| {
-                    chunk_forces(
-                        &view,
-                        &pairs[ch.pairs.clone()],
-                        cs,
-                        f,
-                        t,
-                        ch.lo,
-                        &mut ch.ghosts,
-                    );
-                });
         }
         self.boundary_phase();
         let t1 = std::time::Instant::now();
@@ -914,6 +1154,26 @@ impl FastSim {
                 normal_force: n * (c.kn * c.pen.max(0.0)),
                 shear_force: Vec3::from(c.fs),
             });
+            scene.interactions.insert(it);
+        }
+        for (p, c) in self.pairs.iter().zip(&self.contacts6) {
+            if !c.is_real() {
+                continue;
+            }
+            let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
+            let cd = self.shift_cells[p.img as usize];
+            // kept with the lower id as body 1 (six::pair), as YADE orders them
+            let (id1, id2, cd) = if a < b {
+                (a, b, cd)
+            } else {
+                (b, a, [-cd[0], -cd[1], -cd[2]])
+            };
+            let mut it = Interaction::new(id1, id2, cd, c.made_real);
+            it.functor = GeomFunctor::SphereSphere6D;
+            it.iter_made_real = c.made_real;
+            it.geom = c.geom;
+            it.phys = c.phys;
+            it.ext = c.ext.clone();
             scene.interactions.insert(it);
         }
         self.bnd.write_back(scene, &self.ids);
