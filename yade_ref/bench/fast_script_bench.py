@@ -4,7 +4,7 @@
 machine load (issue 16: ">= 10x yade -n -x on the same script").
 
     python3 yade_ref/bench/fast_script_bench.py [--scene bench/scenes/dense8000.scene.json] [--steps 2000] [--reps 3]
-    python3 yade_ref/bench/fast_script_bench.py --deposit 4000 [--steps 2000] [--warmup 8000]
+    python3 yade_ref/bench/fast_script_bench.py --deposit 4000 [--roll] [--steps 2000] [--warmup 8000]
 
 The script is yade_ref/bench/run_scene.py: it builds the scene from the file with plain YADE calls and
 prints the seconds of its one O.run(steps, True) (warm-up steps first); that phase is what is compared.
@@ -34,14 +34,15 @@ def main(argv):
     ap.add_argument('--steps', type=int, default=2000)
     ap.add_argument('--warmup', type=int, default=None, help='steps before the timed run (default 50; 8000 with --deposit)')
     ap.add_argument('--deposit', type=int, metavar='NUM', help='time deposit_script.py with NUM spheres instead of a scene')
+    ap.add_argument('--roll', action='store_true', help='with --deposit: the study\'s rolling-resistance aggregate (CohFrictMat, ScGeom6D)')
     ap.add_argument('--reps', type=int, default=3)
     ap.add_argument('--no-yade-order', action='store_true', help='skip the plain `compat run` variant')
     a = ap.parse_args(argv)
     env = dict(os.environ, OMP_NUM_THREADS='1', OMP_WAIT_POLICY='PASSIVE')
     if a.deposit:
         script = os.path.join(HERE, 'deposit_script.py')
-        args = [script, str(a.deposit), str(a.steps), str(8000 if a.warmup is None else a.warmup)]
-        what = 'deposit_script.py, %d spheres' % a.deposit
+        args = [script, str(a.deposit), str(a.steps), str(8000 if a.warmup is None else a.warmup), '1'] + (['roll'] if a.roll else [])
+        what = '%d spheres%s' % (a.deposit, ', rolling resistance' if a.roll else '')
     else:
         script = SCRIPT
         args = [script, a.scene, str(a.steps), str(50 if a.warmup is None else a.warmup)]
