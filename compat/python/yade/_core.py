@@ -261,8 +261,8 @@ class State(Serializable, _ryade.StateBase):
             return Quaternion(*self._values['refOri'])
         return self._values[k]
 
-    @property
     def displ(self):
+        # a method in YADE (State::displ, core/State.hpp): pos - refPos
         return self.pos - self.refPos
 
     def _json_into(self, d):
@@ -350,7 +350,11 @@ class Body(Serializable):
             unsupported('changing Body.%s of a body already in O.bodies' % k)
 
     def intrs(self):
-        return [i for i in self._owner[0].interactions if i.id1 == self._id or i.id2 == self._id] if self._owner else []
+        # Body::py_intrs (core/Body.cpp): the real ones, in the order of Body::intrs, a map by the other id
+        if not self._owner:
+            return []
+        mine = [i for i in self._owner[0].interactions if i.id1 == self._id or i.id2 == self._id]
+        return sorted(mine, key=lambda i: i.id2 if i.id1 == self._id else i.id1)
 
     def _json(self, material_json):
         d = {'id': 0, 'shape': self._values['shape']._json(), 'material': material_json,

@@ -126,6 +126,9 @@ def run(script, args, mode='check'):
     _errors.SCRIPT = path
     sys.argv = [script] + list(args)
     sys.path.insert(0, os.path.dirname(path))
+    # YADE's yade/__init__.py puts its package folder on sys.path (index 2), so that scripts import its
+    # modules without the prefix (`from bf import evalClump`)
+    sys.path.insert(2, os.path.dirname(os.path.abspath(__file__)))
     # stand-ins for `past`/`future` (YADE's Python has python3-future), after everything installed
     sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), '_fallback'))
     mod = types.ModuleType('__main__')

@@ -16,7 +16,7 @@ __all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDi
            'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor', 'randomOrientation',
            'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
            'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques',
-           'getStress']
+           'getStress', 'growParticle']
 
 
 def _O():
@@ -255,6 +255,22 @@ def createInteraction(id1, id2, virtualI=False):
 
 def sumTorques(ids, axis, axisPt):
     unsupported('utils.sumTorques')
+
+
+def growParticle(bodyID, multiplier, updateMass=True):
+    """Scale the radius of sphere `bodyID` by `multiplier` (and its mass by multiplier^3, inertia by
+    multiplier^5): Shop::growParticle (preprocessing/dem/Shop_02.cpp). YADE also sets the reference radii
+    of the sphere's contacts, which ryade's core does not expose: a sphere with contacts is refused."""
+    O = _O()
+    b = O.bodies[bodyID]
+    if not isinstance(b.shape, Sphere):
+        raise TypeError('growParticle: body #%d is not a Sphere' % bodyID)
+    if b.intrs():
+        unsupported('utils.growParticle of a sphere with contacts (their reference radii follow it in YADE)')
+    b.shape.radius = b.shape.radius * multiplier
+    if updateMass:
+        b.state.mass = b.state.mass * math.pow(multiplier, 3)
+        b.state.inertia = b.state.inertia * math.pow(multiplier, 5)
 
 
 def __getattr__(name):
