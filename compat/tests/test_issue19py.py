@@ -1,0 +1,26 @@
+"""What issue 19's Python-side session (branch issue19py) added to the compat layer, against the lines Debian's
+YADE 2023.02a printed for data/scripts/issue19py_features.py (`yade -n -x`, pasted below; run live too when
+YADE is installed): A, YADE's `bf` clump-breakage functions (stressTensor in float32 with numpy 1.24's
+roundings, checkFailure) on a standalone sphere and on clump members."""
+from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
+
+YADE_LINES = [
+    'A 0 [1, 5] [-120.55218505859375, 3.319753646850586, -5009.80224609375, 17.90353012084961, -45.090972900390625, -1765.4014892578125, -4367.595703125, -1192.09375, -233832.8125] [-53.97557830810547, -50.35074996948242, -3009.171142578125, -17.038192749023438, -16.922822952270508, -2815.40234375, -2699.673095703125, -2536.68359375, -183711.640625]',
+    'A 0 95.22084404506683 46.78778333821297 0.0',
+    'A 1 [0] [-112.61720275878906, -79.83063507080078, -5339.75927734375, 4.363437652587891, -12.633654594421387, 321.233642578125, -6105.59375, -4154.8544921875, -290756.78125] [-63.060577392578125, -63.67867660522461, -2852.05322265625, -20.553295135498047, -20.754751205444336, -929.56787109375, -3165.59423828125, -3196.622314453125, -143170.953125]',
+    'A 1 106.537775 58.1728625 0.0',
+    'A 2 [6] [-8547.3271484375, -26.838598251342773, -79645.8828125, -33.51690673828125, -0.10536698997020721, -311.8191833496094, -27239.14453125, -65.56635284423828, -334151.46875] [4.431241512298584, 6.533003807067871, -26189.51953125, 0.017292072996497154, 0.0254938006401062, -102.19959259033203, 27.699338912963867, 40.83728790283203, -163708.59375]',
+    'A 2 97.05541250004006 68.13668750000174 0.0',
+]
+
+
+@needs_compat
+def test_issue19py_features_equal_yade(tmp_path):
+    assert tagged_lines('ryade', 'issue19py_features.py', [str(tmp_path)]) == YADE_LINES
+
+
+@needs_compat
+@needs_yade
+def test_issue19py_features_live_yade(tmp_path):
+    ryade, yade = tagged_lines_both('issue19py_features.py', tmp_path, 'ABCDEF')
+    assert ryade == yade
