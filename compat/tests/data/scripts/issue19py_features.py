@@ -24,3 +24,24 @@ for b in (s0, m1, m2):
           [float(x) for x in stressTensor(O.bodies[b], stress_correction=False).flatten()])
     print('A', b, float(checkFailure(O.bodies[b], 1e3, 5e3, wei_V0=5e-7)),
           float(checkFailure(O.bodies[b], 1e4, 5e3, weibull=False)), float(checkFailure(O.bodies[b], 1e9, 5e9)))
+
+# B: bodiesHandling (dimensions of spheres and facets, spheresModify in place and as copies)
+from yade import bodiesHandling as bh
+d = bh.spheresPackDimensions([s0, m1, m2, s3, w1])
+print('B', sorted((k, tuple(v) if hasattr(v, '__len__') else v) for k, v in d.items()))
+O.bodies[s3].mask = 6
+try:
+    bh.spheresPackDimensions(mask=4)
+except RuntimeWarning as e:
+    print('B', bh.spheresPackDimensions([O.bodies[s0], O.bodies[s3]], mask=2)['number'],
+          bh.spheresPackDimensions(mask=1)['number'], e)
+f1 = O.bodies.append(utils.facet([(0, 0, 0), (0.1, 0.02, 0.3), (-0.05, 0.2, 0.01)]))
+f2 = O.bodies.append(utils.facet([(0.3, -0.1, 0), (0.1, 0.02, 0.3), (-0.05, 0.2, -0.21)]))
+print('B', sorted((k, tuple(v) if hasattr(v, '__len__') else v) for k, v in bh.facetsDimensions([f1, f2]).items()))
+cps = bh.spheresModify([s0, s3], shift=(0.01, 0.2, -0.3), scale=0.7, orientation=Quaternion((1, 2, 0.5), 0.6), copy=True)
+for b in cps:
+    print('B', tuple(b.state.pos), b.shape.radius, b.state.mass, tuple(b.state.inertia), b.mask, b.dynamic)
+print('B', bh.spheresModify([s3], scale=1.3, orientation=Quaternion((0, 0, 1), 0.3), shift=(0, 0.001, 0)))
+b = O.bodies[s3]
+print('B', tuple(b.state.pos), b.shape.radius, b.state.mass, tuple(b.state.inertia))
+print('B', len(O.bodies.append(cps)), bh.sphereDuplicate(f1))
