@@ -9,7 +9,7 @@ from .minieigen import Matrix3, Quaternion, Vector3, to_vec3
 
 __all__ = ['SpherePack', 'Predicate', 'PredicateUnion', 'PredicateIntersection', 'PredicateDifference',
            'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'regularOrtho', 'regularHexa',
-           'arange']
+           'arange', 'gtsSurface2Facets', 'sweptPolylines2gtsSurface', 'revolutionSurfaceMeridians']
 
 import itertools as _itertools  # noqa: E402
 import math as _math  # noqa: E402
@@ -337,6 +337,80 @@ def regularHexa(predicate, radius, gap, **kw):
     if not ret:
         _warnings.warn('No spheres are produced by regularHexa-function', category=RuntimeWarning)
     return ret
+
+
+# ---------------------------------------------------------------- GTS surfaces (py/pack/pack.py)
+
+def _gts():
+    """PyGTS when importable (YADE's), else ryade's stand-in (yade/_gts.py)."""
+    try:
+        import gts
+    except ImportError:
+        from . import _gts as gts
+    return gts
+
+
+def gtsSurface2Facets(surf, **kw):
+    """A facet (utils.facet, given **kw) per face of the GTS surface `surf`, with the face's oriented
+    vertices, in the surface's face order."""
+    return [utils.facet([v.coords() for v in face.vertices()], **kw) for face in surf.faces()]
+
+
+def sweptPolylines2gtsSurface(pts, threshold=0, capStart=False, capEnd=False):
+    """The GTS surface swept by the polylines `pts` (all of the same length): between consecutive
+    polylines, two triangles per segment, cut along the diagonal from point j of one to point j+1 of
+    the next; `capStart`/`capEnd` close the first/last polyline by a fan of triangles from its first
+    point. With `threshold` > 0, faces with an edge shorter than it are not made and the surface is
+    cleaned up (vertices closer than it merged) at the end, as YADE's pack.py does."""
+    gts = _gts()
+    if len(set(len(line) for line in pts)) != 1:
+        raise RuntimeError("Polylines must be all of the same length!")
+    vtx = [[gts.Vertex(x, y, z) for x, y, z in line] for line in pts]
+    n = len(vtx[0])
+    # along[i][j]: point j to j+1 of polyline i; across[i][2j]: point j of line i to point j of line i+1,
+    # across[i][2j+1]: point j of line i to point j+1 of line i+1 (the diagonal)
+    along = [[gts.Edge(line[j], line[j + 1]) for j in range(n - 1)] for line in vtx]
+    across = []
+    for i in range(len(vtx) - 1):
+        row = []
+        for j in range(n):
+            row.append(gts.Edge(vtx[i][j], vtx[i + 1][j]))
+            if j < n - 1:
+                row.append(gts.Edge(vtx[i][j], vtx[i + 1][j + 1]))
+        across.append(row)
+    if threshold > 0:  # an edge shorter than threshold becomes None: its faces are skipped
+        for row in along + across:
+            for k, e in enumerate(row):
+                if (Vector3(e.v1.x, e.v1.y, e.v1.z) - Vector3(e.v2.x, e.v2.y, e.v2.z)).norm() < threshold:
+                    row[k] = None
+    surf = gts.Surface()
+    for i in range(len(vtx) - 1):
+        for j in range(n - 1):
+            for tri in ((across[i][2 * j + 1], along[i + 1][j], across[i][2 * j]),
+                        (along[i][j], across[i][2 * j + 2], across[i][2 * j + 1])):
+                if None not in tri:
+                    surf.add(gts.Face(*tri))
+
+    def cap(line, edges, start):
+        fan = [edges[0]] + [gts.Edge(line[k], line[0]) for k in range(2, len(line))]
+        return [gts.Face(fan[k - 1], fan[k], edges[k]) if start else gts.Face(fan[k - 1], edges[k], fan[k])
+                for k in range(1, len(edges))]
+
+    caps = (cap(vtx[0], along[0], True) if capStart else []) + (cap(vtx[-1], along[-1], False) if capEnd else [])
+    for f in caps:
+        surf.add(f)
+    if threshold > 0:
+        surf.cleanup(threshold)
+    return surf
+
+
+def revolutionSurfaceMeridians(sects, angles, origin=Vector3.Zero, orientation=Quaternion.Identity):
+    """The meridians of a surface of revolution: section i (2d points (r, z)) turned about the z axis by
+    angles[i], then placed by `orientation` and `origin`; a list of lists of 3-tuples."""
+    def place(x, y, z):
+        return tuple(origin + orientation * Vector3(x, y, z))
+    return [[place(r * _math.cos(angles[i]), r * _math.sin(angles[i]), z) for r, z in sects[i]]
+            for i in range(len(sects))]
 
 
 def _g6(x):
