@@ -2,7 +2,9 @@
 YADE 2023.02a printed for data/scripts/issue19py_features.py (`yade -n -x`, pasted below; run live too when
 YADE is installed): A, YADE's `bf` clump-breakage functions (stressTensor in float32 with numpy 1.24's
 roundings, checkFailure) on a standalone sphere and on clump members; B, yade.bodiesHandling
-(spheresPackDimensions, facetsDimensions, spheresModify in place and as copies, sphereDuplicate)."""
+(spheresPackDimensions, facetsDimensions, spheresModify in place and as copies, sphereDuplicate); C, the
+predicates inEllipsoid, inHyperboloid, inParallelepiped, notInNotch (YADE's quirks kept) on a grid with pads,
+and a regularHexa packing clipped by them."""
 from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 YADE_LINES = [
@@ -20,6 +22,23 @@ YADE_LINES = [
     'B True',
     'B (0.046174240366486506, 0.008382079286756343, 0.017616469565653825) 0.005200000000000001 0.0015313412740979727 (1.6562987220643675e-08, 1.6562987220643675e-08, 1.6562987220643675e-08)',
     'B 2 False',
+    'C inEllipsoid 0 1312 2857280334',
+    'C inEllipsoid 0.05 1039 4102864332',
+    'C inEllipsoid -0.03 1499 3137506924',
+    'C inEllipsoid [(-0.9, -0.8999999999999999, -0.4), (1.1, 0.49999999999999994, 0.5)]',
+    'C inHyperboloid 0 2760 119902406',
+    'C inHyperboloid 0.05 2132 3752312512',
+    'C inHyperboloid -0.03 3218 3846352039',
+    'C inHyperboloid [(-0.8955445270895245, -0.8988882021697693, -1.1), (1.0955445270895245, 0.9988882021697693, 1.1)]',
+    'C inParallelepiped 0 725 2101701862',
+    'C inParallelepiped 0.05 502 593667683',
+    'C inParallelepiped -0.03 877 3234334088',
+    'C inParallelepiped [(0.0, -0.2, 0.0), (1.3, 1.0, 0.9)]',
+    'C notInNotch 0 12065 2015286715',
+    'C notInNotch 0.05 11745 94902621',
+    'C notInNotch -0.03 12240 3861958663',
+    'C notInNotch [(-inf, -inf, -inf), (inf, inf, inf)]',
+    'C 848 (-0.2385, -0.04613615326096476, -0.08261820090981617) (0.2740000000000001, 0.013042249330971922, 0.01781087854429414)',
 ]
 
 

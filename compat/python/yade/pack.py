@@ -8,7 +8,8 @@ from ._errors import unsupported
 from .minieigen import Matrix3, Quaternion, Vector3, to_vec3
 
 __all__ = ['SpherePack', 'Predicate', 'PredicateUnion', 'PredicateIntersection', 'PredicateDifference',
-           'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'regularOrtho', 'regularHexa',
+           'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'inEllipsoid',
+           'inHyperboloid', 'inParallelepiped', 'notInNotch', 'regularOrtho', 'regularHexa',
            'arange', 'gtsSurface2Facets', 'sweptPolylines2gtsSurface', 'revolutionSurfaceMeridians']
 
 import itertools as _itertools  # noqa: E402
@@ -298,6 +299,108 @@ class inCylinder(Predicate):
                     _math.sqrt((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) / ht)
         mn, mx = _cwise(_min, a, b), _cwise(_max, a, b)
         return mn - self._r * k, mx + self._r * k
+
+
+def _csqrt(x):
+    """C's sqrt: NaN for a negative argument (Python's raises)."""
+    return _math.sqrt(x) if x >= 0 else float('nan')
+
+
+class inEllipsoid(Predicate):
+    """_packPredicates.cpp inEllipsoid (axis-aligned, center c, semi-axes abc). YADE's test, kept on
+    purpose: pt is inside when |pt - c| <= |e - c| for the point e of the (padded) ellipsoid's surface
+    with pt's y and z (no such point: outside)."""
+
+    def __init__(self, centre, abc):
+        self._c, self._abc = _v(centre, 'centre'), _v(abc, 'abc')
+
+    def __call__(self, pt, pad=0.):
+        p, c, abc = _v(pt, 'pt'), self._c, self._abc
+        pw = _math.pow
+        x = _csqrt((1 - pw(p[1] - c[1], 2) / ((abc[1] - pad) * (abc[1] - pad))
+                    - pw(p[2] - c[2], 2) / ((abc[2] - pad) * (abc[2] - pad))) * ((abc[0] - pad) * (abc[0] - pad))) + c[0]
+        return (p - c).norm() <= (Vector3(x, p[1], p[2]) - c).norm()
+
+    def aabb(self):
+        c, abc = self._c, self._abc
+        return (Vector3(c[0] - abc[0], c[1] - abc[1], c[2] - abc[2]), Vector3(c[0] + abc[0], c[1] + abc[1], c[2] + abc[2]))
+
+
+class inHyperboloid(Predicate):
+    """_packPredicates.cpp inHyperboloid: a hyperboloid of one sheet between centers c1 and c2, radius R
+    at the ends and r at the waist (pad taken perpendicular to the axis, as YADE does)."""
+
+    def __init__(self, centerBottom, centerTop, radius, skirt):
+        self._c1, self._c2 = _v(centerBottom, 'centerBottom'), _v(centerTop, 'centerTop')
+        self._R, self._a = float(radius), float(skirt)
+        self._c12 = self._c2 - self._c1
+        self._ht = self._c12.norm()
+        self._c = self._ht / (2 * _csqrt(_math.pow(self._R / self._a, 2) - 1))
+
+    def __call__(self, pt, pad=0.):
+        p, ht = _v(pt, 'pt'), self._ht
+        v = (p.dot(self._c12) - self._c1.dot(self._c12)) / (ht * ht)
+        if v * ht < 0 + pad or v * ht > ht - pad:
+            return False
+        u = (v - .5) * ht / self._c
+        r_here = self._a * _csqrt(1 + u * u)
+        return not ((p - self._c1).cross(p - self._c2).norm() / ht > r_here - pad)
+
+    def aabb(self):
+        return inCylinder(self._c1, self._c2, self._R).aabb()
+
+
+class inParallelepiped(Predicate):
+    """_packPredicates.cpp inParallelepiped: the parallelepiped with corner o and edges to a, b, c."""
+
+    def __init__(self, o, a, b, c):
+        o, a, b, c = (_v(x, k) for x, k in ((o, 'o'), (a, 'a'), (b, 'b'), (c, 'c')))
+        A, B, C, D, E, F, G, H = o, a, a + (b - o), b, c, c + (a - o), c + (a - o) + (b - o), c + (b - o)
+        x, y, z = B - A, D - A, E - A
+        n0, n2, n4 = -y.cross(z).normalized(), -z.cross(x).normalized(), -x.cross(y).normalized()
+        self._planes = ((n0, A), (-n0, B), (n2, A), (-n2, D), (n4, A), (-n4, E))
+        mn, mx = Vector3(A), Vector3(A)
+        for q in (B, C, D, E, F, G, H):
+            mn, mx = _cwise(_min, mn, q), _cwise(_max, mx, q)
+        self._mn, self._mx = mn, mx
+
+    def __call__(self, pt, pad=0.):
+        p = _v(pt, 'pt')
+        return not any((p - q).dot(n) > -pad for n, q in self._planes)
+
+    def aabb(self):
+        return Vector3(self._mn), Vector3(self._mx)
+
+
+class notInNotch(Predicate):
+    """_packPredicates.cpp notInNotch: everything but a notch (edge direction, opening `normal`, width
+    `aperture`) cut from `centre`; unbounded. YADE's test for a point below the notch uses the distance
+    above it (distUp), kept on purpose."""
+
+    def __init__(self, centre, edge, normal, aperture):
+        self._c = _v(centre, 'centre')
+        e = _v(edge, 'edge').normalized()
+        n = _v(normal, 'normal')
+        n = (n - e * e.dot(n)).normalized()
+        self._edge, self._normal, self._inside = e, n, e.cross(n)
+        self._aperture = float(aperture)
+
+    def __call__(self, pt, pad=0.):
+        d = _v(pt, 'pt') - self._c
+        up = self._normal.dot(d) - self._aperture / 2
+        down = -self._normal.dot(d) - self._aperture / 2
+        in_plane = -self._inside.dot(d)
+        if in_plane >= pad or up >= pad or down >= pad:
+            return True
+        if in_plane < 0:
+            return False
+        if up > 0 or down > 0:
+            return _math.sqrt(_math.pow(in_plane, 2) + _math.pow(up, 2)) >= pad
+        return False
+
+    def aabb(self):
+        inf = float('inf')
+        return Vector3(-inf, -inf, -inf), Vector3(inf, inf, inf)
 
 
 # ---------------------------------------------------------------- regular packings (py/pack/pack.py)

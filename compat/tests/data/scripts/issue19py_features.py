@@ -45,3 +45,18 @@ print('B', bh.spheresModify([s3], scale=1.3, orientation=Quaternion((0, 0, 1), 0
 b = O.bodies[s3]
 print('B', tuple(b.state.pos), b.shape.radius, b.state.mass, tuple(b.state.inertia))
 print('B', len(O.bodies.append(cps)), bh.sphereDuplicate(f1))
+
+# C: the solid predicates inEllipsoid, inHyperboloid, inParallelepiped, notInNotch (inside-bits on a grid, with pads)
+import itertools
+preds = [pack.inEllipsoid((0.1, -0.2, 0.05), (1.0, 0.7, 0.45)),
+         pack.inHyperboloid((0, 0, -1), (0.2, 0.1, 1), 0.9, 0.5),
+         pack.inParallelepiped((0, 0, 0), (1, 0.1, 0), (0.2, 0.9, 0.1), (0.1, -0.2, 0.8)),
+         pack.notInNotch((0, 0, 0), (1, 0.2, 0), (0, 1, 0.3), 0.2)]
+grid = [Vector3(-1.2 + 0.1 * i, -1.1 + 0.1 * j, -1.05 + 0.1 * k) for i, j, k in itertools.product(range(25), range(23), range(22))]
+for p in preds:
+    for pad in (0, 0.05, -0.03):
+        print('C', type(p).__name__, pad, ''.join('1' if p(q, pad) else '0' for q in grid).count('1'),
+              hash(tuple(p(q, pad) for q in grid)) & 0xffffffff)
+    print('C', type(p).__name__, [tuple(x) for x in p.aabb()])
+sp = pack.regularHexa(pack.inEllipsoid((0, 0, 0), (0.3, 0.2, 0.25)) - pack.inSphere((0.1, 0, 0), 0.1), 0.02, 0.001)
+print('C', len(sp), tuple(sp[0].state.pos), tuple(sp[-1].state.pos))
