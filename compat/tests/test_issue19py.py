@@ -4,7 +4,8 @@ YADE is installed): A, YADE's `bf` clump-breakage functions (stressTensor in flo
 roundings, checkFailure) on a standalone sphere and on clump members; B, yade.bodiesHandling
 (spheresPackDimensions, facetsDimensions, spheresModify in place and as copies, sphereDuplicate); C, the
 predicates inEllipsoid, inHyperboloid, inParallelepiped, notInNotch (YADE's quirks kept) on a grid with pads,
-and a regularHexa packing clipped by them."""
+and a regularHexa packing clipped by them; D, O.bodies.getRoundness (with exclude lists) and clumpTemplate
+(with its errors)."""
 from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 YADE_LINES = [
@@ -39,6 +40,12 @@ YADE_LINES = [
     'C notInNotch -0.03 12240 3861958663',
     'C notInNotch [(-inf, -inf, -inf), (inf, inf, inf)]',
     'C 848 (-0.2385, -0.04613615326096476, -0.08261820090981617) (0.2740000000000001, 0.013042249330971922, 0.01781087854429414)',
+    'D 0.8811788325207747 0.9384664010638033 0.8649136632685436',
+    'D 2 [1, 0.5] [[0, 0, 0], [0.7, 0, 0]]',
+    'D One or more of given lists for relative radii have length < 2! Given lists does not match clump template structure.',
+    'D Two or more of given lists for relative positions are equal! Given lists does not match clump template structure.',
+    'D One or more of given lists for relative positions do not have length of 3! Given lists does not match clump template structure.',
+    'D Given lists must have same length! Given lists does not match clump template structure.',
 ]
 
 

@@ -60,3 +60,15 @@ for p in preds:
     print('C', type(p).__name__, [tuple(x) for x in p.aabb()])
 sp = pack.regularHexa(pack.inEllipsoid((0, 0, 0), (0.3, 0.2, 0.25)) - pack.inSphere((0.1, 0, 0), 0.1), 0.02, 0.001)
 print('C', len(sp), tuple(sp[0].state.pos), tuple(sp[-1].state.pos))
+
+# D: O.bodies.getRoundness, clumpTemplate
+c2, _ = O.bodies.appendClumped([sphere((1, 1, 1), 0.1, material=mat), sphere((1.12, 1, 1.01), 0.05, material=mat),
+                                sphere((1, 1.1, 0.95), 0.07, material=mat)])
+print('D', O.bodies.getRoundness(), O.bodies.getRoundness([c]), O.bodies.getRoundness([s0, s3, c2]))
+t = clumpTemplate(relRadii=[1, .5], relPositions=[[0, 0, 0], [.7, 0, 0]])
+print('D', t.numCM, t.relRadii, t.relPositions)
+for args in (([1], [[0, 0, 0]]), ([1, 2], [[0, 0, 0], [0, 0, 0]]), ([1, 2], [[0, 0], [1, 0, 0]]), ([1, 2, 3], [[0, 0, 0]])):
+    try:
+        clumpTemplate(*args)
+    except ValueError as e:
+        print('D', e)
