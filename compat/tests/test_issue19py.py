@@ -5,7 +5,8 @@ roundings, checkFailure) on a standalone sphere and on clump members; B, yade.bo
 (spheresPackDimensions, facetsDimensions, spheresModify in place and as copies, sphereDuplicate); C, the
 predicates inEllipsoid, inHyperboloid, inParallelepiped, notInNotch (YADE's quirks kept) on a grid with pads,
 and a regularHexa packing clipped by them; D, O.bodies.getRoundness (with exclude lists) and clumpTemplate
-(with its errors)."""
+(with its errors); E, the gts stand-in (sweptPolylines2gtsSurface with caps and cleanup, closedness, area,
+volume) and inGtsSurface on a grid, with a pad and in regularHexa."""
 from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 YADE_LINES = [
@@ -46,6 +47,12 @@ YADE_LINES = [
     'D Two or more of given lists for relative positions are equal! Given lists does not match clump template structure.',
     'D One or more of given lists for relative positions do not have length of 3! Given lists does not match clump template structure.',
     'D Given lists must have same length! Given lists does not match clump template structure.',
+    'E 38 21 57 True 13.7674556356 3.97144332044',
+    'E [(-1.1712595282731448, -1.2674062858363708, 0.0), (1.3, 1.2674062858363708, 1.2)]',
+    'E 0 3937 1049764277',
+    'E 0.1 2698 1475770508',
+    'E 512 True',
+    'E False Surface is not closed.',
 ]
 
 

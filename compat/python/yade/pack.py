@@ -9,7 +9,7 @@ from .minieigen import Matrix3, Quaternion, Vector3, to_vec3
 
 __all__ = ['SpherePack', 'Predicate', 'PredicateUnion', 'PredicateIntersection', 'PredicateDifference',
            'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'inEllipsoid',
-           'inHyperboloid', 'inParallelepiped', 'notInNotch', 'regularOrtho', 'regularHexa',
+           'inHyperboloid', 'inParallelepiped', 'notInNotch', 'inGtsSurface', 'regularOrtho', 'regularHexa',
            'arange', 'gtsSurface2Facets', 'sweptPolylines2gtsSurface', 'revolutionSurfaceMeridians']
 
 import itertools as _itertools  # noqa: E402
@@ -401,6 +401,88 @@ class notInNotch(Predicate):
     def aabb(self):
         inf = float('inf')
         return Vector3(-inf, -inf, -inf), Vector3(inf, inf, inf)
+
+
+def _orient3d(a, b, c, d):
+    """Shewchuk's orient3d sign (as GTS's gts_point_orientation_3d): the sign of det[a-d; b-d; c-d],
+    exact (a float estimate, redone in rationals when it is within its error bound of zero)."""
+    adx, ady, adz = a.x - d.x, a.y - d.y, a.z - d.z
+    bdx, bdy, bdz = b.x - d.x, b.y - d.y, b.z - d.z
+    cdx, cdy, cdz = c.x - d.x, c.y - d.y, c.z - d.z
+    det = adx * (bdy * cdz - bdz * cdy) + bdx * (cdy * adz - cdz * ady) + cdx * (ady * bdz - adz * bdy)
+    perm = (abs(adx) * (abs(bdy * cdz) + abs(bdz * cdy)) + abs(bdx) * (abs(cdy * adz) + abs(cdz * ady))
+            + abs(cdx) * (abs(ady * bdz) + abs(adz * bdy)))
+    if abs(det) > 1e-14 * perm:
+        return 1 if det > 0 else -1
+    from fractions import Fraction as F
+    ax, ay, az = (F(a.x) - F(d.x), F(a.y) - F(d.y), F(a.z) - F(d.z))
+    bx, by, bz = (F(b.x) - F(d.x), F(b.y) - F(d.y), F(b.z) - F(d.z))
+    cx, cy, cz = (F(c.x) - F(d.x), F(c.y) - F(d.y), F(c.z) - F(d.z))
+    e = ax * (by * cz - bz * cy) + bx * (cy * az - cz * ay) + cx * (ay * bz - az * by)
+    return (e > 0) - (e < 0)
+
+
+def _ray_crosses(D, E, tri):
+    """GTS's ray_intersects_triangle (surface.c): does segment D-E cross triangle tri (its oriented
+    vertices A, B, C)? Exact orientations; a zero one (the segment touching an edge or a vertex, where
+    GTS breaks the tie by the objects' memory addresses) counts as a crossing here."""
+    A, B, C = tri
+    abce, abcd = _orient3d(A, B, C, E), _orient3d(A, B, C, D)
+    if abce < 0 or abcd > 0:
+        D, E, abce, abcd = E, D, abcd, abce
+    if abce < 0 or abcd > 0:
+        return False
+    return _orient3d(A, D, C, E) >= 0 and _orient3d(A, B, D, E) >= 0 and _orient3d(B, C, D, E) >= 0
+
+
+class inGtsSurface(Predicate):
+    """_packPredicates.cpp inGtsSurface: inside the closed GTS surface `surf` (GTS's
+    gts_point_is_inside_surface: the parity of the crossings of a ray shot in +z from the point; an
+    "open" surface, of negative volume, inverts it); with a pad, the six points at +-pad along the axes
+    must be inside too, unless `noPad`."""
+
+    def __init__(self, surf, noPad=False):
+        if not surf.is_closed():
+            raise ValueError('Surface is not closed.')
+        self._surf, self._noPad = surf, bool(noPad)
+        self._open = surf.volume() < 0.
+        self._tris = []
+        for f in surf.faces():
+            vs = f.vertices()
+            xs, ys, zs = [v.x for v in vs], [v.y for v in vs], [v.z for v in vs]
+            self._tris.append((vs, min(xs), max(xs), min(ys), max(ys), max(zs)))
+        self._ztop = max(t[5] for t in self._tris)
+
+    def surface(self):
+        return self._surf
+
+    def _check(self, p):
+        class _P(object):
+            __slots__ = ('x', 'y', 'z')
+
+            def __init__(self, x, y, z):
+                self.x, self.y, self.z = x, y, z
+        D, E = _P(p[0], p[1], p[2]), _P(p[0], p[1], self._ztop + abs(self._ztop) / 10.)
+        n = 0
+        for vs, x1, x2, y1, y2, z2 in self._tris:  # gts_bbox_is_stabbed by the +z ray, then the exact test
+            if x1 <= D.x <= x2 and y1 <= D.y <= y2 and D.z <= z2 and _ray_crosses(D, E, vs):
+                n += 1
+        return (n % 2 == 0) if self._open else (n % 2 != 0)
+
+    def __call__(self, pt, pad=0.):
+        p = _v(pt, 'pt')
+        if self._noPad:
+            return self._check(p)
+        return all(self._check(q) for q in (p, p - Vector3(pad, 0, 0), p + Vector3(pad, 0, 0), p - Vector3(0, pad, 0),
+                                             p + Vector3(0, pad, 0), p - Vector3(0, 0, pad), p + Vector3(0, 0, pad)))
+
+    def aabb(self):
+        inf = float('inf')
+        mn, mx = Vector3(inf, inf, inf), Vector3(-inf, -inf, -inf)
+        for v in self._surf.vertices():
+            q = Vector3(v.x, v.y, v.z)
+            mn, mx = _cwise(_min, mn, q), _cwise(_max, mx, q)
+        return mn, mx
 
 
 # ---------------------------------------------------------------- regular packings (py/pack/pack.py)

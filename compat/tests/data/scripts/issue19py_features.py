@@ -72,3 +72,21 @@ for args in (([1], [[0, 0, 0]]), ([1, 2], [[0, 0, 0], [0, 0, 0]]), ([1, 2], [[0,
         clumpTemplate(*args)
     except ValueError as e:
         print('D', e)
+
+# E: gts surfaces (sweptPolylines2gtsSurface, cleanup, volume, area) and inGtsSurface
+import gts
+loop = lambda z, r: [(r * cos(2 * pi * k / 7), r * sin(2 * pi * k / 7), z) for k in range(8)]
+surf = pack.sweptPolylines2gtsSurface([loop(0, 1), loop(0.5, 1.3), loop(1.2, 0.8)], threshold=1e-6, capStart=True, capEnd=True)
+# area and volume to 12 digits: GTS sums the faces in an order that changes from run to run
+print('E', surf.Nfaces, surf.Nvertices, surf.Nedges, surf.is_closed(), '%.12g %.12g' % (surf.area(), surf.volume()))
+pred = pack.inGtsSurface(surf)
+print('E', [tuple(x) for x in pred.aabb()])
+grid = [Vector3(-1.4 + 0.1 * i, -1.4 + 0.1 * j, -0.1 + 0.1 * k) for i, j, k in itertools.product(range(29), range(29), range(15))]
+for pad in (0, 0.1):
+    print('E', pad, sum(1 for q in grid if pred(q, pad)), hash(tuple(pred(q, pad) for q in grid)) & 0xffffffff)
+print('E', len(pack.regularHexa(pred, 0.1, 0.0)), pack.inGtsSurface(surf, noPad=True)((0, 0, 0.6), 5))
+s2 = pack.sweptPolylines2gtsSurface([loop(0, 1), loop(1, 1)])
+try:
+    pack.inGtsSurface(s2)
+except ValueError as e:
+    print('E', s2.is_closed(), e)
