@@ -49,8 +49,8 @@ YADE_LINES = [
     'D Given lists must have same length! Given lists does not match clump template structure.',
     'E 38 21 57 True 13.7674556356 3.97144332044',
     'E [(-1.1712595282731448, -1.2674062858363708, 0.0), (1.3, 1.2674062858363708, 1.2)]',
-    'E 0 3937 1049764277',
-    'E 0.1 2698 1475770508',
+    'E 0 1987 3516469842',
+    'E 0.1 1386 2007661143',
     'E 512 True',
     'E False Surface is not closed.',
 ]

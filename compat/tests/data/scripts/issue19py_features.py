@@ -81,7 +81,7 @@ surf = pack.sweptPolylines2gtsSurface([loop(0, 1), loop(0.5, 1.3), loop(1.2, 0.8
 print('E', surf.Nfaces, surf.Nvertices, surf.Nedges, surf.is_closed(), '%.12g %.12g' % (surf.area(), surf.volume()))
 pred = pack.inGtsSurface(surf)
 print('E', [tuple(x) for x in pred.aabb()])
-grid = [Vector3(-1.4 + 0.1 * i, -1.4 + 0.1 * j, -0.1 + 0.1 * k) for i, j, k in itertools.product(range(29), range(29), range(15))]
+grid = [Vector3(-1.4 + 0.14 * i, -1.4 + 0.14 * j, -0.1 + 0.1 * k) for i, j, k in itertools.product(range(21), range(21), range(15))]
 for pad in (0, 0.1):
     print('E', pad, sum(1 for q in grid if pred(q, pad)), hash(tuple(pred(q, pad) for q in grid)) & 0xffffffff)
 print('E', len(pack.regularHexa(pred, 0.1, 0.0)), pack.inGtsSurface(surf, noPad=True)((0, 0, 0.6), 5))
