@@ -6,7 +6,7 @@ roundings, checkFailure) on a standalone sphere and on clump members; B, yade.bo
 predicates inEllipsoid, inHyperboloid, inParallelepiped, notInNotch (YADE's quirks kept) on a grid with pads,
 and a regularHexa packing clipped by them; D, O.bodies.getRoundness (with exclude lists) and clumpTemplate
 (with its errors); E, the gts stand-in (sweptPolylines2gtsSurface with caps and cleanup, closedness, area,
-volume) and inGtsSurface on a grid, with a pad and in regularHexa."""
+volume) and inGtsSurface on a grid, with a pad and in regularHexa; F, pack.hexaNet."""
 from _scripts import needs_compat, needs_yade, tagged_lines, tagged_lines_both
 
 YADE_LINES = [
@@ -53,6 +53,14 @@ YADE_LINES = [
     'E 0.1 1386 2007661143',
     'E 512 True',
     'E False Surface is not closed.',
+    'F True True 12 0.16 0.115 [(0.1, -0.085, 0.3), (0.26, -0.085, 0.3), (0.1, -0.2, 0.3)] (0.22000000000000003, -0.08499999999999999, 0.3)',
+    'F True True 16 0.16 0.19 [(0.1, -0.2, 0.3), (0.1, -0.16, 0.3), (0.18, -0.2, 0.3)] (0.26, -0.009999999999999988, 0.3)',
+    'F True False 14 0.2 0.115 [(0.1, -0.085, 0.3), (0.30000000000000004, -0.2, 0.3), (0.1, -0.2, 0.3)] (0.30000000000000004, -0.08499999999999999, 0.3)',
+    'F True False 20 0.2 0.19 [(0.30000000000000004, -0.2, 0.3), (0.30000000000000004, -0.010000000000000009, 0.3), (0.1, -0.2, 0.3)] (0.26, -0.009999999999999988, 0.3)',
+    'F False True 12 0.16 0.115 [(0.1, -0.2, 0.3), (0.26, -0.2, 0.3), (0.14, -0.2, 0.3)] (0.26, -0.08499999999999999, 0.3)',
+    'F False True 18 0.16 0.19 [(0.1, -0.2, 0.3), (0.1, -0.010000000000000009, 0.3), (0.26, -0.2, 0.3)] (0.22000000000000003, -0.009999999999999988, 0.3)',
+    'F False False 14 0.2 0.115 [(0.1, -0.2, 0.3), (0.30000000000000004, -0.085, 0.3), (0.14, -0.2, 0.3)] (0.26, -0.08499999999999999, 0.3)',
+    'F False False 20 0.2 0.19 [(0.1, -0.2, 0.3), (0.1, -0.010000000000000009, 0.3), (0.14, -0.2, 0.3)] (0.30000000000000004, -0.009999999999999988, 0.3)',
 ]
 
 

@@ -10,7 +10,7 @@ from .minieigen import Matrix3, Quaternion, Vector3, to_vec3
 __all__ = ['SpherePack', 'Predicate', 'PredicateUnion', 'PredicateIntersection', 'PredicateDifference',
            'PredicateSymmetricDifference', 'inSphere', 'inAlignedBox', 'inCylinder', 'inEllipsoid',
            'inHyperboloid', 'inParallelepiped', 'notInNotch', 'inGtsSurface', 'regularOrtho', 'regularHexa',
-           'arange', 'gtsSurface2Facets', 'sweptPolylines2gtsSurface', 'revolutionSurfaceMeridians']
+           'arange', 'gtsSurface2Facets', 'sweptPolylines2gtsSurface', 'revolutionSurfaceMeridians', 'hexaNet']
 
 import itertools as _itertools  # noqa: E402
 import math as _math  # noqa: E402
@@ -596,6 +596,59 @@ def revolutionSurfaceMeridians(sects, angles, origin=Vector3.Zero, orientation=Q
         return tuple(origin + orientation * Vector3(x, y, z))
     return [[place(r * _math.cos(angles[i]), r * _math.sin(angles[i]), z) for r, z in sects[i]]
             for i in range(len(sects))]
+
+
+def hexaNet(radius, cornerCoord=[0, 0, 0], xLength=1., yLength=0.5, mos=0.08, a=0.04, b=0.04, startAtCorner=True,
+            isSymmetric=False, **kw):
+    """The spheres of a hexagonal wire net in the x-y plane for WireMatPM (py/pack/pack.py hexaNet): double
+    twists of length `a` every `mos` along x, rows `a` + `b` apart along y, corner particles first;
+    returns [spheres, lx, ly] (the net's exact size). **kw goes to utils.sphere."""
+    if xLength < mos:
+        raise ValueError("xLength must be greater than mos!")
+    if yLength < 2 * a + b:
+        raise ValueError("yLength must be greater than 2*a+b!")
+    x0, y0, z = cornerCoord[0], cornerCoord[1], cornerCoord[2]
+    ab = a + b
+    ny = int((yLength - a) / ab) + 1
+    ly = ny * a + (ny - 1) * b
+    jump = 0
+    if isSymmetric:
+        nx = int(xLength / mos) + 1
+        lx = (nx - 1) * mos
+        if not startAtCorner:
+            nx += -1
+    else:
+        nx = int((xLength - 0.5 * mos) / mos) + 1
+        lx = (nx - 1) * mos + 0.5 * mos
+
+    def at(x, y):
+        return utils.sphere((x, y, z), radius=radius, **kw)
+    lower_left, upper_left = (x0, y0), (x0, y0 + ly)
+    lower_right, upper_right = (x0 + lx, y0), (x0 + lx, y0 + ly)
+    even = ny % 2 == 0  # an even number of rows: no symmetry in y
+    if startAtCorner:
+        if even:
+            corners = [upper_left, upper_right if isSymmetric else lower_right]
+        else:
+            corners = [] if isSymmetric else [lower_right, upper_right]
+        jump = 1
+    else:
+        if even:
+            corners = [lower_left, lower_right if isSymmetric else upper_right]
+        else:
+            corners = [lower_left, upper_left] + ([lower_right, upper_right] if isSymmetric else [])
+        x0 += 0.5 * mos
+    net = [at(*c) for c in corners]
+    for i in range(ny):
+        y = y0 + i * ab
+        for j in range(nx):
+            x = x0 + j * mos
+            net += [at(x, y), at(x, y + a)]  # one double twist
+        # the next row starts half a mesh to the other side (and, symmetric, has one twist more or less)
+        x0 = x0 - 0.5 * mos * pow(-1, i + jump)
+        if isSymmetric:
+            nx = int(nx + 1 * pow(-1, i + jump))
+    return [net, lx, ly]
 
 
 def _g6(x):

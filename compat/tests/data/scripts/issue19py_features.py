@@ -90,3 +90,9 @@ try:
     pack.inGtsSurface(s2)
 except ValueError as e:
     print('E', s2.is_closed(), e)
+
+# F: pack.hexaNet (every startAtCorner / isSymmetric / row-parity case)
+for corner, sym, ly in itertools.product((True, False), (True, False), (0.15, 0.2)):
+    net, lx, lyr = pack.hexaNet(0.01, cornerCoord=[0.1, -0.2, 0.3], xLength=0.23, yLength=ly, mos=0.08, a=0.04, b=0.035,
+                                startAtCorner=corner, isSymmetric=sym, fixed=True)
+    print('F', corner, sym, len(net), lx, lyr, [tuple(s.state.pos) for s in net[:3]], tuple(net[-1].state.pos))
