@@ -311,8 +311,8 @@ class inEllipsoid(Predicate):
     purpose: pt is inside when |pt - c| <= |e - c| for the point e of the (padded) ellipsoid's surface
     with pt's y and z (no such point: outside)."""
 
-    def __init__(self, centre, abc):
-        self._c, self._abc = _v(centre, 'centre'), _v(abc, 'abc')
+    def __init__(self, centerPoint, abc):
+        self._c, self._abc = _v(centerPoint, 'centerPoint'), _v(abc, 'abc')
 
     def __call__(self, pt, pad=0.):
         p, c, abc = _v(pt, 'pt'), self._c, self._abc
@@ -374,11 +374,11 @@ class inParallelepiped(Predicate):
 
 class notInNotch(Predicate):
     """_packPredicates.cpp notInNotch: everything but a notch (edge direction, opening `normal`, width
-    `aperture`) cut from `centre`; unbounded. YADE's test for a point below the notch uses the distance
+    `aperture`) cut from `centerPoint`; unbounded. YADE's test for a point below the notch uses the distance
     above it (distUp), kept on purpose."""
 
-    def __init__(self, centre, edge, normal, aperture):
-        self._c = _v(centre, 'centre')
+    def __init__(self, centerPoint, edge, normal, aperture):
+        self._c = _v(centerPoint, 'centerPoint')
         e = _v(edge, 'edge').normalized()
         n = _v(normal, 'normal')
         n = (n - e * e.dot(n)).normalized()
@@ -436,12 +436,13 @@ def _ray_crosses(D, E, tri):
 
 
 class inGtsSurface(Predicate):
-    """_packPredicates.cpp inGtsSurface: inside the closed GTS surface `surf` (GTS's
+    """_packPredicates.cpp inGtsSurface: inside the closed GTS surface `surface` (GTS's
     gts_point_is_inside_surface: the parity of the crossings of a ray shot in +z from the point; an
     "open" surface, of negative volume, inverts it); with a pad, the six points at +-pad along the axes
     must be inside too, unless `noPad`."""
 
-    def __init__(self, surf, noPad=False):
+    def __init__(self, surface, noPad=False):
+        surf = surface
         if not surf.is_closed():
             raise ValueError('Surface is not closed.')
         self._surf, self._noPad = surf, bool(noPad)
