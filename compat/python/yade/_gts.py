@@ -385,14 +385,15 @@ class Surface(Object):
         self._ids = set(id(f) for f in kept)
 
     def write(self, f):
-        """The surface in GTS's ascii format: 'nv ne nf', the vertices, the edges as 1-based vertex
-        indices, the faces as 1-based edge indices."""
+        """The surface in GTS's ascii format (gts_surface_write): 'nv ne nf' and the class names, the
+        vertices (coordinates with 10 significant digits, as GTS prints them), the edges as 1-based vertex
+        indices, the faces as 1-based edge indices; in this stand-in's order, not GTS's."""
         vs, es = self.vertices(), self.edges()
         vi = {id(v): i + 1 for i, v in enumerate(vs)}
         ei = {id(e): i + 1 for i, e in enumerate(es)}
-        f.write('%d %d %d\n' % (len(vs), len(es), len(self._faces)))
+        f.write('%d %d %d GtsSurface GtsFace GtsEdge GtsVertex\n' % (len(vs), len(es), len(self._faces)))
         for v in vs:
-            f.write('%.17g %.17g %.17g\n' % (v.x, v.y, v.z))
+            f.write('%.10g %.10g %.10g\n' % (v.x, v.y, v.z))
         for e in es:
             f.write('%d %d\n' % (vi[id(e.v1)], vi[id(e.v2)]))
         for t in self._faces:
