@@ -92,7 +92,7 @@ def test_bad_and_unsupported_clumps_fail_clearly():
         with pytest.raises(UnsupportedError, match='discretization'):
             call()
     for name in ('replaceByClumps', 'addToClump', 'releaseFromClump', 'deleteClumpMember', 'deleteClumpBody',
-                 'updateClumpProperties', 'getRoundness'):
+                 'updateClumpProperties'):
         with pytest.raises(UnsupportedError, match=name):
             getattr(O.bodies, name)([], [])
     with pytest.raises(RuntimeError, match='already a member of clump #3'):

@@ -261,8 +261,8 @@ class State(Serializable, _ryade.StateBase):
             return Quaternion(*self._values['refOri'])
         return self._values[k]
 
-    @property
     def displ(self):
+        # a method in YADE (State::displ, core/State.hpp): pos - refPos
         return self.pos - self.refPos
 
     def _json_into(self, d):
@@ -350,7 +350,11 @@ class Body(Serializable):
             unsupported('changing Body.%s of a body already in O.bodies' % k)
 
     def intrs(self):
-        return [i for i in self._owner[0].interactions if i.id1 == self._id or i.id2 == self._id] if self._owner else []
+        # Body::py_intrs (core/Body.cpp): the real ones, in the order of Body::intrs, a map by the other id
+        if not self._owner:
+            return []
+        mine = [i for i in self._owner[0].interactions if i.id1 == self._id or i.id2 == self._id]
+        return sorted(mine, key=lambda i: i.id2 if i.id1 == self._id else i.id1)
 
     def _json(self, material_json):
         d = {'id': 0, 'shape': self._values['shape']._json(), 'material': material_json,
@@ -468,6 +472,41 @@ class BodyContainer(object):
         unsupported('O.bodies.replace')
 
 
+def _get_roundness(self, excludeList=[]):
+    """O.bodies.getRoundness (py/wrapper/yadeWrapper.cpp): the mean over standalone spheres (1 each) and
+    clumps (R1/R2: R1 the radius of the sphere of the clump's volume, mass / its last member's density;
+    R2 the radius of the smallest sphere about the clump's center holding its members) of the bodies not
+    in `excludeList`; 0 when there are none."""
+    import warnings
+    excl = set(int(i) for i in excludeList)
+    total, n = 0.0, 0
+    for b in self:
+        if b is None or b.id in excl:
+            continue
+        if isinstance(b.shape, Sphere) and b.isStandalone:
+            total += 1.0
+            n += 1
+        if isinstance(b.shape, Clump):
+            r2 = dens = vol = 0.0
+            for mid in sorted(b.shape.members.keys()):
+                m = self[mid]
+                if isinstance(m.shape, Sphere):
+                    r2 = max((m.state.pos - b.state.pos).norm() + m.shape.radius, r2)
+                    dens = m.material.density
+            if dens > 0.:
+                vol = b.state.mass / dens
+            r1 = math.pow((3. * vol) / (4. * math.pi), 1. / 3.)
+            if r2 < r1:
+                warnings.warn('Something went wrong in getRoundness method (R2 < R1 detected).', UserWarning)
+                return 0
+            total += r1 / r2
+            n += 1
+    return total / (n if n else 1)
+
+
+BodyContainer.getRoundness = _get_roundness
+
+
 def _unsupported_clump_op(name, hint=None):
     def op(self, *a, **kw):
         unsupported('O.bodies.' + name, hint)
@@ -478,7 +517,7 @@ def _unsupported_clump_op(name, hint=None):
 # the clump operations beyond appendClumped/clump (YADE's BodyContainer has them)
 for _name, _hint in (('replaceByClumps', 'build the clumps with O.bodies.appendClumped'), ('addToClump', None),
                      ('releaseFromClump', None), ('deleteClumpMember', None), ('deleteClumpBody', None),
-                     ('updateClumpProperties', None), ('getRoundness', None)):
+                     ('updateClumpProperties', None)):
     setattr(BodyContainer, _name, _unsupported_clump_op(_name, _hint))
 
 

@@ -70,7 +70,8 @@ def _namespace(mod, script=None, args=()):
     ns['O'] = yade.O
     ns['execfile'] = execfile
     # the modules YADE's startup namespace holds (its utils has no __all__, and the yade launcher
-    # imports more); gts, mpmath and remote are not provided by ryade
+    # imports more); gts is ryade's stand-in for PyGTS (yade/_gts.py); mpmath and remote are not provided
+    ns['gts'] = pack._gts()
     import argparse, doctest, itertools, json as _json, os as _os, random, time, types as _types, warnings
     ns.update({'math': math, 'random': random, 'argparse': argparse, 'doctest': doctest, 'itertools': itertools,
                'json': _json, 'os': _os, 'sys': sys, 'time': time, 'types': _types, 'warnings': warnings,
@@ -126,6 +127,9 @@ def run(script, args, mode='check'):
     _errors.SCRIPT = path
     sys.argv = [script] + list(args)
     sys.path.insert(0, os.path.dirname(path))
+    # YADE's yade/__init__.py puts its package folder on sys.path (index 2), so that scripts import its
+    # modules without the prefix (`from bf import evalClump`)
+    sys.path.insert(2, os.path.dirname(os.path.abspath(__file__)))
     # stand-ins for `past`/`future` (YADE's Python has python3-future), after everything installed
     sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), '_fallback'))
     mod = types.ModuleType('__main__')

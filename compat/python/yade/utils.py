@@ -16,7 +16,7 @@ __all__ = ['sphere', 'facet', 'box', 'wall', 'aabbWalls', 'aabbExtrema', 'aabbDi
            'SpherePWaveTimeStep', 'unbalancedForce', 'porosity', 'voxelPorosity', 'kineticEnergy', 'randomColor', 'randomOrientation',
            'typedEngine', 'readParamsFromTable', 'waitIfBatch', 'runningInBatch', 'saveVars', 'loadVars', 'TableParamReader', 'inscribedCircleCenter',
            'boxPorosity', 'avgNumInteractions', 'createInteraction', '_commonBodySetup', 'sumForces', 'sumTorques',
-           'getStress']
+           'getStress', 'growParticle', 'clumpTemplate']
 
 
 def _O():
@@ -255,6 +255,45 @@ def createInteraction(id1, id2, virtualI=False):
 
 def sumTorques(ids, axis, axisPt):
     unsupported('utils.sumTorques')
+
+
+def growParticle(bodyID, multiplier, updateMass=True):
+    """Scale the radius of sphere `bodyID` by `multiplier` (and its mass by multiplier^3, inertia by
+    multiplier^5): Shop::growParticle (preprocessing/dem/Shop_02.cpp). YADE also sets the reference radii
+    of the sphere's contacts, which ryade's core does not expose: a sphere with contacts is refused."""
+    O = _O()
+    b = O.bodies[bodyID]
+    if not isinstance(b.shape, Sphere):
+        raise TypeError('growParticle: body #%d is not a Sphere' % bodyID)
+    if b.intrs():
+        unsupported('utils.growParticle of a sphere with contacts (their reference radii follow it in YADE)')
+    b.shape.radius = b.shape.radius * multiplier
+    if updateMass:
+        b.state.mass = b.state.mass * math.pow(multiplier, 3)
+        b.state.inertia = b.state.inertia * math.pow(multiplier, 5)
+
+
+class clumpTemplate(object):
+    """A clump template for O.bodies.replaceByClumps: relative radii and relative positions (py/utils.py
+    clumpTemplate, with its checks: same lengths, at least two members, 3 coordinates each, no two equal
+    positions)."""
+
+    def __init__(self, relRadii=[], relPositions=[[], []]):
+        if len(relRadii) != len(relPositions):
+            raise ValueError("Given lists must have same length! Given lists does not match clump template structure.")
+        if len(relRadii) < 2:
+            raise ValueError("One or more of given lists for relative radii have length < 2! Given lists does not match "
+                             "clump template structure.")
+        for i, p in enumerate(relPositions):
+            if len(p) != 3:
+                raise ValueError("One or more of given lists for relative positions do not have length of 3! Given lists "
+                                 "does not match clump template structure.")
+            if any(p == q for q in relPositions[i + 1:]):
+                raise ValueError("Two or more of given lists for relative positions are equal! Given lists does not match "
+                                 "clump template structure.")
+        self.numCM = len(relRadii)
+        self.relRadii = relRadii
+        self.relPositions = relPositions
 
 
 def __getattr__(name):
