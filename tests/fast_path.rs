@@ -285,3 +285,16 @@ fn fast_path_refuses_what_it_does_not_model() {
     let e = refusal(&clump);
     assert!(e.contains("lump"), "{}", e);
 }
+
+/// Memory of the fast path on the rolling-resistance golden (printed for the note; the
+/// sizes follow from the types, so the check is only that both kinds of contact storage count).
+#[test]
+fn fast_path_memory_per_contact_counts_rolling_contacts() {
+    let sf = scene_json::load(&root().join("golden/micro_grid/rolling_inc.scene.json")).unwrap();
+    let mut f = FastSim::from_scene(&sf.scene, FastOptions::default()).unwrap();
+    f.run(10);
+    let m = f.memory();
+    eprintln!("rolling_inc: {:?}, {} contacts", m, f.active_contacts());
+    assert!(f.active_contacts() >= 1);
+    assert!(m.per_contact > 300.0, "{:?}", m);
+}

@@ -265,16 +265,16 @@ impl Boundaries {
         (ma & mb) != 0 && !(ma == mb && (ma & self.avoid_self) != 0)
     }
 
-    /// Is a sphere at `x` of radius `r` within `reach` of the boundary? (A cheap test, never false
-    /// for a sphere the Ig2 functor could touch before the next rebuild.)
-    fn near(bd: &Boundary, x: &Vec3, r: f64, skin: f64) -> bool {
+    /// Is a sphere at `x` of radius `r` within `reach` of the boundary (rotation matrix `rot`)? (A
+    /// cheap test, never false for a sphere the Ig2 functor could touch before the next rebuild.)
+    fn near(bd: &Boundary, rot: &crate::math::Mat3, x: &Vec3, r: f64, skin: f64) -> bool {
         let d = x - bd.pos;
         match &bd.shape {
             BShape::Wall { axis, .. } => d[*axis].abs() <= r + skin,
             BShape::Box { ext, p } => {
                 // the outside branch makes contacts up to r (interactionDetectionFactor - 1) apart
                 let r = r * p.interaction_detection_factor.max(1.0);
-                let l = mat_t_vec(&bd.ori.to_rotation_matrix(), &d);
+                let l = mat_t_vec(rot, &d);
                 let mut q2 = 0.0;
                 for k in 0..3 {
                     let o = (l[k].abs() - ext[k]).max(0.0);
@@ -283,7 +283,7 @@ impl Boundaries {
                 q2 <= (r + skin) * (r + skin)
             }
             BShape::Facet { f, reach, .. } => {
-                let l = mat_t_vec(&bd.ori.to_rotation_matrix(), &d);
+                let l = mat_t_vec(rot, &d);
                 l.dot(&f.normal).abs() <= r + skin && l.norm() <= reach + r + skin
             }
         }
@@ -306,12 +306,13 @@ impl Boundaries {
             if !bd.touch {
                 continue;
             }
+            let rot = bd.ori.to_rotation_matrix();
             for (k, (&id, x)) in ids.iter().zip(pos).enumerate() {
                 let key = (bk as u32, id);
                 if let Some(mut c) = known.remove(&key) {
                     c.k = k as u32;
                     out.push(c);
-                } else if self.may_collide(bd.id, id) && Self::near(bd, &v(x), rad[k], skin) {
+                } else if self.may_collide(bd.id, id) && Self::near(bd, &rot, &v(x), rad[k], skin) {
                     out.push(BContact {
                         b: bk as u32,
                         sphere: id,

@@ -729,8 +729,13 @@ impl FastSim {
             .map(|c| c.ghosts.capacity() * size_of::<Ghost>())
             .sum();
         let n = self.len().max(1) as f64;
+        // (a rolling-resistance contact also holds its boxed extension: 6-D rotations, CohFrictPhys)
+        let ext6 = self.contacts6.iter().filter(|c| c.ext.is_some()).count()
+            * size_of::<crate::interaction::IntrExt>();
         let pair_bytes = (self.pairs.capacity() * size_of::<Pair>()
-            + self.contacts.capacity() * size_of::<Contact>()) as f64;
+            + self.contacts.capacity() * size_of::<Contact>()
+            + self.contacts6.capacity() * size_of::<six::C6>()
+            + ext6) as f64;
         Memory {
             per_particle: (body * self.len() + buffers) as f64 / n,
             per_contact: pair_bytes / self.active_contacts().max(1) as f64,
