@@ -47,6 +47,7 @@ fn golden_worst(dir: &str, name: &str, opt: FastOptions) -> (f64, String) {
                         d,
                         format!("step {} body {} {}", step, r.id, golden::BODY_COLS[c]),
                     );
+
                 }
             }
         }
@@ -55,9 +56,11 @@ fn golden_worst(dir: &str, name: &str, opt: FastOptions) -> (f64, String) {
 }
 
 /// Walls, boxes and facets (fixed; contacts by the same Ig2 functors as the YADE-order path):
-/// YADE's every-step values to 1e-9 of each column's scale, one and two threads. The pile (30
-/// spheres falling into a box container, many contacts each) amplifies round-off: 1.4e-8 at
-/// its worst (an angular velocity at step 1189), so it is held to 1e-7.
+/// YADE's every-step values to 1e-9 of each column's scale, one and two threads. The piles
+/// amplify round-off (many contacts per sphere): pile (30 spheres in a box container) 1.4e-8 at
+/// its worst (an angular velocity at step 1189), held to 1e-7; peri_pile (32 spheres on a box
+/// floor bigger than the periodic cell, the study's setup) grows smoothly from 1e-12 at step 539
+/// to 2.2e-6 at step 1427, held to 1e-5. A missed or doubled contact gives errors of order 1.
 #[test]
 fn fast_path_follows_yade_micro_goldens_with_boundaries() {
     for name in [
@@ -68,6 +71,7 @@ fn fast_path_follows_yade_micro_goldens_with_boundaries() {
         "facet_vertex",
         "facet_tilted",
         "pile",
+        "peri_pile",
     ] {
         for threads in [1, 2] {
             let opt = FastOptions {
@@ -75,7 +79,11 @@ fn fast_path_follows_yade_micro_goldens_with_boundaries() {
                 ..Default::default()
             };
             let (w, at) = micro_worst(name, opt);
-            let tol = if name == "pile" { 1e-7 } else { 1e-9 };
+            let tol = match name {
+                "pile" => 1e-7,
+                "peri_pile" => 1e-5,
+                _ => 1e-9,
+            };
             assert!(w < tol, "{} {:?}: {:.3e} at {}", name, opt, w, at);
         }
     }
@@ -271,13 +279,6 @@ fn fast_path_refuses_what_it_does_not_model() {
     s.bodies.mask[last] = 2;
     let e = refusal(&s);
     assert!(e.contains("groupMasks"), "{}", e);
-    // a facet in a periodic cell (its images are not searched)
-    let mut s = scene_json::load(&root().join("golden/micro/facet_face.scene.json"))
-        .unwrap()
-        .scene;
-    s.cell = Some(ryade::cell::Cell::set_box(Vec3::new(10.0, 10.0, 10.0)).unwrap());
-    let e = refusal(&s);
-    assert!(e.contains("Facet in a periodic cell"), "{}", e);
     // clumps
     let clump = scene_json::load(&root().join("golden/micro/clump.scene.json"))
         .unwrap()

@@ -32,7 +32,7 @@ def test_fast_runs_the_sphere_scene_on_the_fast_path():
 
 @needs_compat
 def test_fast_falls_back_with_one_line_and_yade_bits():
-    for mode, why in (('facet', 'Facet'), ('pyrunner', 'PyRunner')):
+    for mode, why in (('rotfacet', 'rotating Facet'), ('pyrunner', 'PyRunner')):
         p0, ref, _ = run([], mode)
         p1, got, notes = run(['--fast'], mode)
         assert p1.returncode == 0, p1.stderr
@@ -42,9 +42,21 @@ def test_fast_falls_back_with_one_line_and_yade_bits():
 
 @needs_compat
 def test_fast_strict_refuses_with_the_reason():
-    p, _, _ = run(['--fast=strict'], 'facet')
+    p, _, _ = run(['--fast=strict'], 'rotfacet')
     assert p.returncode != 0
     assert '--fast=strict' in p.stderr and 'Facet' in p.stderr, p.stderr[-600:]
+
+
+@needs_compat
+def test_fast_runs_a_fixed_facet_in_a_periodic_cell():
+    """A fixed facet in a periodic cell is on the fast path (issue 16 item 2): no fallback line, the YADE-order
+    path's result to round-off."""
+    p0, ref, _ = run([], 'facet')
+    p1, fast, notes = run(['--fast'], 'facet')
+    assert p0.returncode == 0 and p1.returncode == 0, p1.stderr
+    assert notes == []
+    diffs = [abs(a - b) for i in ref for a, b in zip(ref[i], fast[i])]
+    assert max(diffs) < 1e-12 and ref != fast
 
 
 DEPOSIT = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), 'yade_ref', 'bench',

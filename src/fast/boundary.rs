@@ -61,6 +61,9 @@ struct BContact {
     sphere: u32,
     /// The sphere's slot in the fast path's (spatially sorted) arrays.
     k: u32,
+    /// The sphere's period (YADE's `cellDist` of the interaction; zeros without a periodic cell):
+    /// the image nearest the boundary when the pair was listed, kept while it is in contact.
+    cd: [i32; 3],
     geom: Option<ScGeom>,
     phys: Option<FrictPhys>,
     /// The CohFrictPhys part when the physics is Ip2_CohFrictMat_CohFrictMat_CohFrictPhys's.
@@ -94,6 +97,20 @@ pub(super) struct Boundaries {
     avoid_self: i32,
     /// Every body's groupMask, by scene id.
     masks: Vec<i32>,
+    /// The periodic cell's sizes (a static, unsheared cell: `FastSim::from_scene`).
+    period: Option<Vec3>,
+}
+
+/// The shift of period `cd` in a cell of sizes `period` (zeros without one).
+fn shift_of(period: &Option<Vec3>, cd: &[i32; 3]) -> Vec3 {
+    match period {
+        Some(l) => Vec3::new(
+            cd[0] as f64 * l[0],
+            cd[1] as f64 * l[1],
+            cd[2] as f64 * l[2],
+        ),
+        None => Vec3::zeros(),
+    }
 }
 
 fn v(a: &V3) -> Vec3 {
@@ -151,12 +168,6 @@ impl Boundaries {
                 }
             };
             let what = b.shape[id].class_name();
-            if scene.cell.is_some() {
-                return Err(format!(
-                    "the fast path does not support a {} in a periodic cell (#{})",
-                    what, id
-                ));
-            }
             if b.blocked[id] != crate::body::DOF_ALL {
                 return Err(format!(
                     "the fast path does not support a {} that is not fixed (#{}: its blockedDOFs are not 'xyzXYZ')",
@@ -219,6 +230,7 @@ impl Boundaries {
             law: il.cundall_strack.unwrap_or_default(),
             avoid_self: collider.avoid_self_interaction_mask,
             masks: b.mask.clone(),
+            period: scene.cell.as_ref().map(|c| c.size()),
         };
         // the scene's real boundary contacts carry over with their history
         let at: FxHashMap<u32, u32> = bs
@@ -240,6 +252,7 @@ impl Boundaries {
                     b: bk,
                     sphere: it.id2,
                     k: u32::MAX,
+                    cd: it.cell_dist,
                     geom: Some(*g),
                     phys: Some(*ph),
                     ext: it.ext.clone(),
@@ -257,6 +270,14 @@ impl Boundaries {
     /// Real boundary contacts now.
     pub(super) fn real(&self) -> usize {
         self.contacts.iter().filter(|c| c.geom.is_some()).count()
+    }
+
+    /// The period of the sphere image at `x` nearest `at` (zeros without a periodic cell).
+    fn nearest_image(&self, at: &Vec3, x: &V3) -> [i32; 3] {
+        match self.period {
+            Some(l) => std::array::from_fn(|a| ((at[a] - x[a]) / l[a]).round() as i32),
+            None => [0; 3],
+        }
     }
 
     /// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp).
@@ -312,11 +333,16 @@ impl Boundaries {
                 if let Some(mut c) = known.remove(&key) {
                     c.k = k as u32;
                     out.push(c);
-                } else if self.may_collide(bd.id, id) && Self::near(bd, &rot, &v(x), rad[k], skin) {
+                    continue;
+                }
+                let cd = self.nearest_image(&bd.pos, x);
+                let xs = v(x) + shift_of(&self.period, &cd);
+                if self.may_collide(bd.id, id) && Self::near(bd, &rot, &xs, rad[k], skin) {
                     out.push(BContact {
                         b: bk as u32,
                         sphere: id,
                         k: k as u32,
+                        cd,
                         geom: None,
                         phys: None,
                         ext: None,
@@ -343,6 +369,7 @@ impl Boundaries {
             let bd = &mut self.list[c.b as usize];
             let k = c.k as usize;
             let r = s.rad[k];
+            let shift2 = shift_of(&self.period, &c.cd);
             let pr = Pair {
                 s1: Kin {
                     pos: bd.pos,
@@ -356,7 +383,7 @@ impl Boundaries {
                     ang_vel: v(&s.w[k]),
                     ori: s.ori[k],
                 },
-                shift2: Vec3::zeros(),
+                shift2,
                 is_real: c.geom.is_some(),
                 ctx,
             };
@@ -396,7 +423,7 @@ impl Boundaries {
             }
             let bodies = law::LawBodies {
                 pos1: &bd.pos,
-                pos2_shifted: pr.s2.pos,
+                pos2_shifted: pr.s2.pos + shift2,
             };
             match law::load(&self.law, gg, c.phys.as_mut().unwrap(), &bodies, None) {
                 Some(l) => {
@@ -458,7 +485,7 @@ impl Boundaries {
             let bd = &self.list[c.b as usize];
             debug_assert_eq!(ids[c.k as usize], c.sphere);
             // after the functor swap YADE keeps the boundary as id1
-            let mut it = Interaction::new(bd.id, c.sphere, [0; 3], c.made_real);
+            let mut it = Interaction::new(bd.id, c.sphere, c.cd, c.made_real);
             it.functor = match bd.shape {
                 BShape::Wall { .. } => GeomFunctor::WallSphere,
                 BShape::Box { .. } => GeomFunctor::BoxSphere,
