@@ -16,6 +16,42 @@ use crate::body::Bodies;
 use crate::forces::Forces;
 use crate::math::Vec3;
 
+/// What the controller reads and sets of the piston bodies, so that both schedulers (the Scene's
+/// bodies and forces; the fast path's boundaries) run the one law.
+pub trait PistonIo {
+    /// Bodies in the scene (ids at or past it are refused).
+    fn len(&self) -> usize;
+    fn pos_z(&self, id: usize) -> f64;
+    fn vel_z(&self, id: usize) -> f64;
+    fn set_vel(&mut self, id: usize, v: Vec3);
+    /// The z force of this step (0 for a body with no force entry, as `O.forces.f`).
+    fn force_z(&self, id: usize) -> f64;
+}
+
+/// The Scene's bodies and forces as the controller sees them.
+pub struct SceneIo<'a> {
+    pub bodies: &'a mut Bodies,
+    pub forces: &'a Forces,
+}
+
+impl PistonIo for SceneIo<'_> {
+    fn len(&self) -> usize {
+        self.bodies.len()
+    }
+    fn pos_z(&self, id: usize) -> f64 {
+        self.bodies.pos[id][2]
+    }
+    fn vel_z(&self, id: usize) -> f64 {
+        self.bodies.vel[id][2]
+    }
+    fn set_vel(&mut self, id: usize, v: Vec3) {
+        self.bodies.vel[id] = v;
+    }
+    fn force_z(&self, id: usize) -> f64 {
+        self.forces.ft.get(id).map_or(0.0, |w| w.f[2])
+    }
+}
+
 /// The controller's phase (`Study.phase` in study.py, loading phases only; `idle` does nothing).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Phase {
@@ -366,44 +402,38 @@ impl PistonController {
     }
 
     /// study.py `pressure()`: `sum(O.forces.f(i)[2] for i in piston) / A`.
-    fn pressure(&self, forces: &Forces) -> f64 {
-        let fz = |id: usize| forces.ft.get(id).map_or(0.0, |w| w.f[2]);
-        py_sum(self.ids.iter().map(|&id| fz(id)), self.neumaier_sum) / self.area
+    fn pressure(&self, io: &impl PistonIo) -> f64 {
+        py_sum(self.ids.iter().map(|&id| io.force_z(id)), self.neumaier_sum) / self.area
     }
 
     /// study.py `set_piston_vel(v)`: every piston body's `state.vel = Vector3(0, 0, v)`.
-    fn set_velocity(&self, bodies: &mut Bodies, v: f64) {
+    fn set_velocity(&self, io: &mut impl PistonIo, v: f64) {
         for &id in &self.ids {
-            bodies.vel[id] = Vec3::new(0.0, 0.0, v);
+            io.set_vel(id, Vec3::new(0.0, 0.0, v));
         }
     }
 
     /// study.py `piston_bottom()`: the first piston body's z plus the offset.
-    fn piston_bottom(&self, bodies: &Bodies) -> f64 {
-        bodies.pos[self.ids[0]][2] + self.piston_off
+    fn piston_bottom(&self, io: &impl PistonIo) -> f64 {
+        io.pos_z(self.ids[0]) + self.piston_off
     }
 
     /// One step of study.py `tick()` in the phases `approach`, `seat`, `cycle` (nothing when idle),
     /// with the step's synced forces (the engine follows `NewtonIntegrator`). Returns true when the
     /// run must end after this step (study.py `stop_after_this_step()`). The caller checks
     /// `periodic.is_activated` first (`Scene::run_engine`).
-    pub fn action(
-        &mut self,
-        bodies: &mut Bodies,
-        forces: &Forces,
-        iter: i64,
-    ) -> Result<bool, String> {
+    pub fn action(&mut self, io: &mut impl PistonIo, iter: i64) -> Result<bool, String> {
         if self.phase == Phase::Idle {
             return Ok(false);
         }
         if self.ids.is_empty() {
             return Err("RyadePistonController: ids is empty".into());
         }
-        if let Some(&bad) = self.ids.iter().find(|&&id| id >= bodies.len()) {
+        if let Some(&bad) = self.ids.iter().find(|&&id| id >= io.len()) {
             return Err(format!("RyadePistonController: no body #{}", bad));
         }
-        let v_now = bodies.vel[self.ids[0]][2]; // tick(): vNow, this step's piston velocity
-        let p = self.pressure(forces); // tick(): p = self.pressure()
+        let v_now = io.vel_z(self.ids[0]); // tick(): vNow, this step's piston velocity
+        let p = self.pressure(io); // tick(): p = self.pressure()
         self.pf += self.alpha * (p - self.pf); // tick(): self.pf += P.alpha * (p - self.pf)
         let t = (iter - self.iter_seat_end) as f64 * self.dt; // tick(): t = m * P.dt
         let phase = self.phase;
@@ -416,7 +446,7 @@ impl PistonController {
                 stop = true;
             }
             self.v = self.v_approach;
-            self.set_velocity(bodies, self.v_approach); // tick(): set_piston_vel(-0.1)
+            self.set_velocity(io, self.v_approach); // tick(): set_piston_vel(-0.1)
         } else {
             target = if phase == Phase::Seat {
                 self.p_seat
@@ -428,9 +458,9 @@ impl PistonController {
             let v = -(self.kp * e + self.ki * self.i_term); // tick(): v = -(P.Kp * e + P.Ki * self.I)
             let v = clamp_velocity(v, self.vmax); // tick(): max(-a.vmax, min(a.vmax, v))
             self.v = v;
-            self.set_velocity(bodies, v); // tick(): set_piston_vel(v)
+            self.set_velocity(io, v); // tick(): set_piston_vel(v)
             if phase == Phase::Cycle {
-                let zb = self.piston_bottom(bodies); // tick(): zb = self.piston_bottom()
+                let zb = self.piston_bottom(io); // tick(): zb = self.piston_bottom()
                 let c = &mut self.stats;
                 c.n += 1; // tick(): c['n'] += 1
                 c.peak = py_max(c.peak, self.pf); // tick(): c['peak'] = max(c['peak'], self.pf)
@@ -457,7 +487,7 @@ impl PistonController {
                 p_kpa: p / 1e3,
                 pf_kpa: self.pf / 1e3,
                 target_kpa: target / 1e3,
-                z: self.piston_bottom(bodies) - self.z0,
+                z: self.piston_bottom(io) - self.z0,
                 v: v_now,
             });
         }
@@ -766,7 +796,7 @@ mod tests {
             i_term: 0.0,
             ..controller()
         };
-        let stop = c.action(&mut bodies, &forces, 100).unwrap();
+        let stop = c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 100).unwrap();
         assert!(!stop);
         // p = 50 / 0.5 = 100; pf = 60 + 0.5 * 40 = 80; t = 0: target 27600
         assert_eq!(c.p, 100.0);
@@ -798,7 +828,7 @@ mod tests {
         c.pf = 80.0;
         *forces.force_mut(1) = Vec3::new(0.0, 0.0, 20.0);
         *forces.force_mut(2) = Vec3::new(0.0, 0.0, 20.0);
-        c.action(&mut bodies, &forces, 101).unwrap();
+        c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 101).unwrap();
         assert_eq!(c.pf, 80.0);
         assert_eq!(c.v, -(1e-3 * 1.0 + 2e-3 * 0.01));
         assert_eq!(c.stats.n, 1); // seating: no statistics
@@ -815,21 +845,21 @@ mod tests {
             phase: Phase::Approach,
             ..controller()
         };
-        assert!(!c.action(&mut bodies, &forces, 0).unwrap());
+        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 0).unwrap());
         assert_eq!(bodies.vel[0], Vec3::new(0.0, 0.0, -0.1));
         *forces.force_mut(0) = Vec3::new(0.0, 0.0, 27.6e3);
-        assert!(c.action(&mut bodies, &forces, 1).unwrap());
+        assert!(c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 1).unwrap());
         assert_eq!(c.phase, Phase::Idle);
         assert!(!c.stopped);
-        assert!(!c.action(&mut bodies, &forces, 2).unwrap()); // idle: nothing
+        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 2).unwrap()); // idle: nothing
         c.phase = Phase::Cycle;
         c.iter_seat_end = 3;
         c.z_ref = 0.1;
         c.stop_rut = 0.075;
         bodies.pos[0] = Vec3::new(0.0, 0.0, 0.03);
-        assert!(!c.action(&mut bodies, &forces, 3).unwrap()); // rut 0.07
+        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 3).unwrap()); // rut 0.07
         bodies.pos[0] = Vec3::new(0.0, 0.0, 0.02);
-        assert!(c.action(&mut bodies, &forces, 4).unwrap()); // rut 0.08
+        assert!(c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 4).unwrap()); // rut 0.08
         assert!(c.stopped);
         assert_eq!(c.phase, Phase::Idle);
         assert_eq!(c.stats.n, 2);

@@ -695,7 +695,11 @@ impl Scene {
             Engine::Piston(pc) => {
                 activated = pc.periodic.is_activated(self.iter);
                 if activated {
-                    match pc.action(&mut self.bodies, &self.forces, self.iter) {
+                    let mut io = crate::piston::SceneIo {
+                        bodies: &mut self.bodies,
+                        forces: &self.forces,
+                    };
+                    match pc.action(&mut io, self.iter) {
                         Ok(stop) => {
                             self.stop_requested |= stop;
                             Ok(())

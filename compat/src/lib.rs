@@ -1428,6 +1428,10 @@ impl Sim {
                 let k = left.min(SIGNAL_CHECK_STEPS);
                 left -= k;
                 py.allow_threads(|| f.run(k));
+                // an engine ended the run (the study's piston: its stops), as `run_steps` does
+                if f.take_stop() {
+                    break;
+                }
                 r = py.check_signals();
                 if r.is_err() {
                     break;

@@ -99,6 +99,8 @@ pub(super) struct Boundaries {
     masks: Vec<i32>,
     /// The periodic cell's sizes (a static, unsheared cell: `FastSim::from_scene`).
     period: Option<Vec3>,
+    /// Scene id -> index in `list`.
+    at: FxHashMap<u32, u32>,
 }
 
 /// The shift of period `cd` in a cell of sizes `period` (zeros without one).
@@ -231,14 +233,16 @@ impl Boundaries {
             avoid_self: collider.avoid_self_interaction_mask,
             masks: b.mask.clone(),
             period: scene.cell.as_ref().map(|c| c.size()),
+            at: FxHashMap::default(),
         };
         // the scene's real boundary contacts carry over with their history
-        let at: FxHashMap<u32, u32> = bs
+        bs.at = bs
             .list
             .iter()
             .enumerate()
             .map(|(k, x)| (x.id, k as u32))
             .collect();
+        let at = &bs.at;
         for it in &scene.interactions.list {
             let mixed = matches!(
                 it.functor,
@@ -265,6 +269,15 @@ impl Boundaries {
 
     pub(super) fn is_empty(&self) -> bool {
         self.list.is_empty()
+    }
+
+    /// Is body `id` one of the boundaries?
+    pub(super) fn has(&self, id: usize) -> bool {
+        self.at.contains_key(&(id as u32))
+    }
+
+    fn get(&self, id: usize) -> &Boundary {
+        &self.list[self.at[&(id as u32)] as usize]
     }
 
     /// Real boundary contacts now.
@@ -497,5 +510,26 @@ impl Boundaries {
             it.ext = c.ext.clone();
             scene.interactions.insert(it);
         }
+    }
+}
+
+/// The study's piston (`RyadePistonController`) drives boundaries: it reads their z forces of this
+/// step and sets their velocities (`FastSim::from_scene` checks that its ids are boundaries).
+impl crate::piston::PistonIo for Boundaries {
+    fn len(&self) -> usize {
+        self.masks.len()
+    }
+    fn pos_z(&self, id: usize) -> f64 {
+        self.get(id).pos[2]
+    }
+    fn vel_z(&self, id: usize) -> f64 {
+        self.get(id).vel[2]
+    }
+    fn set_vel(&mut self, id: usize, v: Vec3) {
+        let k = self.at[&(id as u32)] as usize;
+        self.list[k].vel = v;
+    }
+    fn force_z(&self, id: usize) -> f64 {
+        self.get(id).force[2]
     }
 }

@@ -112,6 +112,10 @@ pub struct FastSim {
     chunks: Vec<Chunk>,
     /// Fixed walls, boxes and facets and their contacts with the spheres.
     bnd: boundary::Boundaries,
+    /// The study's piston engine (its index in the scene's engines), run after the integration.
+    piston: Option<(usize, crate::piston::PistonController)>,
+    /// An engine asked to end the run after this step (the piston's stops).
+    stop: bool,
     /// Rolling-resistance contacts (ScGeom6D + CohFrictPhys) instead of `contacts`.
     six: Option<six::SixCfg>,
     contacts6: Vec<six::C6>,
@@ -420,6 +424,7 @@ impl FastSim {
         let mut il_seen = None;
         let mut collider = None;
         let mut six_cfg = None;
+        let mut piston = None;
         for (k, e) in scene.engines.iter().enumerate() {
             if scene.is_dead(k) {
                 return unsupported(format!("dead engines ({})", e.class_name()));
@@ -466,6 +471,9 @@ impl FastSim {
                     }
                     il_seen = Some(il.as_ref());
                 }
+                Engine::Piston(pc) if newton.is_some() && piston.is_none() => {
+                    piston = Some((k, pc.as_ref().clone()));
+                }
                 Engine::Newton(n) => {
                     if n.mask > 0 || newton.is_some() {
                         return unsupported("a NewtonIntegrator mask or two integrators".into());
@@ -502,6 +510,14 @@ impl FastSim {
         let b = &scene.bodies;
         // spheres here, walls, boxes and facets in `boundary` (which refuses any other shape)
         let bnd = boundary::Boundaries::from_scene(scene, il, collider)?;
+        if let Some((_, pc)) = &piston {
+            if let Some(&id) = pc.ids.iter().find(|&&id| !bnd.has(id)) {
+                return unsupported(format!(
+                    "a RyadePistonController moving body #{}, which is not a fixed wall, box or facet",
+                    id
+                ));
+            }
+        }
         let mut sphere_ids = Vec::new();
         let mut radius = Vec::new();
         for id in 0..b.len() {
@@ -638,6 +654,8 @@ impl FastSim {
             chunks: vec![],
             bnd,
             six: six_cfg,
+            piston,
+            stop: false,
             contacts6: vec![],
             fmats: scene.materials.clone(),
             pool,
@@ -905,14 +923,30 @@ impl FastSim {
         } else {
             self.step_parallel();
         }
+        if let Some((_, pc)) = &mut self.piston {
+            // the engine after NewtonIntegrator (`Scene::run_engine`, Engine::Piston)
+            if pc.periodic.is_activated(self.iter) {
+                // (its errors are bad ids, refused by `from_scene`)
+                self.stop |= pc.action(&mut self.bnd, self.iter).unwrap_or(true);
+            }
+        }
         self.iter += 1;
         self.time += self.cfg.dt;
     }
 
+    /// Run `steps` steps, or fewer when an engine ends the run (then `take_stop` is true).
     pub fn run(&mut self, steps: u64) {
         for _ in 0..steps {
             self.step();
+            if self.stop {
+                break;
+            }
         }
+    }
+
+    /// Did an engine end the run (cleared by this call)?
+    pub fn take_stop(&mut self) -> bool {
+        std::mem::take(&mut self.stop)
     }
 
     fn step_serial(&mut self) {
@@ -1182,6 +1216,11 @@ impl FastSim {
             scene.interactions.insert(it);
         }
         self.bnd.write_back(scene, &self.ids);
+        if let Some((k, pc)) = &self.piston {
+            if let Some(Engine::Piston(p)) = scene.engines.get_mut(*k) {
+                **p = pc.clone();
+            }
+        }
     }
 
     /// Real wall, box and facet contacts now.
