@@ -796,7 +796,15 @@ mod tests {
             i_term: 0.0,
             ..controller()
         };
-        let stop = c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 100).unwrap();
+        let stop = c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces,
+                },
+                100,
+            )
+            .unwrap();
         assert!(!stop);
         // p = 50 / 0.5 = 100; pf = 60 + 0.5 * 40 = 80; t = 0: target 27600
         assert_eq!(c.p, 100.0);
@@ -828,7 +836,14 @@ mod tests {
         c.pf = 80.0;
         *forces.force_mut(1) = Vec3::new(0.0, 0.0, 20.0);
         *forces.force_mut(2) = Vec3::new(0.0, 0.0, 20.0);
-        c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 101).unwrap();
+        c.action(
+            &mut SceneIo {
+                bodies: &mut bodies,
+                forces: &forces,
+            },
+            101,
+        )
+        .unwrap();
         assert_eq!(c.pf, 80.0);
         assert_eq!(c.v, -(1e-3 * 1.0 + 2e-3 * 0.01));
         assert_eq!(c.stats.n, 1); // seating: no statistics
@@ -845,21 +860,61 @@ mod tests {
             phase: Phase::Approach,
             ..controller()
         };
-        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 0).unwrap());
+        assert!(!c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces
+                },
+                0
+            )
+            .unwrap());
         assert_eq!(bodies.vel[0], Vec3::new(0.0, 0.0, -0.1));
         *forces.force_mut(0) = Vec3::new(0.0, 0.0, 27.6e3);
-        assert!(c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 1).unwrap());
+        assert!(c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces
+                },
+                1
+            )
+            .unwrap());
         assert_eq!(c.phase, Phase::Idle);
         assert!(!c.stopped);
-        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 2).unwrap()); // idle: nothing
+        assert!(!c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces
+                },
+                2
+            )
+            .unwrap()); // idle: nothing
         c.phase = Phase::Cycle;
         c.iter_seat_end = 3;
         c.z_ref = 0.1;
         c.stop_rut = 0.075;
         bodies.pos[0] = Vec3::new(0.0, 0.0, 0.03);
-        assert!(!c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 3).unwrap()); // rut 0.07
+        assert!(!c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces
+                },
+                3
+            )
+            .unwrap()); // rut 0.07
         bodies.pos[0] = Vec3::new(0.0, 0.0, 0.02);
-        assert!(c.action(&mut SceneIo { bodies: &mut bodies, forces: &forces }, 4).unwrap()); // rut 0.08
+        assert!(c
+            .action(
+                &mut SceneIo {
+                    bodies: &mut bodies,
+                    forces: &forces
+                },
+                4
+            )
+            .unwrap()); // rut 0.08
         assert!(c.stopped);
         assert_eq!(c.phase, Phase::Idle);
         assert_eq!(c.stats.n, 2);

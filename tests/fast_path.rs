@@ -47,7 +47,6 @@ fn golden_worst(dir: &str, name: &str, opt: FastOptions) -> (f64, String) {
                         d,
                         format!("step {} body {} {}", step, r.id, golden::BODY_COLS[c]),
                     );
-
                 }
             }
         }

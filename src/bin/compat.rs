@@ -70,6 +70,10 @@ enum Cmd {
         /// yade_ref/study/README.md); YADE's runs of it at medium size are in golden/study_paper200
         #[arg(long)]
         preset: Option<String>,
+        /// rXX: ryade's engine: yade-order (YADE's bits) or fast (every O.run the fast path can take,
+        /// as `compat run --fast`; results in YADE's band, not its bits)
+        #[arg(long, default_value = "yade-order", value_parser = ["yade-order", "fast"])]
+        engine: String,
     },
     /// The study: every ratio x case (x seed) in ryade, histories, the paper's figures and a summary.
     Study {
@@ -107,6 +111,11 @@ enum Cmd {
         /// yade_ref/study/README.md "Preset paper200")
         #[arg(long)]
         preset: Option<String>,
+        /// ryade's engine: yade-order (YADE's bits; the default while the fast engine's band checks
+        /// do not yet cover every case) or fast (every O.run the fast path can take, as
+        /// `compat run --fast`; the others, e.g. the grid case's, say why and stay on the YADE-order path)
+        #[arg(long, default_value = "yade-order", value_parser = ["yade-order", "fast"])]
+        engine: String,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.
     ///
@@ -519,6 +528,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             band_k,
             ryade_arg,
             preset,
+            engine,
         } => {
             if target.starts_with('r') && target.len() == 3 {
                 check_cycles(cycles)?;
@@ -540,6 +550,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     extra,
                     ryade_extra: ryade_arg,
                     quiet: false,
+                    fast: engine == "fast",
                 };
                 let out = o.out.clone();
                 ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));
@@ -679,6 +690,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             with_yade,
             arg,
             preset,
+            engine,
         } => {
             use ryade::harness::{study, study_run};
             let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &arg)?;
@@ -706,6 +718,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 with_yade,
                 extra,
                 quiet: false,
+                fast: engine == "fast",
             };
             let out = o.out.clone();
             ryade::harness::proc::set_kept(move || study_run::kept_summary(&out));

@@ -43,6 +43,9 @@ pub struct Run {
     pub cycles: Option<u32>,
     /// Extra study.py arguments (e.g. `--controller servopid`).
     pub extra: Vec<String>,
+    /// ryade only: every `O.run` the fast path can take runs there (`compat run --fast`; the
+    /// others, e.g. the generation's PyRunner phases, stay on the YADE-order path).
+    pub fast: bool,
 }
 
 pub use super::env::repo_root;
@@ -131,6 +134,9 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
         Engine::Ryade => {
             let mut c = Command::new(super::env::compat_exe()?);
             c.arg("run").arg(&script);
+            if run.fast {
+                c.env("RYADE_FAST", "on");
+            }
             c
         }
     };
@@ -140,7 +146,12 @@ pub fn run_one(root: &Path, run: &Run, bar: &ProgressBar) -> Result<()> {
         .stderr(Stdio::piped());
     // a finished run with the same arguments is reused (an interrupted sweep resumes where it stopped)
     let marker = run.out.join(format!(".{}_run.json", run.engine.name()));
-    let key = serde_json::json!({"engine": run.engine.name(), "args": &args}).to_string();
+    let key = if run.fast {
+        serde_json::json!({"engine": run.engine.name(), "args": &args, "fast": true})
+    } else {
+        serde_json::json!({"engine": run.engine.name(), "args": &args})
+    }
+    .to_string();
     if run.out.join("history.csv").is_file()
         && std::fs::read_to_string(&marker).ok().as_deref() == Some(key.as_str())
     {
@@ -315,6 +326,8 @@ pub struct DiffOptions {
     /// Extra study.py arguments for the ryade runs only (e.g. a deliberate perturbation).
     pub ryade_extra: Vec<String>,
     pub quiet: bool,
+    /// ryade on the fast path where the scene allows (`Run::fast`).
+    pub fast: bool,
 }
 
 #[derive(Serialize)]
@@ -374,6 +387,7 @@ pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
                     export: true,
                     cycles: o.cycles,
                     extra: o.extra.clone(),
+                    fast: false,
                 });
             }
             chain.push(Run {
@@ -384,6 +398,7 @@ pub fn diff(root: &Path, o: &DiffOptions) -> Result<DiffReport> {
                 export: false,
                 cycles: o.cycles,
                 extra: o.extra.iter().chain(&o.ryade_extra).cloned().collect(),
+                fast: o.fast,
             });
             chain
         })
@@ -658,6 +673,8 @@ pub struct StudyOptions {
     pub with_yade: bool,
     pub extra: Vec<String>,
     pub quiet: bool,
+    /// ryade on the fast path where the scene allows (`Run::fast`).
+    pub fast: bool,
 }
 
 #[derive(Serialize, Clone)]
@@ -708,6 +725,7 @@ pub fn study_sweep(root: &Path, o: &StudyOptions) -> Result<StudyResult> {
                         export: true,
                         cycles: o.cycles,
                         extra: o.extra.clone(),
+                        fast: o.fast && e == Engine::Ryade,
                     }]);
                 }
             }
