@@ -20,7 +20,7 @@ use crate::math::Vec3;
 /// bodies and forces; the fast path's boundaries) run the one law.
 pub trait PistonIo {
     /// Bodies in the scene (ids at or past it are refused).
-    fn len(&self) -> usize;
+    fn bodies(&self) -> usize;
     fn pos_z(&self, id: usize) -> f64;
     fn vel_z(&self, id: usize) -> f64;
     fn set_vel(&mut self, id: usize, v: Vec3);
@@ -35,7 +35,7 @@ pub struct SceneIo<'a> {
 }
 
 impl PistonIo for SceneIo<'_> {
-    fn len(&self) -> usize {
+    fn bodies(&self) -> usize {
         self.bodies.len()
     }
     fn pos_z(&self, id: usize) -> f64 {
@@ -429,7 +429,7 @@ impl PistonController {
         if self.ids.is_empty() {
             return Err("RyadePistonController: ids is empty".into());
         }
-        if let Some(&bad) = self.ids.iter().find(|&&id| id >= io.len()) {
+        if let Some(&bad) = self.ids.iter().find(|&&id| id >= io.bodies()) {
             return Err(format!("RyadePistonController: no body #{}", bad));
         }
         let v_now = io.vel_z(self.ids[0]); // tick(): vNow, this step's piston velocity

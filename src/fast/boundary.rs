@@ -516,7 +516,7 @@ impl Boundaries {
 /// The study's piston (`RyadePistonController`) drives boundaries: it reads their z forces of this
 /// step and sets their velocities (`FastSim::from_scene` checks that its ids are boundaries).
 impl crate::piston::PistonIo for Boundaries {
-    fn len(&self) -> usize {
+    fn bodies(&self) -> usize {
         self.masks.len()
     }
     fn pos_z(&self, id: usize) -> f64 {

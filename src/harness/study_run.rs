@@ -1215,6 +1215,7 @@ mod tests {
             with_yade: false,
             extra: vec![],
             quiet: true,
+            fast: false,
         };
         let md = findings_markdown(&o, &hist, &sdr);
         let line = |d: &str| {
