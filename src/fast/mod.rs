@@ -301,7 +301,7 @@ fn chunk_forces_impl(
 
 avx2_dispatch! {
     /// `chunk_forces` for rolling-resistance contacts.
-    fn chunk_forces6 / chunk_forces6_avx2 => chunk_forces6_impl(
+    fn chunk_forces6 / chunk_forces6_avx2 => chunk_loop(
         k: &Six,
         pairs: &[Pair],
         cs: &mut [six::C6],
@@ -310,19 +310,6 @@ avx2_dispatch! {
         lo: usize,
         ghosts: &mut Vec<Ghost>,
     )
-}
-
-#[inline(always)]
-fn chunk_forces6_impl(
-    k: &Six,
-    pairs: &[Pair],
-    cs: &mut [six::C6],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
-    chunk_loop(k, pairs, cs, f, t, lo, ghosts)
 }
 
 /// The pair loop of one chunk (see `chunk_forces`).
@@ -376,15 +363,21 @@ fn chunk_loop<K: Kernel>(
     }
 }
 
-/// The parallel contact phase: the contact states, forces and torques cut at the chunks' bounds,
-/// one chunk per task (`run(pairs range, states, forces, torques, first owned body, ghosts)`).
+/// The contact phase: the contact states, forces and torques cut at the chunks' bounds, one chunk
+/// per task (`run(pairs range, states, forces, torques, first owned body, ghosts)`); not
+/// `parallel`: the one chunk of one thread, here.
 fn par_contacts<C: Send>(
+    parallel: bool,
     chunks: &mut [Chunk],
     cs: &mut [C],
     force: &mut [V3],
     torque: &mut [V3],
     run: impl Fn(std::ops::Range<usize>, &mut [C], &mut [V3], &mut [V3], usize, &mut Vec<Ghost>) + Sync,
 ) {
+    if !parallel {
+        let ch = &mut chunks[0];
+        return run(ch.pairs.clone(), cs, force, torque, 0, &mut ch.ghosts);
+    }
     let mut parts: Vec<(&mut [C], &mut [V3], &mut [V3])> = Vec::with_capacity(chunks.len());
     let (mut rest_c, mut rest_f, mut rest_t) = (cs, force, torque);
     for ch in chunks.iter() {
@@ -951,53 +944,8 @@ impl FastSim {
 
     fn step_serial(&mut self) {
         let t0 = std::time::Instant::now();
-        let view = View {
-            pos: &self.pos,
-            vel: &self.vel,
-            w: &self.ang_vel,
-            rad: &self.radius,
-            mats: &self.mats,
-            mat: &self.mat,
-            shifts: &self.shifts,
-            dt: self.cfg.dt,
-        };
-        let ghosts = &mut self.chunks[0].ghosts;
-        match &self.six {
-            None => chunk_forces(
-                &view,
-                &self.pairs,
-                &mut self.contacts,
-                &mut self.force,
-                &mut self.torque,
-                0,
-                ghosts,
-            ),
-            Some(cfg) => {
-                let b6 = six::Bodies6 {
-                    pos: &self.pos,
-                    vel: &self.vel,
-                    w: &self.ang_vel,
-                    ori: &self.ori,
-                    rad: &self.radius,
-                    mat: &self.mat,
-                    ids: &self.ids,
-                    shifts: &self.shifts,
-                    mats: &self.fmats,
-                    dt: self.cfg.dt,
-                    iter: self.iter,
-                };
-                chunk_forces6(
-                    &Six { cfg, b: &b6 },
-                    &self.pairs,
-                    &mut self.contacts6,
-                    &mut self.force,
-                    &mut self.torque,
-                    0,
-                    ghosts,
-                )
-            }
-        }
-        debug_assert!(ghosts.is_empty());
+        self.contact_phase(false);
+        debug_assert!(self.chunks[0].ghosts.is_empty());
         self.boundary_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
@@ -1015,6 +963,56 @@ impl FastSim {
         );
         self.max_disp2 = self.max_disp2.max(self.bnd.advance(cfg.dt));
         self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    /// The sphere-sphere contacts of every chunk (in parallel, or the one chunk of one thread).
+    fn contact_phase(&mut self, parallel: bool) {
+        let dt = self.cfg.dt;
+        let view = View {
+            pos: &self.pos,
+            vel: &self.vel,
+            w: &self.ang_vel,
+            rad: &self.radius,
+            mats: &self.mats,
+            mat: &self.mat,
+            shifts: &self.shifts,
+            dt,
+        };
+        let pairs = &self.pairs;
+        match &self.six {
+            None => par_contacts(
+                parallel,
+                &mut self.chunks,
+                &mut self.contacts,
+                &mut self.force,
+                &mut self.torque,
+                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, f, t, lo, g),
+            ),
+            Some(cfg) => {
+                let b6 = six::Bodies6 {
+                    pos: &self.pos,
+                    vel: &self.vel,
+                    w: &self.ang_vel,
+                    ori: &self.ori,
+                    rad: &self.radius,
+                    mat: &self.mat,
+                    ids: &self.ids,
+                    shifts: &self.shifts,
+                    mats: &self.fmats,
+                    dt,
+                    iter: self.iter,
+                };
+                let k = Six { cfg, b: &b6 };
+                par_contacts(
+                    parallel,
+                    &mut self.chunks,
+                    &mut self.contacts6,
+                    &mut self.force,
+                    &mut self.torque,
+                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, f, t, lo, g),
+                )
+            }
+        }
     }
 
     /// The boundary contacts (serial: a container's few), their loads added to the spheres'.
@@ -1048,51 +1046,8 @@ impl FastSim {
 
     fn step_parallel_phases(&mut self) {
         let t0 = std::time::Instant::now();
-        let dt = self.cfg.dt;
         // contact phase: each chunk sums its owned bodies' forces in place and queues the others
-        let view = View {
-            pos: &self.pos,
-            vel: &self.vel,
-            w: &self.ang_vel,
-            rad: &self.radius,
-            mats: &self.mats,
-            mat: &self.mat,
-            shifts: &self.shifts,
-            dt,
-        };
-        let pairs = &self.pairs;
-        match &self.six {
-            None => par_contacts(
-                &mut self.chunks,
-                &mut self.contacts,
-                &mut self.force,
-                &mut self.torque,
-                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, f, t, lo, g),
-            ),
-            Some(cfg) => {
-                let b6 = six::Bodies6 {
-                    pos: &self.pos,
-                    vel: &self.vel,
-                    w: &self.ang_vel,
-                    ori: &self.ori,
-                    rad: &self.radius,
-                    mat: &self.mat,
-                    ids: &self.ids,
-                    shifts: &self.shifts,
-                    mats: &self.fmats,
-                    dt,
-                    iter: self.iter,
-                };
-                let k = Six { cfg, b: &b6 };
-                par_contacts(
-                    &mut self.chunks,
-                    &mut self.contacts6,
-                    &mut self.force,
-                    &mut self.torque,
-                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, f, t, lo, g),
-                )
-            }
-        }
+        self.contact_phase(true);
         self.boundary_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
