@@ -70,6 +70,18 @@ pub struct InteractionLoop {
     pub mindlin: Option<law::mindlin::Params>,
     /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
     pub energy_caches: [IdCache; LawFunctor::COUNT],
+    /// `InteractionLoop.callbacks`: one `SumIntrForcesCb` accumulator per callback, in list order.
+    pub sum_intr_forces_cb: Vec<SumIntrForcesCb>,
+}
+
+/// `SumIntrForcesCb` (pkg/dem/UnbalancedForceCallbacks.cpp): sums |normalForce + shearForce| over the
+/// real interactions (those with a non-zero force counted) during each InteractionLoop; at the start
+/// of the next loop it prints the previous sums to stderr as `(force,numIntr)`, as YADE's `stepInit`
+/// does with `cerr` (no newline), then resets them. It changes nothing else.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SumIntrForcesCb {
+    pub force: f64,
+    pub num_intr: i32,
 }
 
 impl Default for InteractionLoop {
@@ -143,6 +155,7 @@ impl InteractionLoop {
             viscel_basic: false,
             mindlin: None,
             energy_caches: Default::default(),
+            sum_intr_forces_cb: Vec::new(),
         }
     }
 
@@ -996,6 +1009,14 @@ impl Scene {
     /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
     /// then the law.
     fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
+        for cb in il.sum_intr_forces_cb.iter_mut() {
+            eprint!(
+                "({},{})",
+                crate::utils::cxx_stream_double(cb.force),
+                cb.num_intr
+            );
+            *cb = SumIntrForcesCb::default();
+        }
         // the laws add to O.energy as they go (YADE's scene->energy->add per contact); the tracker
         // and the functors' index caches are moved out for the loop and put back after it
         let mut tracker = std::mem::take(&mut self.energy);
@@ -1009,6 +1030,23 @@ impl Scene {
         let r = self.interaction_loop_with(il, &mut energy);
         self.energy = tracker;
         il.energy_caches = caches;
+        if !il.sum_intr_forces_cb.is_empty() {
+            // YADE calls the callback right after each interaction's law; nothing later in the loop
+            // touches an interaction's forces, so one pass in container order afterwards sums the
+            // same values in the same order
+            for it in self.interactions.list.iter().filter(|it| it.is_real()) {
+                let Some(ph) = it.phys.as_ref() else { continue };
+                let f = ph.normal_force + ph.shear_force;
+                if f == Vec3::zeros() {
+                    continue;
+                }
+                let n = crate::math::norm(&f);
+                for cb in il.sum_intr_forces_cb.iter_mut() {
+                    cb.num_intr += 1;
+                    cb.force += n;
+                }
+            }
+        }
         r
     }
 
@@ -1532,13 +1570,14 @@ impl Scene {
                 &pr,
                 g,
             ),
-            (GeomFunctor::BoxSphere, Shape::Box { extents }, _) => geom::box_sphere::go(
-                il.box_sphere.as_ref().unwrap(),
-                extents,
-                radius(id2)?,
-                &pr,
-                g,
-            ),
+            (GeomFunctor::BoxSphere, Shape::Box { extents }, _) => {
+                let p = il.box_sphere.as_ref().unwrap();
+                if p.six_d {
+                    geom::box_sphere::go_6d(p, extents, radius(id2)?, &pr, g, &mut it.ext)
+                } else {
+                    geom::box_sphere::go(p, extents, radius(id2)?, &pr, g)
+                }
+            }
             (GeomFunctor::SphereSphere6D, _, _) => geom::grid::six_d(
                 il.sphere_sphere_6d.as_ref().unwrap(),
                 radius(id1)?,

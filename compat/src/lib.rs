@@ -1832,6 +1832,9 @@ impl Sim {
     fn porosity(&self, volume: Option<f64>) -> PyResult<f64> {
         ryade::utils::porosity(&self.scene, volume).map_err(err)
     }
+    fn cohesion_moment_elastic_energy(&self, shear: bool) -> f64 {
+        ryade::utils::cohesion_moment_elastic_energy(&self.scene, shear)
+    }
     fn kinetic_energy(&self) -> f64 {
         ryade::utils::kinetic_energy(&self.scene)
     }
@@ -2094,6 +2097,25 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 }
             };
             match key.split_once('.') {
+                // fresh callback objects: their accumulators start at zero, as YADE's new instances
+                None if key == "callbacks" => {
+                    let arr = v
+                        .as_array()
+                        .ok_or_else(|| PyValueError::new_err("callbacks must be a list"))?;
+                    let mut cbs = Vec::new();
+                    for cb in arr {
+                        match cb.get("class").and_then(Value::as_str) {
+                            Some("SumIntrForcesCb") => cbs.push(Default::default()),
+                            other => {
+                                return Err(PyKeyError::new_err(format!(
+                                    "InteractionLoop callback {:?} is not supported by ryade yet",
+                                    other
+                                )))
+                            }
+                        }
+                    }
+                    il.sum_intr_forces_cb = cbs;
+                }
                 Some(("Ip2_FrictMat_FrictMat_MindlinPhys", k)) if il.mindlin_phys.is_some() => {
                     let p = il.mindlin_phys.as_mut().unwrap();
                     match k {

@@ -787,9 +787,10 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
-                    "Ig2_Box_Sphere_ScGeom" => {
+                    c @ ("Ig2_Box_Sphere_ScGeom" | "Ig2_Box_Sphere_ScGeom6D") => {
                         il.box_sphere = Some(geom::box_sphere::Params {
                             interaction_detection_factor: fo(&g, "interactionDetectionFactor", 1.0)?,
+                            six_d: c == "Ig2_Box_Sphere_ScGeom6D",
                         })
                     }
                     c @ ("Ig2_Sphere_Sphere_ScGeom6D" | "Ig2_GridNode_GridNode_GridNodeGeom6D") => {
@@ -868,6 +869,12 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
+                }
+            }
+            for cb in e.get("callbacks").and_then(Value::as_array).cloned().unwrap_or_default() {
+                match class(&cb)? {
+                    "SumIntrForcesCb" => il.sum_intr_forces_cb.push(Default::default()),
+                    other => bail!("InteractionLoop callback '{}' is not supported by ryade yet", other),
                 }
             }
             for l in e.get("law").and_then(Value::as_array).cloned().unwrap_or_default() {
@@ -949,6 +956,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             damp_gravity: bo(e, "dampGravity", true)?,
             exact_aspherical_rot: bo(e, "exactAsphericalRot", true)?,
             mask: fo(e, "mask", -1.0)? as i32,
+            kin_split: bo(e, "kinSplit", false)?,
             ..Default::default()
         })),
         "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine"
@@ -1503,7 +1511,8 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.box_sphere {
-                    geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
+                    let c = if g.six_d { "Ig2_Box_Sphere_ScGeom6D" } else { "Ig2_Box_Sphere_ScGeom" };
+                    geom.push(json!({"class": c, "interactionDetectionFactor": g.interaction_detection_factor}));
                 }
                 let six_d = |c: &str, g: &geom::grid::SixDParams| json!({"class": c,
                     "interactionDetectionFactor": g.ss.interaction_detection_factor,
@@ -1585,12 +1594,23 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,
                         "includeMoment": l.include_moment, "neverErase": l.never_erase}));
                 }
-                json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
+                let mut d = json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law});
+                if !il.sum_intr_forces_cb.is_empty() {
+                    d["callbacks"] = json!(il
+                        .sum_intr_forces_cb
+                        .iter()
+                        .map(|_| json!({"class": "SumIntrForcesCb"}))
+                        .collect::<Vec<_>>());
+                }
+                d
             }
             Engine::Newton(n) => {
                 let mut e = json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask});
                 if !n.exact_aspherical_rot {
                     e["exactAsphericalRot"] = json!(false);
+                }
+                if n.kin_split {
+                    e["kinSplit"] = json!(true);
                 }
                 e
             }

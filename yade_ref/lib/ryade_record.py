@@ -249,7 +249,7 @@ def _geom_functor(f, grid=False):
         if f.hertzian:
             d['hertzian'] = True
         return d
-    if c == 'Ig2_Box_Sphere_ScGeom':
+    if c == 'Ig2_Box_Sphere_ScGeom' or (grid and c == 'Ig2_Box_Sphere_ScGeom6D'):
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
     raise UnsupportedScene('geometry functor class %s is not supported' % c)
 

@@ -191,6 +191,10 @@ class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0}
 
 
+class Ig2_Box_Sphere_ScGeom6D(Ig2_Box_Sphere_ScGeom):
+    pass
+
+
 class Bo1_GridConnection_Aabb(BoundFunctor):
     _attrs = {'aabbEnlargeFactor': -1.0}
 
@@ -424,6 +428,16 @@ class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(LawFunctor):
     _attrs = {'neverErase': False, 'always_use_moment_law': False, 'shear_creep': False, 'twist_creep': False,
               'creep_viscosity': 1.0, 'traceEnergy': False, 'useIncrementalForm': False}
 
+    def normElastEnergy(self):
+        """Σ ½|Fn|²/kn over the real interactions (the Rust core's `utils::cohesion_moment_elastic_energy`)."""
+        from ._core import Omega
+        return Omega()._sim.cohesion_moment_elastic_energy(False)
+
+    def shearElastEnergy(self):
+        """Σ ½|Fs|²/ks over the real interactions."""
+        from ._core import Omega
+        return Omega()._sim.cohesion_moment_elastic_energy(True)
+
 
 class Law2_ScGridCoGeom_FrictPhys_CundallStrack(LawFunctor):
     _attrs = {'neverErase': False}
@@ -610,13 +624,31 @@ class InteractionLoop(GlobalEngine):
     def lawDispatcher(self):
         return _Dispatcher(self._lists[2])
 
+    def _callbacks_json(self):
+        out = []
+        for cb in self._values['callbacks']:
+            if not isinstance(cb, SumIntrForcesCb):
+                unsupported('InteractionLoop.callbacks with %s' % type(cb).__name__)
+            out.append(cb._json())
+        return out
+
+    def _changed(self, k):
+        if k == 'callbacks':
+            self._values['callbacks'] = list(self._values['callbacks'])
+            if self._owner is not None:
+                omega, index = self._owner
+                omega._sim.engine_set(index, 'callbacks', json.dumps(self._callbacks_json()))
+            return
+        GlobalEngine._changed(self, k)
+
     def _json(self):
         if self._values['loopOnSortedInteractions']:
             unsupported('InteractionLoop.loopOnSortedInteractions')
+        d = {'class': 'InteractionLoop', 'geom': [f._json() for f in self._lists[0]],
+             'phys': [f._json() for f in self._lists[1]], 'law': [f._json() for f in self._lists[2]]}
         if self._values['callbacks']:
-            unsupported('InteractionLoop.callbacks')
-        return {'class': 'InteractionLoop', 'geom': [f._json() for f in self._lists[0]],
-                'phys': [f._json() for f in self._lists[1]], 'law': [f._json() for f in self._lists[2]]}
+            d['callbacks'] = self._callbacks_json()
+        return d
 
     def _functors(self):
         return self._lists[0] + self._lists[1] + self._lists[2]
@@ -644,6 +676,19 @@ class _Dispatcher(object):
                 if parts[0] == 'Ig2' and a != b:
                     out[(b, a)] = n
         return out
+
+
+class IntrCallback(Serializable):
+    pass
+
+
+class SumIntrForcesCb(IntrCallback):
+    """Prints the summed |normalForce + shearForce| of the previous InteractionLoop and the number of
+    interactions counted, as `(force,numIntr)` on stderr at each loop (the Rust core's
+    `scene::SumIntrForcesCb`)."""
+
+    def _json(self):
+        return {'class': 'SumIntrForcesCb'}
 
 
 class NewtonIntegrator(GlobalEngine):
@@ -682,12 +727,11 @@ class NewtonIntegrator(GlobalEngine):
         return self._values[k]
 
     def _json(self):
-        if self._values['kinSplit']:
-            unsupported('NewtonIntegrator.kinSplit')
         if self._values['densityScaling']:
             unsupported('NewtonIntegrator.densityScaling')
         return {'class': 'NewtonIntegrator', 'damping': self._values['damping'], 'gravity': list(self._values['gravity']),
-                'dampGravity': self._values['dampGravity'], 'mask': self._values['mask']}
+                'dampGravity': self._values['dampGravity'], 'mask': self._values['mask'],
+                'kinSplit': bool(self._values['kinSplit'])}
 
 
 class TimeStepper(GlobalEngine):
@@ -1565,9 +1609,9 @@ def _make_unsupported(name):
 
 _IMPLEMENTED = {c.__name__: c for c in [
     Serializable, Functor, BoundFunctor, Bo1_Sphere_Aabb, Bo1_Facet_Aabb, Bo1_Box_Aabb, Bo1_Wall_Aabb, IGeomFunctor,
-    Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
+    Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom6D, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
-    ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
+    ForceResetter, InsertionSortCollider, InteractionLoop, IntrCallback, SumIntrForcesCb, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
