@@ -52,6 +52,12 @@ pub struct InteractionLoop {
     pub bubble_phys: bool,
     /// `Law2_ScGeom_BubblePhys_Bubble` and its state.
     pub bubble: Option<law::bubble::Params>,
+    /// `Ip2_CpmMat_CpmMat_CpmPhys` and its `cohesiveThresholdIter`.
+    pub cpm_phys: Option<i64>,
+    /// `Ip2_FrictMat_CpmMat_FrictPhys` present.
+    pub frict_cpm_phys: bool,
+    /// `Law2_ScGeom_CpmPhys_Cpm` and its attributes.
+    pub cpm: Option<law::cpm::Params>,
     /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
     pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
@@ -146,6 +152,9 @@ impl InteractionLoop {
             luding_basic: false,
             bubble_phys: false,
             bubble: None,
+            cpm_phys: None,
+            frict_cpm_phys: false,
+            cpm: None,
             mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
@@ -219,10 +228,16 @@ impl InteractionLoop {
         v
     }
 
-    /// The physics functor for a material pair (None: no functor can handle it).
-    fn phys_functor(&self, a: MatClass, b: MatClass) -> Result<Option<PhysFunctor>, String> {
+    /// The physics functor for a material pair (None: no functor can handle it), with YADE's swap
+    /// of the two materials (the interaction keeps its order) when the functor was declared the other
+    /// way round.
+    fn phys_functor(
+        &self,
+        a: MatClass,
+        b: MatClass,
+    ) -> Result<Option<(PhysFunctor, bool)>, String> {
         if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
-            return Ok(Some(PhysFunctor::Frict));
+            return Ok(Some((PhysFunctor::Frict, false)));
         }
         // registration order, on the stack (this runs for every contact every step)
         let all = [
@@ -240,21 +255,29 @@ impl InteractionLoop {
                 MatClass::FrictMat,
                 PhysFunctor::Mindlin,
             ),
+            (self.cpm_phys.is_some(), MatClass::CpmMat, PhysFunctor::Cpm),
+            (self.frict_cpm_phys, MatClass::CpmMat, PhysFunctor::FrictCpm),
         ];
         let mut buf = [Entry {
             a: MatClass::FrictMat,
             b: MatClass::FrictMat,
             f: PhysFunctor::Frict,
-        }; 6];
+        }; 8];
         let mut n = 0;
         for (on, m, f) in all {
             if on {
-                buf[n] = Entry { a: m, b: m, f };
+                // Ip2_FrictMat_CpmMat_FrictPhys is declared for (FrictMat, CpmMat)
+                let a = if f == PhysFunctor::FrictCpm {
+                    MatClass::FrictMat
+                } else {
+                    m
+                };
+                buf[n] = Entry { a, b: m, f };
                 n += 1;
             }
         }
         let v = &buf[..n];
-        Ok(dispatch::resolve(v, true, a, b, Some, Some)?.map(|(f, _)| f))
+        dispatch::resolve(v, true, a, b, Some, Some)
     }
 
     /// The law functor for a geometry/physics class pair.
@@ -318,12 +341,18 @@ impl InteractionLoop {
                 PhysClass::BubblePhys,
                 LawFunctor::Bubble,
             ),
+            (
+                self.cpm.is_some(),
+                GeomClass::ScGeom,
+                PhysClass::CpmPhys,
+                LawFunctor::Cpm,
+            ),
         ];
         let mut buf = [Entry {
             a: GeomClass::ScGeom,
             b: PhysClass::FrictPhys,
             f: LawFunctor::CundallStrack,
-        }; 9];
+        }; 10];
         let mut n = 0;
         for (on, a, b, f) in all {
             if on {
@@ -344,6 +373,10 @@ enum PhysFunctor {
     ViscEl,
     Mindlin,
     Luding,
+    /// `Ip2_CpmMat_CpmMat_CpmPhys`
+    Cpm,
+    /// `Ip2_FrictMat_CpmMat_FrictPhys`
+    FrictCpm,
     Bubble,
 }
 
@@ -1431,7 +1464,9 @@ impl Scene {
                         .is_some_and(|p| !p.set_cohesion_now)
                     && il.law_functor(GeomClass::ScGeom6D, PhysClass::CohFrictPhys)?
                         == Some(LawFunctor::CohesionMoment)
-                    && il.phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                    && il
+                        .phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                        .map(|(f, _)| f)
                         == Some(PhysFunctor::CohFrict) =>
             {
                 Some((p6, cm))
@@ -1634,7 +1669,33 @@ impl Scene {
         let m1 = &self.materials[b.material[id1]];
         let m2 = &self.materials[b.material[id2]];
         let it = &mut self.interactions.list[k];
-        match il.phys_functor(m1.class(), m2.class())? {
+        let found = il.phys_functor(m1.class(), m2.class())?;
+        let swapped = found.is_some_and(|(_, s)| s);
+        match found.map(|(f, _)| f) {
+            Some(PhysFunctor::Cpm) => {
+                if it.phys.is_none() {
+                    let (fp, cp) = phys::ip2_cpm(m1, m2, self.iter, il.cpm_phys.unwrap_or(10))?;
+                    it.phys = Some(fp);
+                    it.ext_mut().cpm = Some(Box::new(cp));
+                }
+            }
+            Some(PhysFunctor::FrictCpm) => {
+                // Ip2_FrictMat_CpmMat_FrictPhys (Ip2_FrictMat_FrictMat_FrictPhys's formulas); with the
+                // CpmMat body first the dispatcher would swap the materials, which Debian's YADE
+                // stops on (InteractionLoop::action, `assert(!swap)`): refused alike
+                if swapped {
+                    return Err(format!(
+                        "Ip2_FrictMat_CpmMat_FrictPhys for #{} ({}) + #{} ({}): the physics functor needs the materials swapped, and YADE 2023.02a aborts there (InteractionLoop: assert(!swap)); ryade refuses it too",
+                        id1,
+                        m1.class_name(),
+                        id2,
+                        m2.class_name()
+                    ));
+                }
+                if it.phys.is_none() {
+                    it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
+                }
+            }
             Some(PhysFunctor::Frict) => {
                 if it.phys.is_none() {
                     it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
@@ -1743,6 +1804,8 @@ impl Scene {
             PhysClass::LudingPhys
         } else if it.ext.as_ref().is_some_and(|e| e.bubble.is_some()) {
             PhysClass::BubblePhys
+        } else if it.cpm().is_some() {
+            PhysClass::CpmPhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1763,6 +1826,7 @@ impl Scene {
                     (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
                     (_, PhysClass::LudingPhys) => "Law2_ScGeom_LudingPhys_Basic()",
                     (_, PhysClass::BubblePhys) => "Law2_ScGeom_BubblePhys_Bubble()",
+                    (_, PhysClass::CpmPhys) => "Law2_ScGeom_CpmPhys_Cpm()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1880,6 +1944,57 @@ impl Scene {
                     self.cell.is_some(),
                 )?;
                 apply_or_erase(&mut self.forces, id1, id2, l)
+            }
+            LawFunctor::Cpm => {
+                let cp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.cpm.as_deref_mut())
+                    .ok_or_else(|| bad("CpmPhys"))?;
+                let fresh = if fresh {
+                    let plane = |s: &Shape| {
+                        matches!(s, Shape::Facet(_) | Shape::Wall { .. } | Shape::Box { .. })
+                    };
+                    let (s1, s2) = (&b.shape[id1], &b.shape[id2]);
+                    Some(match (s1, s2) {
+                        (Shape::Sphere { .. }, Shape::Sphere { .. }) => law::cpm::Fresh::Spheres {
+                            pos1: b.pos[id1],
+                            pos2: b.pos[id2],
+                            shift2: *shift2,
+                        },
+                        (Shape::Sphere { radius }, s) | (s, Shape::Sphere { radius })
+                            if plane(s) =>
+                        {
+                            law::cpm::Fresh::SphereOnPlane { radius: *radius }
+                        }
+                        _ => {
+                            return Err(format!(
+                                "Law2_ScGeom_CpmPhys_Cpm on {}+{} (#{}+#{}): YADE leaves the contact's lengths NaN there; ryade supports spheres against spheres, facets, walls and boxes",
+                                s1.class_name(),
+                                s2.class_name(),
+                                id1,
+                                id2
+                            ))
+                        }
+                    })
+                } else {
+                    None
+                };
+                let arms = if self.cell.is_some() {
+                    law::cpm::Arms::Periodic
+                } else {
+                    law::cpm::Arms::ContactPoint {
+                        pos1: b.pos[id1],
+                        pos2: b.pos[id2],
+                    }
+                };
+                match law::cpm::load(il.cpm.as_ref().unwrap(), fresh, &g, ph, cp, arms)? {
+                    law::cpm::Outcome::Load(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    law::cpm::Outcome::Broken => false,
+                }
             }
             LawFunctor::LudingBasic => {
                 let lp = it

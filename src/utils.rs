@@ -56,6 +56,20 @@ pub fn cohesion_moment_elastic_energy(scene: &Scene, shear: bool) -> f64 {
     e
 }
 
+/// `Law2_ScGeom_CpmPhys_Cpm::elasticEnergy` (pkg/dem/ConcretePM.cpp, the public model): over the real
+/// CpmPhys contacts in container order, ½|Fn|²/((1-ω)kn) (ω only in tension) plus ½|Fs|²/ks.
+pub fn cpm_elastic_energy(scene: &Scene) -> f64 {
+    let mut e = 0.0;
+    for it in scene.interactions.list.iter().filter(|it| it.is_real()) {
+        if let (Some(ph), Some(cp)) = (it.phys.as_ref(), it.cpm()) {
+            let w = if cp.eps_n > 0.0 { cp.omega } else { 0.0 };
+            e += 0.5 * norm2(&ph.normal_force) / ((1.0 - w) * ph.kn);
+            e += 0.5 * norm2(&ph.shear_force) / ph.ks;
+        }
+    }
+    e
+}
+
 /// `Shop::PWaveTimeStep`: min over spheres of `r / sqrt(E/rho)`, rho recovered from the mass as YADE
 /// does (`mass / ((4/3)·π·r³)`). None when there is no sphere (YADE returns 1.0 with a warning).
 pub fn pwave_time_step(scene: &Scene) -> Option<f64> {

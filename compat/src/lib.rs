@@ -1696,6 +1696,8 @@ impl Sim {
             "LudingPhys"
         } else if ext.and_then(|e| e.bubble.as_ref()).is_some() {
             "BubblePhys"
+        } else if ext.and_then(|e| e.cpm.as_ref()).is_some() {
+            "CpmPhys"
         } else {
             "FrictPhys"
         };
@@ -1737,6 +1739,54 @@ impl Sim {
             _ => return Ok(None),
         };
         Ok(Some(v.to_string()))
+    }
+    /// A `CpmPhys` attribute as JSON (None when the physics is not a CpmPhys or has no such attribute;
+    /// NaN as the string "nan").
+    fn intr_cpm(&self, a: u32, b: u32, field: &str) -> PyResult<Option<String>> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let Some(c) = it.cpm() else {
+            return Ok(None);
+        };
+        use serde_json::json as j;
+        let num = |x: f64| if x.is_nan() { j!("nan") } else { j!(x) };
+        let v = match field {
+            "omega" => num(c.omega),
+            "Fn" => num(c.fn_),
+            "Fs" => v3json(&c.fs),
+            "epsN" => num(c.eps_n),
+            "epsT" => v3json(&c.eps_t),
+            "sigmaN" => num(c.sigma_n),
+            "sigmaT" => v3json(&c.sigma_t),
+            "kappaD" => num(c.kappa_d),
+            "epsNPl" => num(c.eps_n_pl),
+            "epsTPl" => v3json(&c.eps_t_pl),
+            "relResidualStrength" => num(c.rel_residual_strength),
+            "E" => num(c.e),
+            "G" => num(c.g),
+            "tanFrictionAngle" => num(c.tan_friction_angle),
+            "undamagedCohesion" => num(c.undamaged_cohesion),
+            "crossSection" => num(c.cross_section),
+            "refLength" => num(c.ref_length),
+            "refPD" => num(c.ref_pd),
+            "epsCrackOnset" => num(c.eps_crack_onset),
+            "relDuctility" => num(c.rel_ductility),
+            "epsFracture" => num(c.eps_fracture),
+            "equivStrainShearContrib" => num(c.equiv_strain_shear_contrib),
+            "dmgTau" => num(c.dmg_tau),
+            "dmgRateExp" => num(c.dmg_rate_exp),
+            "dmgStrain" | "dmgOverstress" => j!(0.0),
+            "plTau" => num(c.pl_tau),
+            "plRateExp" => num(c.pl_rate_exp),
+            "isoPrestress" => num(c.iso_prestress),
+            "neverDamage" => j!(c.never_damage),
+            "damLaw" => j!(c.dam_law),
+            "isCohesive" => j!(c.is_cohesive),
+            _ => return Ok(None),
+        };
+        Ok(Some(v.to_string()))
+    }
+    fn cpm_elastic_energy(&self) -> f64 {
+        ryade::utils::cpm_elastic_energy(&self.scene)
     }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {

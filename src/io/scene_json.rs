@@ -426,9 +426,9 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
-        "ViscElMat" | "LudingMat" | "BubbleMat" => None,
+        "ViscElMat" | "LudingMat" | "BubbleMat" | "CpmMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat, CpmMat)",
             cls
         ),
     };
@@ -484,6 +484,28 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     } else {
         None
     };
+    let cpm = if cls == "CpmMat" {
+        let d = crate::material::CpmParams::default();
+        Some(Box::new(crate::material::CpmParams {
+            sigma_t: nan_or("sigmaT")?,
+            never_damage: bo(m, "neverDamage", d.never_damage)?,
+            eps_crack_onset: nan_or("epsCrackOnset")?,
+            rel_ductility: nan_or("relDuctility")?,
+            equiv_strain_shear_contrib: fo(
+                m,
+                "equivStrainShearContrib",
+                d.equiv_strain_shear_contrib,
+            )?,
+            dam_law: fo(m, "damLaw", d.dam_law as f64)? as i32,
+            dmg_tau: fo(m, "dmgTau", d.dmg_tau)?,
+            dmg_rate_exp: fo(m, "dmgRateExp", d.dmg_rate_exp)?,
+            pl_tau: fo(m, "plTau", d.pl_tau)?,
+            pl_rate_exp: fo(m, "plRateExp", d.pl_rate_exp)?,
+            iso_prestress: fo(m, "isoPrestress", d.iso_prestress)?,
+        }))
+    } else {
+        None
+    };
     let lud = luding.is_some() || bubble.is_some();
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
@@ -504,6 +526,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         viscel,
         luding,
         bubble,
+        cpm,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -842,6 +865,18 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         il.viscel_phys = true
                     }
                     "Ip2_LudingMat_LudingMat_LudingPhys" => il.luding_phys = true,
+                    "Ip2_CpmMat_CpmMat_CpmPhys" => {
+                        if p.get("E").is_some_and(|v| !v.is_null()) {
+                            bail!("Ip2_CpmMat_CpmMat_CpmPhys.E (MatchMaker) is not supported by ryade yet");
+                        }
+                        il.cpm_phys = Some(fo(&p, "cohesiveThresholdIter", 10.0)? as i64)
+                    }
+                    "Ip2_FrictMat_CpmMat_FrictPhys" => {
+                        if p.get("frictAngle").is_some_and(|v| !v.is_null()) {
+                            bail!("Ip2_FrictMat_CpmMat_FrictPhys.frictAngle (MatchMaker) is not supported by ryade yet");
+                        }
+                        il.frict_cpm_phys = true
+                    }
                     "Ip2_BubbleMat_BubbleMat_BubblePhys" => il.bubble_phys = true,
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
                         // a number stands for a constant MatchMaker (algo 'val')
@@ -915,6 +950,20 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
                     "Law2_ScGeom_LudingPhys_Basic" => il.luding_basic = true,
+                    "Law2_ScGeom_CpmPhys_Cpm" => {
+                        let d = law::cpm::Params::default();
+                        il.cpm = Some(law::cpm::Params {
+                            omega_threshold: fo(&l, "omegaThreshold", d.omega_threshold)?,
+                            eps_soft: fo(&l, "epsSoft", d.eps_soft)?,
+                            rel_kn_soft: fo(&l, "relKnSoft", d.rel_kn_soft)?,
+                            yield_surf_type: fo(&l, "yieldSurfType", d.yield_surf_type as f64)? as i32,
+                            yield_log_speed: fo(&l, "yieldLogSpeed", d.yield_log_speed)?,
+                            yield_ellipse_shift: match l.get("yieldEllipseShift") {
+                                None | Some(Value::Null) => f64::NAN,
+                                Some(_) => f(&l, "yieldEllipseShift")?,
+                            },
+                        })
+                    }
                     "Law2_ScGeom_BubblePhys_Bubble" => {
                         il.bubble = Some(law::bubble::Params {
                             pct_max_force: fo(&l, "pctMaxForce", 0.1)?,
@@ -1417,6 +1466,24 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             if let Some(st) = m.bubble {
                 mat["surfaceTension"] = json!(st);
             }
+            if let Some(c) = &m.cpm {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, v) in [
+                    ("sigmaT", nn(c.sigma_t)),
+                    ("neverDamage", json!(c.never_damage)),
+                    ("epsCrackOnset", nn(c.eps_crack_onset)),
+                    ("relDuctility", nn(c.rel_ductility)),
+                    ("equivStrainShearContrib", json!(c.equiv_strain_shear_contrib)),
+                    ("damLaw", json!(c.dam_law)),
+                    ("dmgTau", json!(c.dmg_tau)),
+                    ("dmgRateExp", json!(c.dmg_rate_exp)),
+                    ("plTau", json!(c.pl_tau)),
+                    ("plRateExp", json!(c.pl_rate_exp)),
+                    ("isoPrestress", json!(c.iso_prestress)),
+                ] {
+                    mat[k] = v;
+                }
+            }
             if let Some(l) = &m.luding {
                 let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
                 for (k, x) in [
@@ -1551,6 +1618,12 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.luding_phys {
                     phys.push(json!({"class": "Ip2_LudingMat_LudingMat_LudingPhys"}));
                 }
+                if let Some(t) = il.cpm_phys {
+                    phys.push(json!({"class": "Ip2_CpmMat_CpmMat_CpmPhys", "cohesiveThresholdIter": t}));
+                }
+                if il.frict_cpm_phys {
+                    phys.push(json!({"class": "Ip2_FrictMat_CpmMat_FrictPhys"}));
+                }
                 if il.bubble_phys {
                     phys.push(json!({"class": "Ip2_BubbleMat_BubbleMat_BubblePhys"}));
                 }
@@ -1585,6 +1658,12 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 }
                 if il.luding_basic {
                     law.push(json!({"class": "Law2_ScGeom_LudingPhys_Basic"}));
+                }
+                if let Some(c) = &il.cpm {
+                    let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                    law.push(json!({"class": "Law2_ScGeom_CpmPhys_Cpm", "omegaThreshold": c.omega_threshold,
+                        "epsSoft": c.eps_soft, "relKnSoft": c.rel_kn_soft, "yieldSurfType": c.yield_surf_type,
+                        "yieldLogSpeed": c.yield_log_speed, "yieldEllipseShift": nn(c.yield_ellipse_shift)}));
                 }
                 if let Some(l) = &il.bubble {
                     law.push(json!({"class": "Law2_ScGeom_BubblePhys_Bubble", "pctMaxForce": l.pct_max_force,

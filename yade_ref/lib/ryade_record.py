@@ -166,6 +166,14 @@ def _material(b, grid=False):
     if c == 'BubbleMat':
         return {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label),
                 'surfaceTension': float(m.surfaceTension)}
+    if c == 'CpmMat':
+        d = {'id': int(m.id), 'class': c, 'young': float(m.young), 'poisson': float(m.poisson),
+             'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label),
+             'neverDamage': bool(m.neverDamage), 'damLaw': int(m.damLaw)}
+        for a in ('sigmaT', 'epsCrackOnset', 'relDuctility', 'equivStrainShearContrib', 'dmgTau', 'dmgRateExp', 'plTau',
+                  'plRateExp', 'isoPrestress'):
+            d[a] = _num_or_null(getattr(m, a))
+        return d
     if c == 'LudingMat':
         d = {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label)}
         for a in ('k1', 'kp', 'kc', 'ks', 'PhiF', 'G0', 'frictionAngle'):
@@ -198,7 +206,9 @@ def _body(b, grid=False):
         _require(not grid, 'body %d: clumps are not supported in grid scenes' % b.id)
         return _clump_body(b)
     st = b.state
-    _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
+    # a CpmMat body gets a CpmState (post-processing values only: not recorded)
+    _require(_cls(st) == 'State' or (_cls(st) == 'CpmState' and _cls(b.material) == 'CpmMat'),
+             'body %d: state class %s is not supported' % (b.id, _cls(st)))
     shape = _shape(b, grid)
     if shape['class'] in ('Sphere', 'GridNode', 'GridConnection'):
         _require(not b.aspherical, 'body %d: aspherical %s' % (b.id, shape['class'].lower()))
@@ -278,6 +288,12 @@ def _phys_functor(f, grid=False):
         return {'class': c}
     if c == 'Ip2_LudingMat_LudingMat_LudingPhys':
         return {'class': c}
+    if c == 'Ip2_CpmMat_CpmMat_CpmPhys':
+        _require(f.E is None, '%s.E (MatchMaker) is not supported' % c)
+        return {'class': c, 'cohesiveThresholdIter': int(f.cohesiveThresholdIter)}
+    if c == 'Ip2_FrictMat_CpmMat_FrictPhys':
+        _require(f.frictAngle is None, '%s.frictAngle (MatchMaker) is not supported' % c)
+        return {'class': c}
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
         d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
              'ktwist': float(f.ktwist)}
@@ -318,6 +334,10 @@ def _law_functor(f, grid=False):
         return {'class': c, 'pctMaxForce': float(f.pctMaxForce), 'surfaceTension': float(f.surfaceTension)}
     if c == 'Law2_ScGeom_LudingPhys_Basic':
         return {'class': c}
+    if c == 'Law2_ScGeom_CpmPhys_Cpm':
+        return {'class': c, 'omegaThreshold': float(f.omegaThreshold), 'epsSoft': float(f.epsSoft),
+                'relKnSoft': float(f.relKnSoft), 'yieldSurfType': int(f.yieldSurfType),
+                'yieldLogSpeed': float(f.yieldLogSpeed), 'yieldEllipseShift': _num_or_null(f.yieldEllipseShift)}
     if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
         _require(not f.calcEnergy, '%s.calcEnergy is not supported' % c)
         return {'class': c, 'includeAdhesion': bool(f.includeAdhesion), 'includeMoment': bool(f.includeMoment),

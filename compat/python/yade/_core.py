@@ -183,6 +183,12 @@ class State(Serializable, _ryade.StateBase):
         object.__setattr__(self, '_owner', (omega, body_id))
         self._rs_bind(omega._sim, body_id)
 
+    def _missing(self, k):
+        # a CpmMat body's state is a CpmState in YADE (post-processing values CpmStateUpdater writes)
+        if k in YADE_CLASSES.get('CpmState', {}).get('attrs', ()):
+            unsupported('the attribute CpmState.%s' % k)
+        Serializable._missing(self, k)
+
     # copy/pickle: the Python attributes (the Rust base's binding is re-made from _owner)
     def __getstate__(self):
         return self.__dict__
@@ -570,7 +576,21 @@ class _PhysView(_GeomView):
                 'momentBend', 'momentTwist', 'radius', 'adhesionForce', 'isAdhesive', 'isSliding', 'betan', 'betas',
                 'kr', 'ktw')
 
+    _cpm = ('omega', 'Fn', 'Fs', 'epsN', 'epsT', 'sigmaN', 'sigmaT', 'kappaD', 'epsNPl', 'epsTPl', 'relResidualStrength',
+            'E', 'G', 'tanFrictionAngle', 'undamagedCohesion', 'crossSection', 'refLength', 'refPD', 'epsCrackOnset',
+            'relDuctility', 'epsFracture', 'equivStrainShearContrib', 'dmgTau', 'dmgRateExp', 'dmgStrain',
+            'dmgOverstress', 'plTau', 'plRateExp', 'isoPrestress', 'neverDamage', 'damLaw', 'isCohesive')
+
     def __getattr__(self, k):
+        if k in self._cpm:
+            omega, a, b = self._k
+            v = omega._sim.intr_cpm(a, b, k)
+            if v is not None:
+                import json
+                v = json.loads(v)
+                if isinstance(v, list):
+                    return Vector3(*v)
+                return float('nan') if v == 'nan' else v
         if k in self._mindlin:
             omega, a, b = self._k
             v = omega._sim.intr_mindlin(a, b, k)

@@ -367,8 +367,50 @@ class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
         return {'class': 'Ip2_LudingMat_LudingMat_LudingPhys'}
 
 
+class Ip2_CpmMat_CpmMat_CpmPhys(IPhysFunctor):
+    """CpmPhys from two CpmMat (ConcretePM.cpp; Rust core `phys::ip2_cpm`)."""
+    _attrs = {'cohesiveThresholdIter': 10, 'E': None}
+
+    def _json(self):
+        if self._values['E'] is not None:
+            unsupported('Ip2_CpmMat_CpmMat_CpmPhys.E (MatchMaker)')
+        return {'class': 'Ip2_CpmMat_CpmMat_CpmPhys', 'cohesiveThresholdIter': int(self._values['cohesiveThresholdIter'])}
+
+
+class Ip2_FrictMat_CpmMat_FrictPhys(IPhysFunctor):
+    """FrictPhys for a FrictMat against a CpmMat (Ip2_FrictMat_FrictMat_FrictPhys's formulas)."""
+    _attrs = {'frictAngle': None}
+
+    def _json(self):
+        if self._values['frictAngle'] is not None:
+            unsupported('Ip2_FrictMat_CpmMat_FrictPhys.frictAngle (MatchMaker)')
+        return {'class': 'Ip2_FrictMat_CpmMat_FrictPhys'}
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_CpmPhys_Cpm(LawFunctor):
+    """The concrete particle model's law, public version (ConcretePM.cpp; Rust core `law::cpm`)."""
+    _attrs = {'yieldSurfType': 2, 'yieldLogSpeed': 0.1, 'yieldEllipseShift': float('nan'), 'omegaThreshold': 1.0,
+              'epsSoft': 1.0, 'relKnSoft': 0.3}
+
+    def _json(self):
+        v = self._values
+        ys = float(v['yieldEllipseShift'])
+        return {'class': 'Law2_ScGeom_CpmPhys_Cpm', 'yieldSurfType': int(v['yieldSurfType']),
+                'yieldLogSpeed': float(v['yieldLogSpeed']), 'yieldEllipseShift': None if ys != ys else ys,
+                'omegaThreshold': float(v['omegaThreshold']), 'epsSoft': float(v['epsSoft']),
+                'relKnSoft': float(v['relKnSoft'])}
+
+    def elasticEnergy(self):
+        """Σ over real CpmPhys contacts of ½|Fn|²/((1-ω⁺)kn) + ½|Fs|²/ks (Rust core `utils::cpm_elastic_energy`)."""
+        from ._core import Omega
+        return Omega()._sim.cpm_elastic_energy()
+
+    def yieldSigmaTMagnitude(self, *a, **kw):
+        raise RuntimeError('Full CPM model not available in this build')  # as Debian's YADE
 
 
 class Law2_ScGeom_BubblePhys_Bubble(LawFunctor):
@@ -1381,6 +1423,18 @@ class DomainLimiter(PeriodicEngine):
             unsupported('DomainLimiter deleting bodies (#%s: O.bodies.erase)' % ', #'.join(str(i) for i in out[:10]))
 
 
+class CpmStateUpdater(PeriodicEngine):
+    """YADE's CpmStateUpdater (ConcretePM.cpp) writes only post-processing values: each body's CpmState
+    (normDmg, stress, damageTensor, from its contacts' damage and the broken ones) and colour, and its
+    own avgRelResidual/maxOmega; none of them feeds the simulation. ryade keeps none of them: the
+    engine runs on YADE's schedule and changes nothing, and reading any of those values says that
+    ryade does not support it."""
+    _attrs = {'initRun': True}
+
+    def _action(self, omega):
+        pass
+
+
 class PyRunner(PeriodicEngine):
     """`PyRunner(command, iterPeriod, ...)`: `command` runs in the script's `__main__` globals."""
     _attrs = {'command': '', 'ignoreErrors': False, 'updateGlobals': True}
@@ -1434,6 +1488,35 @@ class FrictMat(ElastMat):
         v = self._values
         return {'class': 'FrictMat', 'id': v['id'], 'label': v['label'], 'young': float(v['young']),
                 'poisson': float(v['poisson']), 'frictionAngle': float(v['frictionAngle']), 'density': float(v['density'])}
+
+
+class CpmMat(FrictMat):
+    """The concrete particle model's material (pkg/dem/ConcretePM.hpp): a FrictMat, density 4800 by
+    default; NaN (not given) travels as null."""
+    _attrs = {'density': 4800.0, 'sigmaT': float('nan'), 'neverDamage': False, 'epsCrackOnset': float('nan'),
+              'relDuctility': float('nan'), 'equivStrainShearContrib': 0.0, 'damLaw': 1, 'dmgTau': -1.0,
+              'dmgRateExp': 0.0, 'plTau': -1.0, 'plRateExp': 0.0, 'isoPrestress': 0.0}
+    _OWN = ('sigmaT', 'neverDamage', 'epsCrackOnset', 'relDuctility', 'equivStrainShearContrib', 'damLaw', 'dmgTau',
+            'dmgRateExp', 'plTau', 'plRateExp', 'isoPrestress')
+
+    def _json(self):
+        d = FrictMat._json(self)
+        d['class'] = 'CpmMat'
+        for k in CpmMat._OWN:
+            v = self._values[k]
+            if k == 'neverDamage':
+                d[k] = bool(v)
+            elif k == 'damLaw':
+                d[k] = int(v)
+            else:
+                x = float(v)
+                d[k] = None if x != x else x
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in CpmMat._OWN:
+            unsupported('changing CpmMat.%s after the material is in use' % k)
+        FrictMat._changed(self, k)
 
 
 class CohFrictMat(FrictMat):
@@ -1624,7 +1707,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
     Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, LudingMat,
     Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic, BubbleMat, Ip2_BubbleMat_BubbleMat_BubblePhys,
-    Law2_ScGeom_BubblePhys_Bubble]}
+    Law2_ScGeom_BubblePhys_Bubble, CpmMat, Ip2_CpmMat_CpmMat_CpmPhys, Ip2_FrictMat_CpmMat_FrictPhys,
+    Law2_ScGeom_CpmPhys_Cpm, CpmStateUpdater]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
