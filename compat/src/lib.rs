@@ -2096,6 +2096,10 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
             "doSort" => c.do_sort = boolean()?,
             "targetInterv" => c.p.target_interv = num()? as i32,
+            // the next bound update uses it, as YADE's functor does
+            "Bo1_Sphere_Aabb.aabbEnlargeFactor" if c.p.bounds.sphere.is_some() => {
+                c.p.bounds.sphere = Some(num()?)
+            }
             _ => return Err(unsupported("InsertionSortCollider")),
         },
         Engine::Helix(h) => match key {
@@ -2147,6 +2151,30 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 }
             };
             match key.split_once('.') {
+                // the geometry functors' detection factor (read at every call, as in YADE)
+                Some(("Ig2_Sphere_Sphere_ScGeom", "interactionDetectionFactor"))
+                    if il.sphere_sphere.is_some() =>
+                {
+                    il.sphere_sphere
+                        .as_mut()
+                        .unwrap()
+                        .interaction_detection_factor = num()?
+                }
+                Some(("Ig2_Sphere_Sphere_ScGeom6D", "interactionDetectionFactor"))
+                    if il.sphere_sphere_6d.is_some() =>
+                {
+                    il.sphere_sphere_6d
+                        .as_mut()
+                        .unwrap()
+                        .ss
+                        .interaction_detection_factor = num()?
+                }
+                Some((
+                    "Ig2_Box_Sphere_ScGeom" | "Ig2_Box_Sphere_ScGeom6D",
+                    "interactionDetectionFactor",
+                )) if il.box_sphere.is_some() => {
+                    il.box_sphere.as_mut().unwrap().interaction_detection_factor = num()?
+                }
                 // fresh callback objects: their accumulators start at zero, as YADE's new instances
                 None if key == "callbacks" => {
                     let arr = v

@@ -267,9 +267,13 @@ class State(Serializable, _ryade.StateBase):
             return Quaternion(*self._values['refOri'])
         return self._values[k]
 
-    @property
     def displ(self):
+        """`State::displ` (core/State.hpp): pos - refPos (a method, as in YADE)."""
         return self.pos - self.refPos
+
+    def rot(self):
+        """`State::rot`: the rotation vector of refOri.conjugate() * ori (axis times angle)."""
+        return (self.refOri.conjugate() * self.ori).toRotationVector()
 
     def _json_into(self, d):
         v = self._values

@@ -149,6 +149,7 @@ class BoundFunctor(Functor):
 
 class Bo1_Sphere_Aabb(BoundFunctor):
     _attrs = {'aabbEnlargeFactor': -1.0}
+    _live = ('aabbEnlargeFactor',)
 
 
 class Bo1_Facet_Aabb(BoundFunctor):
@@ -169,6 +170,7 @@ class IGeomFunctor(Functor):
 
 class Ig2_Sphere_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0, 'avoidGranularRatcheting': True}
+    _live = ('interactionDetectionFactor',)
 
 
 class Ig2_Facet_Sphere_ScGeom(IGeomFunctor):
@@ -189,6 +191,7 @@ class Ig2_Wall_Sphere_ScGeom(IGeomFunctor):
 
 class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0}
+    _live = ('interactionDetectionFactor',)
 
 
 class Ig2_Box_Sphere_ScGeom6D(Ig2_Box_Sphere_ScGeom):
