@@ -65,4 +65,5 @@ pub mod stdsort;
 pub mod timestepper;
 pub mod timing;
 pub mod triax;
+pub mod triax_compression;
 pub mod utils;

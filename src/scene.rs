@@ -423,7 +423,7 @@ impl Engine {
             Engine::DirectedForce(_) => "InterpolatingDirectedForceEngine",
             Engine::Force(_) => "ForceEngine",
             Engine::HarmonicForce(_) => "HarmonicForceEngine",
-            Engine::TriaxialStress(_) => "TriaxialStressController",
+            Engine::TriaxialStress(t) => t.class_name(),
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
             Engine::External(_) => "External",
@@ -547,6 +547,12 @@ impl Scene {
                 let k = (id & !DONE_HOOK) as usize;
                 let hook = match s.engines.get(k) {
                     Some(Engine::PeriTriax(p)) => p.done_hook.clone(),
+                    Some(Engine::TriaxialStress(_)) => {
+                        return Err(format!(
+                            "TriaxialCompressionEngine writes its snapshot files at iteration {}: that needs `compat run` (or noFiles=True)",
+                            s.iter
+                        ))
+                    }
                     _ => String::new(),
                 };
                 return Err(format!(
@@ -733,7 +739,18 @@ impl Scene {
                 h.action(&mut self.forces, self.bodies.len(), self.time);
                 Ok(())
             }
-            Engine::TriaxialStress(t) => t.action(self).map_err(err),
+            Engine::TriaxialStress(t) => {
+                let r = t.action(self).map_err(err);
+                // a TriaxialCompressionEngine's snapshot files: written by the runner (Python) right
+                // after the engine, as a doneHook is
+                if t.compression
+                    .as_ref()
+                    .is_some_and(|c| !c.pending_files.is_empty())
+                {
+                    self.done_hook_pending = Some(k);
+                }
+                r
+            }
             Engine::Piston(pc) => {
                 activated = pc.periodic.is_activated(self.iter);
                 if activated {

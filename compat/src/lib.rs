@@ -895,6 +895,23 @@ impl Sim {
         let v: Value = serde_json::from_str(json).map_err(err)?;
         scene_json::material(&v, &mut self.scene.materials).map_err(err)
     }
+    /// A material's friction angle as the core has it (engines such as TriaxialCompressionEngine
+    /// change it).
+    fn material_friction_angle(&self, idx: usize) -> PyResult<f64> {
+        self.scene
+            .materials
+            .get(idx)
+            .map(|m| m.friction_angle)
+            .ok_or_else(|| PyIndexError::new_err(format!("no material #{}", idx)))
+    }
+    /// `Shop::setContactFriction(deg·π/180)` (`skip_clumps`) or ThreeDTriaxialEngine's variant.
+    fn set_contact_friction_degrees(&mut self, degrees: f64, skip_clumps: bool) {
+        ryade::triax_compression::set_contact_friction(
+            &mut self.scene,
+            degrees * std::f64::consts::PI / 180.0,
+            skip_clumps,
+        );
+    }
     fn material_set(&mut self, idx: usize, key: &str, value: f64) -> PyResult<()> {
         let m = self
             .scene

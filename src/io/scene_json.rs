@@ -1039,7 +1039,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             f: vec3_or(e, "f", Vec3::zeros())?,
             fi: vec3_or(e, "fi", Vec3::zeros())?,
         })),
-        "TriaxialStressController" => Engine::TriaxialStress(Box::new(
+        "TriaxialStressController" | "TriaxialCompressionEngine" => Engine::TriaxialStress(Box::new(
             crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "CombinedKinematicEngine" => {

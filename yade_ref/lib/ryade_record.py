@@ -389,8 +389,20 @@ def _engine(e, grid=False):
         return {'class': c, 'active': bool(e.active), 'timeStepUpdateInterval': int(e.timeStepUpdateInterval),
                 'defaultDt': float(e.defaultDt), 'maxDt': float(e.maxDt),
                 'timestepSafetyCoefficient': float(e.timestepSafetyCoefficient)}
-    if c == 'TriaxialStressController':
+    if c in ('TriaxialStressController', 'TriaxialCompressionEngine'):
         d = {'class': c}
+        if c == 'TriaxialCompressionEngine':
+            _require(e.noFiles, 'TriaxialCompressionEngine.noFiles=False is not supported (snapshot files)')
+            for k in ('strainRate', 'currentStrainRate', 'UnbalancedForce', 'StabilityCriterion', 'sigmaIsoCompaction',
+                      'previousSigmaIso', 'sigmaLateralConfinement', 'frictionAngleDegree', 'epsilonMax', 'fixedPorosity',
+                      'maxStress', 'sigma_iso'):
+                d[k] = float(getattr(e, k))
+            for k in ('autoCompressionActivation', 'autoUnload', 'autoStopSimulation', 'noFiles', 'isAxisymetric'):
+                d[k] = bool(getattr(e, k))
+            d['fixedPoroCompaction'] = bool(e.fixedPoroCompaction)
+            for k in ('testEquilibriumInterval', 'currentState', 'previousState'):
+                d[k] = int(getattr(e, k))
+            d['translationAxis'] = _v3(e.translationAxis)
         for k in ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'stressMask'):
             d[k] = int(getattr(e, k))
         for k in ('internalCompaction', 'updatePorosity'):

@@ -1172,8 +1172,11 @@ class Omega(_ryade.OmegaBase):
             return False
 
     def _python_hooks(self):
-        """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook)."""
-        return any(type(e).__name__ == 'PeriTriaxController' and not e.dead and e.doneHook for e in self._engines)
+        """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook, a
+        TriaxialCompressionEngine's snapshot files)."""
+        return any(not e.dead and ((type(e).__name__ == 'PeriTriaxController' and e.doneHook)
+                                   or (type(e).__name__ == 'TriaxialCompressionEngine' and not e.noFiles))
+                   for e in self._engines)
 
     def run(self, nSteps=-1, wait=False):
         if wait:

@@ -1356,6 +1356,75 @@ class TriaxialStressController(BoundaryController):
         omega._sim.triax_compute_stress_strain(index)
 
 
+class TriaxialCompressionEngine(TriaxialStressController):
+    """YADE's TriaxialCompressionEngine (pkg/dem/TriaxialCompressionEngine.cpp): the controller driven by
+    its state machine (compaction, unloading, confined loading), run in the Rust core
+    (`ryade::triax_compression`). Its snapshot files (noFiles=False) are refused when they would be
+    written (YADE's .xml cannot be written by ryade)."""
+    _attrs = {'strainRate': 0.0, 'currentStrainRate': 0.0, 'UnbalancedForce': 1.0, 'StabilityCriterion': 0.001,
+              'translationAxis': (0.0, 1.0, 0.0), 'autoCompressionActivation': True, 'autoUnload': True,
+              'autoStopSimulation': False, 'testEquilibriumInterval': 20, 'currentState': 0, 'previousState': 0,
+              'sigmaIsoCompaction': 1.0, 'previousSigmaIso': 0.0, 'sigmaLateralConfinement': 1.0, 'noFiles': False,
+              'frictionAngleDegree': -1.0, 'epsilonMax': 0.5, 'fixedPoroCompaction': False, 'fixedPorosity': 0.0,
+              'maxStress': 0.0, 'sigma_iso': 0.0, 'isAxisymetric': True, 'Key': '',
+              # kept on the Python side: a counter and a value YADE never updates
+              'warn': 0, 'uniaxialEpsilonCurr': 1.0}
+    _local = ('warn', 'uniaxialEpsilonCurr')
+    _own = TriaxialStressController._own + tuple(k for k in _attrs if k not in ('warn', 'uniaxialEpsilonCurr'))
+    _ints = TriaxialStressController._ints + ('testEquilibriumInterval', 'currentState', 'previousState', 'warn')
+    _bools = TriaxialStressController._bools + ('autoCompressionActivation', 'autoUnload', 'autoStopSimulation',
+                                                'noFiles', 'fixedPoroCompaction', 'isAxisymetric')
+    _class = 'TriaxialCompressionEngine'
+
+    def _convert(self, k, v):
+        if k == 'translationAxis':
+            return tuple(_vec3_attr('TriaxialCompressionEngine', k, v))
+        if k == 'Key':
+            return str(v)
+        return TriaxialStressController._convert(self, k, v)
+
+    def _read(self, k):
+        v = TriaxialStressController._read(self, k)
+        if k == 'translationAxis':
+            from .minieigen import Vector3
+            return Vector3(*v)
+        return v
+
+    def _changed(self, k):
+        if k in self._local:
+            return
+        TriaxialStressController._changed(self, k)
+
+    def _json(self):
+        d = TriaxialStressController._json(self)
+        d['translationAxis'] = list(d['translationAxis'])
+        return d
+
+    def _run_done_hook(self):
+        """The snapshot files YADE writes during this step (noFiles=False): `.spheres` as
+        Shop::saveSpheresToFile (x y z r of each dynamic sphere, C++ stream format), `.xml` through
+        O.save (ryade's own format, as O.save writes for any name: YADE's XML cannot be written)."""
+        from ._core import Omega, Sphere
+        omega, index = self._owner
+        names = json.loads(omega._sim.engine_get(index, '_pendingFiles'))
+        omega._sim.engine_set(index, '_pendingFiles', '[]')
+        for name in names:
+            if name.endswith('.spheres'):
+                with open(name, 'w') as f:
+                    for b in Omega().bodies:
+                        if b is None or not b.dynamic or not isinstance(b.shape, Sphere):
+                            continue
+                        p = b.state.pos
+                        f.write('%g %g %g %g\n' % (p[0], p[1], p[2], b.shape.radius))
+            else:
+                Omega().save(name)
+
+    def setContactProperties(self, frictionDegree):
+        """`Shop::setContactFriction`: dynamic bodies' materials and the real contacts get the angle."""
+        from ._core import Omega
+        Omega()._sim.set_contact_friction_degrees(float(frictionDegree), True)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -1486,6 +1555,14 @@ class ElastMat(Material):
 
 class FrictMat(ElastMat):
     _attrs = {'frictionAngle': 0.5}
+
+    def _read(self, k):
+        # engines (TriaxialCompressionEngine, ThreeDTriaxialEngine.setContactProperties) change it in
+        # the core
+        if k == 'frictionAngle' and self._owner is not None:
+            omega, idx = self._owner
+            return omega._sim.material_friction_angle(idx)
+        return ElastMat._read(self, k)
 
     def _json(self):
         v = self._values
@@ -1701,7 +1778,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
-    BoundaryController, PeriTriaxController, TriaxialStressController, Recorder, TriaxialStateRecorder,
+    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
