@@ -86,6 +86,8 @@ pub struct TriaxialStressController {
     pub max_vel3: f64,
     /// `Some` for a `TriaxialCompressionEngine` (its state machine around this controller).
     pub compression: Option<Box<crate::triax_compression::Compression>>,
+    /// `Some` for a `ThreeDTriaxialEngine`.
+    pub three_d: Option<Box<crate::triax_compression::ThreeD>>,
 }
 
 impl Default for TriaxialStressController {
@@ -141,6 +143,7 @@ impl Default for TriaxialStressController {
             max_vel2: 0.0,
             max_vel3: 0.0,
             compression: None,
+            three_d: None,
         }
     }
 }
@@ -176,20 +179,25 @@ impl TriaxialStressController {
     /// The engine's action: `TriaxialCompressionEngine::action` when it is one, else the
     /// controller's.
     pub fn action(&mut self, scene: &mut Scene) -> Result<(), String> {
-        match self.compression.take() {
-            Some(mut c) => {
-                let r = c.action(self, scene);
-                self.compression = Some(c);
-                r
-            }
-            None => self.controller_action(scene),
+        if let Some(mut c) = self.compression.take() {
+            let r = c.action(self, scene);
+            self.compression = Some(c);
+            return r;
         }
+        if let Some(mut c) = self.three_d.take() {
+            let r = c.action(self, scene);
+            self.three_d = Some(c);
+            return r;
+        }
+        self.controller_action(scene)
     }
 
     /// YADE's class name of the engine.
     pub fn class_name(&self) -> &'static str {
         if self.compression.is_some() {
             "TriaxialCompressionEngine"
+        } else if self.three_d.is_some() {
+            "ThreeDTriaxialEngine"
         } else {
             "TriaxialStressController"
         }
@@ -550,6 +558,12 @@ impl TriaxialStressController {
                 r => return r,
             }
         }
+        if let Some(c) = self.three_d.as_mut() {
+            match c.set(k, v) {
+                Err(None) => {}
+                r => return r,
+            }
+        }
         let num = || {
             v.as_f64()
                 .ok_or_else(|| Some(format!("{} must be a number", k)))
@@ -594,6 +608,9 @@ impl TriaxialStressController {
     pub fn get(&self, k: &str) -> Option<serde_json::Value> {
         use serde_json::json;
         if let Some(v) = self.compression.as_ref().and_then(|c| c.get(k)) {
+            return Some(v);
+        }
+        if let Some(v) = self.three_d.as_ref().and_then(|c| c.get(k)) {
             return Some(v);
         }
         let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
@@ -648,6 +665,11 @@ impl TriaxialStressController {
                 o[*k] = c.get(k).unwrap();
             }
         }
+        if let Some(c) = &self.three_d {
+            for k in crate::triax_compression::ThreeD::ATTRS {
+                o[*k] = c.get(k).unwrap();
+            }
+        }
         for k in F64_ATTRS {
             o[*k] = self.get(k).unwrap();
         }
@@ -677,8 +699,10 @@ impl TriaxialStressController {
     /// From a scene-file object (missing attributes: YADE's defaults).
     pub fn from_json(e: &serde_json::Value) -> Result<Self, String> {
         let mut t = TriaxialStressController::default();
-        if e.get("class").and_then(|c| c.as_str()) == Some("TriaxialCompressionEngine") {
-            t.compression = Some(Default::default());
+        match e.get("class").and_then(|c| c.as_str()) {
+            Some("TriaxialCompressionEngine") => t.compression = Some(Default::default()),
+            Some("ThreeDTriaxialEngine") => t.three_d = Some(Default::default()),
+            _ => {}
         }
         if let Some(o) = e.as_object() {
             for (k, v) in o {

@@ -428,3 +428,179 @@ impl Compression {
         "_phase1End",
     ];
 }
+
+/// What YADE's `ThreeDTriaxialEngine` (pkg/dem/ThreeDTriaxialEngine.cpp) adds to the controller: per
+/// axis, stress control (the controller's servo) or strain control (both walls moved at a strain rate
+/// converging to `strainRate_i`). Its own `strainDamping` (0.9997) shadows the controller's, as in YADE.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThreeD {
+    pub strain_rate: [f64; 3],
+    pub current_strain_rate: [f64; 3],
+    pub unbalanced_force: f64,
+    pub friction_angle_degree: f64,
+    pub update_friction_angle: bool,
+    pub stress_control: [bool; 3],
+    pub strain_damping: f64,
+    pub key: String,
+    pub first_run: bool,
+}
+
+impl Default for ThreeD {
+    fn default() -> Self {
+        ThreeD {
+            strain_rate: [0.0; 3],
+            current_strain_rate: [0.0; 3],
+            unbalanced_force: 1.0,
+            friction_angle_degree: -1.0,
+            update_friction_angle: false,
+            stress_control: [true; 3],
+            strain_damping: 0.9997,
+            key: String::new(),
+            first_run: true,
+        }
+    }
+}
+
+impl ThreeD {
+    /// `ThreeDTriaxialEngine::action` around the controller's own action.
+    pub fn action(
+        &mut self,
+        t: &mut TriaxialStressController,
+        scene: &mut Scene,
+    ) -> Result<(), String> {
+        // (axis walls: negative side, positive side)
+        const WALLS: [(usize, usize); 3] = [(LEFT, RIGHT), (BOTTOM, TOP), (BACK, FRONT)];
+        if self.first_run {
+            if self.update_friction_angle {
+                // ThreeDTriaxialEngine::setContactProperties: clumps not skipped
+                set_contact_friction(
+                    scene,
+                    self.friction_angle_degree * std::f64::consts::PI / 180.0,
+                    false,
+                );
+            }
+            t.height0 = t.height;
+            t.depth0 = t.depth;
+            t.width0 = t.width;
+            for (i, (lo, hi)) in WALLS.iter().enumerate() {
+                t.wall_activated[*lo] = self.stress_control[i];
+                t.wall_activated[*hi] = self.stress_control[i];
+            }
+            self.first_run = false;
+        }
+        let dt = scene.dt;
+        for (i, (lo, hi)) in WALLS.iter().enumerate() {
+            if self.current_strain_rate[i] != self.strain_rate[i] {
+                self.current_strain_rate[i] += (self.strain_rate[i] - self.current_strain_rate[i])
+                    * (1.0 - self.strain_damping);
+            }
+            let size = [t.width, t.height, t.depth][i];
+            if !self.stress_control[i] {
+                let mut axis = Vec3::zeros();
+                axis[i] = 1.0;
+                let d = axis * (0.5 * self.current_strain_rate[i] * size) * dt;
+                scene.bodies.pos[t.wall_ids[*lo] as usize] += d;
+                scene.bodies.pos[t.wall_ids[*hi] as usize] -= d;
+            } else {
+                // max_vel_i (the controller's action overwrites it from max_vel right after: kept)
+                let v = 0.5 * self.current_strain_rate[i] * size;
+                match i {
+                    0 => t.max_vel1 = v,
+                    1 => t.max_vel2 = v,
+                    _ => t.max_vel3 = v,
+                }
+            }
+        }
+        t.controller_action(scene)
+    }
+
+    /// Set one attribute from JSON; Err(None) for a name it does not have.
+    pub fn set(&mut self, k: &str, v: &serde_json::Value) -> Result<(), Option<String>> {
+        let num = || {
+            v.as_f64()
+                .ok_or_else(|| Some(format!("{} must be a number", k)))
+        };
+        let boolean = || {
+            v.as_bool()
+                .or_else(|| v.as_f64().map(|x| x != 0.0))
+                .ok_or_else(|| Some(format!("{} must be a bool", k)))
+        };
+        let axis = |p: &str| -> Option<usize> {
+            k.strip_prefix(p)
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|n| (1..=3).contains(n))
+                .map(|n| n - 1)
+        };
+        if let Some(i) = axis("strainRate") {
+            self.strain_rate[i] = num()?;
+        } else if let Some(i) = axis("currentStrainRate") {
+            self.current_strain_rate[i] = num()?;
+        } else if let Some(i) = axis("stressControl_") {
+            self.stress_control[i] = boolean()?;
+        } else {
+            match k {
+                "UnbalancedForce" => self.unbalanced_force = num()?,
+                "frictionAngleDegree" => self.friction_angle_degree = num()?,
+                "updateFrictionAngle" => self.update_friction_angle = boolean()?,
+                "strainDamping" => self.strain_damping = num()?,
+                "Key" => {
+                    self.key = v
+                        .as_str()
+                        .ok_or_else(|| Some("Key must be a string".to_string()))?
+                        .to_string()
+                }
+                "_firstRun" => self.first_run = boolean()?,
+                _ => return Err(None),
+            }
+        }
+        Ok(())
+    }
+
+    /// One attribute as JSON (None: no such name).
+    pub fn get(&self, k: &str) -> Option<serde_json::Value> {
+        use serde_json::json;
+        let axis = |p: &str| -> Option<usize> {
+            k.strip_prefix(p)
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|n| (1..=3).contains(n))
+                .map(|n| n - 1)
+        };
+        if let Some(i) = axis("strainRate") {
+            return Some(json!(self.strain_rate[i]));
+        }
+        if let Some(i) = axis("currentStrainRate") {
+            return Some(json!(self.current_strain_rate[i]));
+        }
+        if let Some(i) = axis("stressControl_") {
+            return Some(json!(self.stress_control[i]));
+        }
+        Some(match k {
+            "UnbalancedForce" => json!(self.unbalanced_force),
+            "frictionAngleDegree" => json!(self.friction_angle_degree),
+            "updateFrictionAngle" => json!(self.update_friction_angle),
+            "strainDamping" => json!(self.strain_damping),
+            "Key" => json!(self.key),
+            "_firstRun" => json!(self.first_run),
+            _ => return None,
+        })
+    }
+
+    /// The attribute names `to_json` writes.
+    pub const ATTRS: &'static [&'static str] = &[
+        "strainRate1",
+        "strainRate2",
+        "strainRate3",
+        "currentStrainRate1",
+        "currentStrainRate2",
+        "currentStrainRate3",
+        "stressControl_1",
+        "stressControl_2",
+        "stressControl_3",
+        "UnbalancedForce",
+        "frictionAngleDegree",
+        "updateFrictionAngle",
+        "strainDamping",
+        "Key",
+        "_firstRun",
+    ];
+}

@@ -1039,9 +1039,11 @@ pub fn engine(e: &Value) -> Result<Engine> {
             f: vec3_or(e, "f", Vec3::zeros())?,
             fi: vec3_or(e, "fi", Vec3::zeros())?,
         })),
-        "TriaxialStressController" | "TriaxialCompressionEngine" => Engine::TriaxialStress(Box::new(
-            crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
-        )),
+        "TriaxialStressController" | "TriaxialCompressionEngine" | "ThreeDTriaxialEngine" => {
+            Engine::TriaxialStress(Box::new(
+                crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
+            ))
+        }
         "CombinedKinematicEngine" => {
             let mut c = crate::kinematic::CombinedKinematicEngine {
                 ids: ids(e)?,

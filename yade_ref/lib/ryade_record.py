@@ -389,8 +389,14 @@ def _engine(e, grid=False):
         return {'class': c, 'active': bool(e.active), 'timeStepUpdateInterval': int(e.timeStepUpdateInterval),
                 'defaultDt': float(e.defaultDt), 'maxDt': float(e.maxDt),
                 'timestepSafetyCoefficient': float(e.timestepSafetyCoefficient)}
-    if c in ('TriaxialStressController', 'TriaxialCompressionEngine'):
+    if c in ('TriaxialStressController', 'TriaxialCompressionEngine', 'ThreeDTriaxialEngine'):
         d = {'class': c}
+        if c == 'ThreeDTriaxialEngine':
+            for k in ('strainRate1', 'strainRate2', 'strainRate3', 'currentStrainRate1', 'currentStrainRate2',
+                      'currentStrainRate3', 'UnbalancedForce', 'frictionAngleDegree'):
+                d[k] = float(getattr(e, k))
+            for k in ('updateFrictionAngle', 'stressControl_1', 'stressControl_2', 'stressControl_3'):
+                d[k] = bool(getattr(e, k))
         if c == 'TriaxialCompressionEngine':
             _require(e.noFiles, 'TriaxialCompressionEngine.noFiles=False is not supported (snapshot files)')
             for k in ('strainRate', 'currentStrainRate', 'UnbalancedForce', 'StabilityCriterion', 'sigmaIsoCompaction',

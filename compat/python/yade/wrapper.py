@@ -1425,6 +1425,31 @@ class TriaxialCompressionEngine(TriaxialStressController):
         Omega()._sim.set_contact_friction_degrees(float(frictionDegree), True)
 
 
+class ThreeDTriaxialEngine(TriaxialStressController):
+    """YADE's ThreeDTriaxialEngine (pkg/dem/ThreeDTriaxialEngine.cpp): per axis stress control (the
+    controller's servo) or strain control at strainRate_i, run in the Rust core
+    (`ryade::triax_compression::ThreeD`). Its strainDamping (0.9997) is its own, as in YADE (the
+    controller keeps 0.99)."""
+    _attrs = {'strainRate1': 0.0, 'currentStrainRate1': 0.0, 'strainRate2': 0.0, 'currentStrainRate2': 0.0,
+              'strainRate3': 0.0, 'currentStrainRate3': 0.0, 'UnbalancedForce': 1.0, 'frictionAngleDegree': -1.0,
+              'updateFrictionAngle': False, 'stressControl_1': True, 'stressControl_2': True, 'stressControl_3': True,
+              'strainDamping': 0.9997, 'Key': ''}
+    _own = TriaxialStressController._own + tuple(k for k in _attrs if k != 'strainDamping')
+    _bools = TriaxialStressController._bools + ('updateFrictionAngle', 'stressControl_1', 'stressControl_2',
+                                                'stressControl_3')
+    _class = 'ThreeDTriaxialEngine'
+
+    def _convert(self, k, v):
+        if k == 'Key':
+            return str(v)
+        return TriaxialStressController._convert(self, k, v)
+
+    def setContactProperties(self, frictionDegree):
+        """Dynamic bodies' materials and the real contacts get the angle (clumps not skipped, as YADE's)."""
+        from ._core import Omega
+        Omega()._sim.set_contact_friction_degrees(float(frictionDegree), False)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -1778,7 +1803,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
-    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, Recorder, TriaxialStateRecorder,
+    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, ThreeDTriaxialEngine, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
