@@ -64,5 +64,7 @@ O.engines = [
 ]
 O.dt = 2e-5
 
-ryade_record.record('rs_cpm', steps=3000)
+# a digest scene (golden/FORMAT.md): every step's SHA-256 of all values, full rows around the events
+ryade_record.record('rs_cpm', steps=3000, micro_digest=True,
+                    keep_steps=[0, 1, 2, 10, 11, 12, 200, 209, 210, 556, 557, 1500, 2565, 2566, 2567, 2754, 3000])
 ryade_record.finish()
