@@ -46,6 +46,7 @@ pub mod gap_run;
 pub mod geogrid;
 pub mod geom;
 pub mod harness;
+pub mod hydro;
 pub mod idle_skip;
 pub mod integrator;
 pub mod interaction;

@@ -401,6 +401,7 @@ pub enum Engine {
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
+    Hydro(Box<crate::hydro::HydroForceEngine>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -426,6 +427,7 @@ impl Engine {
             Engine::TriaxialStress(t) => t.class_name(),
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
+            Engine::Hydro(_) => "HydroForceEngine",
             Engine::External(_) => "External",
         }
     }
@@ -739,6 +741,7 @@ impl Scene {
                 h.action(&mut self.forces, self.bodies.len(), self.time);
                 Ok(())
             }
+            Engine::Hydro(h) => h.action(&self.bodies, &mut self.forces).map_err(err),
             Engine::TriaxialStress(t) => {
                 let r = t.action(self).map_err(err);
                 // a TriaxialCompressionEngine's snapshot files: written by the runner (Python) right

@@ -2285,6 +2285,10 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 _ => return Err(unsupported("InterpolatingDirectedForceEngine")),
             }
         }
+        Engine::Hydro(h) => h.set(key, v).map_err(|e| match e {
+            None => unsupported("HydroForceEngine"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
         Engine::TriaxialStress(t) => t.set(key, v).map_err(|e| match e {
             None => unsupported("TriaxialStressController"),
             Some(e) => PyValueError::new_err(e),

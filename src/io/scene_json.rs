@@ -1044,6 +1044,9 @@ pub fn engine(e: &Value) -> Result<Engine> {
                 crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
             ))
         }
+        "HydroForceEngine" => Engine::Hydro(Box::new(
+            crate::hydro::HydroForceEngine::from_json(e).map_err(|m| anyhow!(m))?,
+        )),
         "CombinedKinematicEngine" => {
             let mut c = crate::kinematic::CombinedKinematicEngine {
                 ids: ids(e)?,
@@ -1706,6 +1709,7 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
                 "f": v3(&h.f), "fi": v3(&h.fi)}),
             Engine::TriaxialStress(t) => t.to_json(),
+            Engine::Hydro(h) => h.to_json(),
             Engine::Kinematic(k) => kinematic_value(k),
             Engine::DirectedForce(f) => json!({"class": "InterpolatingDirectedForceEngine", "ids": f.base.ids,
                 "force": v3(&f.base.force), "times": f.times, "magnitudes": f.magnitudes,

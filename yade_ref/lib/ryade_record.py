@@ -421,6 +421,16 @@ def _engine(e, grid=False):
             d['wall_%s_id' % w] = int(getattr(e, 'wall_%s_id' % w))
             d['wall_%s_activated' % w] = bool(getattr(e, 'wall_%s_activated' % w))
         return d
+    if c == 'HydroForceEngine':
+        _require(not e.lubrication, 'HydroForceEngine.lubrication=True is not supported')
+        d = {'class': c, 'ids': [int(i) for i in e.ids], 'gravity': _v3(e.gravity), 'nCell': int(e.nCell)}
+        for k in ('densFluid', 'viscoDyn', 'zRef', 'deltaZ', 'expoRZ', 'Cl'):
+            d[k] = float(getattr(e, k))
+        for k in ('lift', 'convAccOption', 'steadyFlow'):
+            d[k] = bool(getattr(e, k))
+        for k in ('vxFluid', 'phiPart', 'convAcc', 'vFluctX', 'vFluctY', 'vFluctZ'):
+            d[k] = [float(x) for x in getattr(e, k)]
+        return d
     if c == 'ForceEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}
     if c == 'HarmonicForceEngine':

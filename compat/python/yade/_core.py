@@ -1078,7 +1078,14 @@ class Omega(_ryade.OmegaBase):
                     setattr(builtins, lab, obj)
                     main = sys.modules.get('__main__')
                     if main is not None and getattr(main, '__ryade_script__', False):
-                        main.__dict__[lab] = obj
+                        # YADE sets only `__builtins__.label`: a global of the script's own (a module it
+                        # imported, e.g. `plot` next to a PyRunner labelled 'plot') keeps winning; a
+                        # global placed here by an earlier engine list is replaced
+                        g = main.__dict__
+                        placed = g.setdefault('__ryade_labels__', {})
+                        if lab not in g or (lab in placed and g[lab] is placed[lab]):
+                            g[lab] = obj
+                            placed[lab] = obj
 
     # ---- stepping ----
     def _one_step(self):

@@ -931,6 +931,88 @@ class ForceEngine(PartialEngine):
     _json = _AxisEngine._json
 
 
+class HydroForceEngine(PartialEngine):
+    """YADE's HydroForceEngine (pkg/common/HydroForceEngine.cpp): drag, lift, buoyancy and convective
+    acceleration on the listed spheres from the 1-D fluid profile (Rust core `hydro`). The fluid
+    resolution, the averaging and the turbulent-fluctuation models are not in ryade: those methods say
+    so. Profiles are plain lists here, as YADE returns copies."""
+    _core = {'gravity': (0.0, 0.0, -9.81), 'densFluid': 1000.0, 'viscoDyn': 1e-3, 'zRef': 0.0, 'deltaZ': float('nan'),
+             'nCell': 1, 'expoRZ': 3.1, 'lift': False, 'Cl': 0.2, 'convAccOption': False, 'steadyFlow': True,
+             'vxFluid': [], 'phiPart': [], 'convAcc': [], 'vFluctX': [], 'vFluctY': [], 'vFluctZ': []}
+    #: the other attributes only the refused methods read (kept as given)
+    _other = {'radiusParts': [], 'compatibilityOldVersion': False, 'vCell': float('nan'), 'radiusPart': 0.0, 'dpdx': 0.0,
+              'turbulentViscosity': [], 'phiMax': 0.64, 'irheolf': 0, 'iturbu': 1, 'ilm': 2, 'iusl': 1, 'uTop': 1.0,
+              'kappa': 0.41, 'viscousSubLayer': 0, 'fluidWallFriction': False, 'fluidFrictionCoef': 1.0,
+              'channelWidth': 1.0, 'phiBed': 0.08, 'taufsi': [], 'lubrication': False, 'roughnessPartScale': 1e-3,
+              'vPart': [], 'nbAverageT': 0, 'pointParticleAverage': False, 'enableMultiClassAverage': False,
+              'velFluct': False, 'ReynoldStresses': [], 'bedElevation': 0.0, 'fluctTime': [], 'dtFluct': float('nan'),
+              'unCorrelatedFluctuations': False, 'twoSize': False, 'radiusPart1': 0.0, 'radiusPart2': 0.0,
+              'vxPart': [], 'vyPart': [], 'vzPart': [], 'averageDrag': []}
+    _attrs = dict(_core, **_other)
+    _live = ('ids',) + tuple(_core)
+
+    def _convert(self, k, v):
+        if k == 'gravity':
+            return tuple(_vec3_attr('HydroForceEngine', k, v))
+        if k in ('vxFluid', 'phiPart', 'convAcc', 'vFluctX', 'vFluctY', 'vFluctZ'):
+            return [float(x) for x in v]
+        if k == 'nCell':
+            return int(v)
+        if k == 'lubrication' and v:
+            unsupported('HydroForceEngine.lubrication')
+        return PartialEngine._convert(self, k, v)
+
+    def _read(self, k):
+        if k == 'gravity':
+            from .minieigen import Vector3
+            return Vector3(*self._values[k])
+        v = self._values[k]
+        return list(v) if isinstance(v, list) else v
+
+    def _changed(self, k):
+        if k in self._other:
+            return
+        PartialEngine._changed(self, k)
+
+    def _json(self):
+        d = {'class': 'HydroForceEngine', 'ids': list(self._values['ids'])}
+        for k in self._core:
+            v = self._values[k]
+            d[k] = list(v) if isinstance(v, (list, tuple)) else v
+        if d['deltaZ'] != d['deltaZ']:
+            d['deltaZ'] = None
+        return d
+
+    def computeRadiusParts(self):
+        """The distinct radii of the listed spheres, in list order (clumps skipped)."""
+        from ._core import Omega, Sphere
+        out = []
+        bodies = Omega().bodies
+        for i in self._values['ids']:
+            if 0 <= i < len(bodies):
+                b = bodies[i]
+                if b is not None and not b.isClump and isinstance(b.shape, Sphere) and b.shape.radius not in out:
+                    out.append(b.shape.radius)
+        self._values['radiusParts'] = out
+
+    def initialization(self):
+        """`HydroForceEngine::initialization`: zero profiles (nCell cells, nCell + 1 fluid velocities) and
+        per-body fluctuations, then computeRadiusParts."""
+        from ._core import Omega
+        n = int(self._values['nCell'])
+        nb = len(Omega().bodies)
+        for k in ('vxPart', 'phiPart', 'averageDrag', 'ReynoldStresses', 'turbulentViscosity', 'taufsi'):
+            setattr(self, k, [0.0] * n)
+        from .minieigen import Vector3
+        self._values['vPart'] = [Vector3(0, 0, 0) for _ in range(n)]
+        self.vxFluid = [0.0] * (n + 1)
+        if not self._values['convAccOption']:
+            self.convAcc = [0.0] * n
+        for k in ('vFluctX', 'vFluctY', 'vFluctZ'):
+            setattr(self, k, [0.0] * nb)
+        self.computeRadiusParts()
+
+
 class HarmonicForceEngine(PartialEngine):
     """A force A_i sin(2 pi f_i t + fi_i) per axis added to the listed bodies every step (ForceEngine.cpp;
     Rust core `force_engine::HarmonicForceEngine`)."""
@@ -1803,7 +1885,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
-    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, ThreeDTriaxialEngine, Recorder, TriaxialStateRecorder,
+    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, ThreeDTriaxialEngine, HydroForceEngine, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
