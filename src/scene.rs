@@ -2346,6 +2346,34 @@ mod tests {
     }
 
     #[test]
+    fn cpm_dispatch_declares_frictmat_first() {
+        use MatClass::*;
+        let mut il = InteractionLoop::empty();
+        il.frict_phys = true;
+        il.cpm_phys = Some(10);
+        il.frict_cpm_phys = true;
+        assert_eq!(
+            il.phys_functor(CpmMat, CpmMat).unwrap(),
+            Some((PhysFunctor::Cpm, false))
+        );
+        assert_eq!(
+            il.phys_functor(FrictMat, CpmMat).unwrap(),
+            Some((PhysFunctor::FrictCpm, false))
+        );
+        // YADE's dispatcher would swap the materials here (and Debian's YADE aborts on it)
+        assert_eq!(
+            il.phys_functor(CpmMat, FrictMat).unwrap(),
+            Some((PhysFunctor::FrictCpm, true))
+        );
+        il.frict_cpm_phys = false;
+        // without the mixed functor a CpmMat falls back to FrictMat
+        assert_eq!(
+            il.phys_functor(CpmMat, FrictMat).unwrap(),
+            Some((PhysFunctor::Frict, false))
+        );
+    }
+
+    #[test]
     fn physics_and_laws_fall_back_to_their_bases() {
         let il = InteractionLoop {
             cohfrict_phys: Some(Default::default()),
@@ -2355,15 +2383,21 @@ mod tests {
         };
         use MatClass::*;
         assert_eq!(
-            il.phys_functor(CohFrictMat, CohFrictMat).unwrap(),
+            il.phys_functor(CohFrictMat, CohFrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::CohFrict)
         );
         assert_eq!(
-            il.phys_functor(CohFrictMat, FrictMat).unwrap(),
+            il.phys_functor(CohFrictMat, FrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(
-            il.phys_functor(FrictMat, CohFrictMat).unwrap(),
+            il.phys_functor(FrictMat, CohFrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         use GeomClass as G;
@@ -2399,15 +2433,21 @@ mod tests {
             ..InteractionLoop::default()
         };
         assert_eq!(
-            ve.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            ve.phys_functor(ViscElMat, ViscElMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::ViscEl)
         );
         assert_eq!(
-            ve.phys_functor(ViscElMat, FrictMat).unwrap(),
+            ve.phys_functor(ViscElMat, FrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(
-            il.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            il.phys_functor(ViscElMat, ViscElMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(

@@ -186,29 +186,27 @@ impl Compression {
     ) -> Result<(), String> {
         self.unbalanced_force = crate::utils::unbalanced_force(scene, false);
         let s = self.current_state;
-        if (s != STATE_TRIAX_LOADING && s == STATE_ISO_COMPACTION)
+        // YADE's two nested conditions (the porosity branch of its `else` only returns)
+        let checked = (s != STATE_TRIAX_LOADING && s == STATE_ISO_COMPACTION)
             || s == STATE_ISO_UNLOADING
             || s == STATE_FIXED_POROSITY_COMPACTION
-            || self.auto_compression_activation
+            || self.auto_compression_activation;
+        if checked
+            && self.unbalanced_force <= self.stability_criterion
+            && ((t.mean_stress - self.sigma_iso) / self.sigma_iso).abs() < 0.005
+            && !self.fixed_poro_compaction
         {
-            if self.unbalanced_force <= self.stability_criterion
-                && ((t.mean_stress - self.sigma_iso) / self.sigma_iso).abs() < 0.005
-                && !self.fixed_poro_compaction
+            if s == STATE_ISO_COMPACTION
+                && self.auto_unload
+                && self.sigma_lateral_confinement != self.sigma_iso_compaction
             {
-                if s == STATE_ISO_COMPACTION
-                    && self.auto_unload
-                    && self.sigma_lateral_confinement != self.sigma_iso_compaction
-                {
-                    self.transition(t, scene, STATE_ISO_UNLOADING)?;
-                    t.compute_stress_strain(scene)?;
-                } else if (s == STATE_ISO_COMPACTION
-                    || s == STATE_ISO_UNLOADING
-                    || s == STATE_LIMBO)
-                    && self.auto_compression_activation
-                {
-                    self.transition(t, scene, STATE_TRIAX_LOADING)?;
-                    t.compute_stress_strain(scene)?;
-                }
+                self.transition(t, scene, STATE_ISO_UNLOADING)?;
+                t.compute_stress_strain(scene)?;
+            } else if (s == STATE_ISO_COMPACTION || s == STATE_ISO_UNLOADING || s == STATE_LIMBO)
+                && self.auto_compression_activation
+            {
+                self.transition(t, scene, STATE_TRIAX_LOADING)?;
+                t.compute_stress_strain(scene)?;
             }
         }
         Ok(())

@@ -155,7 +155,13 @@ pub fn load(
         0.0
     };
     cp.sigma_n -= cp.iso_prestress;
-    if cp.eps_n > 0.0 && ((cp.is_cohesive && cp.omega > p.omega_threshold) || !cp.is_cohesive) {
+    // YADE: epsN > 0 && ((isCohesive && omega > omegaThreshold) || !isCohesive)
+    let breaks = if cp.is_cohesive {
+        cp.omega > p.omega_threshold
+    } else {
+        true
+    };
+    if cp.eps_n > 0.0 && breaks {
         return Ok(Outcome::Broken);
     }
     cp.fn_ = cp.sigma_n * cp.cross_section;
