@@ -1457,6 +1457,8 @@ class TriaxialCompressionEngine(TriaxialStressController):
     _bools = TriaxialStressController._bools + ('autoCompressionActivation', 'autoUnload', 'autoStopSimulation',
                                                 'noFiles', 'fixedPoroCompaction', 'isAxisymetric')
     _class = 'TriaxialCompressionEngine'
+    # YADE's attribute strainRate shadows the controller's strainRate() method in this class
+    strainRate = property(lambda self: self._read('strainRate'), lambda self, v: self._assign('strainRate', v))
 
     def _convert(self, k, v):
         if k == 'translationAxis':
