@@ -25,6 +25,8 @@ pub struct Newton {
     pub exact_aspherical_rot: bool,
     /// -1: every body; otherwise only bodies whose groupMask shares a bit.
     pub mask: i32,
+    /// `kinSplit`: the kinetic energy as `kinTrans` and `kinRot` instead of one `kinetic` entry.
+    pub kin_split: bool,
     /// YADE's `maxVelocitySq`, reused by the collider as a displacement indicator:
     /// 0 before any step, 0.5 when every body is still inside its swept bound, 2 otherwise.
     pub max_velocity_sq: f64,
@@ -52,6 +54,7 @@ impl Default for Newton {
             damp_gravity: true,
             exact_aspherical_rot: true,
             mask: -1,
+            kin_split: false,
             max_velocity_sq: 0.0,
             prev_vel_grad: Mat3::zeros(),
             prev_cell_size: None,
@@ -145,7 +148,12 @@ impl Newton {
         } else {
             0.5 * dot(&w, &inertia.component_mul(&w))
         };
-        e.add(e_trans + e_rot, "kinetic", c, true);
+        if self.kin_split {
+            e.add(e_trans, "kinTrans", c, true);
+            e.add(e_rot, "kinRot", c, true);
+        } else {
+            e.add(e_trans + e_rot, "kinetic", c, true);
+        }
         e.add(
             -dot(&self.gravity, &bodies.vel[id]) * mass * dt,
             "gravWork",

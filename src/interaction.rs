@@ -42,6 +42,8 @@ pub struct IntrExt {
     pub luding: Option<LudingPhys>,
     /// `Some` when the physics is a `BubblePhys`.
     pub bubble: Option<BubblePhys>,
+    /// `Some` when the physics is a `CpmPhys` (boxed: it is large).
+    pub cpm: Option<Box<crate::phys::CpmPhys>>,
 }
 
 #[derive(Clone, Debug)]
@@ -100,6 +102,12 @@ impl Interaction {
     #[inline(always)]
     pub fn mindlin(&self) -> Option<&MindlinPhys> {
         self.ext.as_ref().and_then(|e| e.mindlin.as_ref())
+    }
+
+    /// The concrete-model physics part, if the physics is a `CpmPhys`.
+    #[inline(always)]
+    pub fn cpm(&self) -> Option<&crate::phys::CpmPhys> {
+        self.ext.as_ref().and_then(|e| e.cpm.as_deref())
     }
 
     /// The Luding physics part, if the physics is a `LudingPhys`.

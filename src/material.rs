@@ -31,6 +31,43 @@ pub struct FrictMat {
     /// and this are used).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bubble: Option<f64>,
+    /// `Some` for a `CpmMat` (pkg/dem/ConcretePM.hpp: a FrictMat with the concrete model's parameters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpm: Option<Box<CpmParams>>,
+}
+
+/// The fields `CpmMat` (pkg/dem/ConcretePM.hpp) adds to `FrictMat`, with YADE's defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CpmParams {
+    pub sigma_t: f64,
+    pub never_damage: bool,
+    pub eps_crack_onset: f64,
+    pub rel_ductility: f64,
+    pub equiv_strain_shear_contrib: f64,
+    pub dam_law: i32,
+    pub dmg_tau: f64,
+    pub dmg_rate_exp: f64,
+    pub pl_tau: f64,
+    pub pl_rate_exp: f64,
+    pub iso_prestress: f64,
+}
+
+impl Default for CpmParams {
+    fn default() -> Self {
+        CpmParams {
+            sigma_t: f64::NAN,
+            never_damage: false,
+            eps_crack_onset: f64::NAN,
+            rel_ductility: f64::NAN,
+            equiv_strain_shear_contrib: 0.0,
+            dam_law: 1,
+            dmg_tau: -1.0,
+            dmg_rate_exp: 0.0,
+            pl_tau: -1.0,
+            pl_rate_exp: 0.0,
+            iso_prestress: 0.0,
+        }
+    }
 }
 
 /// The fields of a `LudingMat` besides density and frictionAngle (NaN: not given, YADE's default).
@@ -142,6 +179,7 @@ impl Default for FrictMat {
             viscel: None,
             luding: None,
             bubble: None,
+            cpm: None,
         }
     }
 }
@@ -173,6 +211,8 @@ impl FrictMat {
             MatClass::LudingMat
         } else if self.bubble.is_some() {
             MatClass::BubbleMat
+        } else if self.cpm.is_some() {
+            MatClass::CpmMat
         } else {
             MatClass::FrictMat
         }
@@ -187,6 +227,8 @@ impl FrictMat {
             "LudingMat"
         } else if self.bubble.is_some() {
             "BubbleMat"
+        } else if self.cpm.is_some() {
+            "CpmMat"
         } else {
             "FrictMat"
         }
@@ -203,6 +245,7 @@ pub enum MatClass {
     ViscElMat,
     LudingMat,
     BubbleMat,
+    CpmMat,
 }
 
 impl crate::dispatch::Hierarchy for MatClass {
@@ -212,7 +255,9 @@ impl crate::dispatch::Hierarchy for MatClass {
             MatClass::LudingMat | MatClass::BubbleMat => Some(MatClass::Material),
             MatClass::ElastMat => Some(MatClass::Material),
             MatClass::FrictMat => Some(MatClass::ElastMat),
-            MatClass::CohFrictMat | MatClass::ViscElMat => Some(MatClass::FrictMat),
+            MatClass::CohFrictMat | MatClass::ViscElMat | MatClass::CpmMat => {
+                Some(MatClass::FrictMat)
+            }
         }
     }
 }

@@ -21,6 +21,7 @@ pub enum PhysClass {
     MindlinPhys,
     LudingPhys,
     BubblePhys,
+    CpmPhys,
 }
 
 impl crate::dispatch::Hierarchy for PhysClass {
@@ -30,6 +31,7 @@ impl crate::dispatch::Hierarchy for PhysClass {
             IPhys => None,
             NormPhys => Some(IPhys),
             NormShearPhys => Some(NormPhys),
+            CpmPhys => Some(NormShearPhys),
             FrictPhys => Some(NormShearPhys),
             ViscElPhys | LudingPhys => Some(FrictPhys),
             BubblePhys => Some(IPhys),
@@ -875,4 +877,156 @@ impl BubblePhys {
             Ok(self.coeff_a * (self.coeff_b * separation).exp())
         }
     }
+}
+
+/// What `CpmPhys` (pkg/dem/ConcretePM.hpp) adds to the normal/shear forces and stiffnesses kept in
+/// `FrictPhys` (its `tan_phi` unused): the material constants averaged by the Ip2, the lengths set by
+/// the law on the first step, and the damage/plasticity state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CpmPhys {
+    pub e: f64,
+    pub g: f64,
+    pub tan_friction_angle: f64,
+    pub undamaged_cohesion: f64,
+    pub cross_section: f64,
+    pub ref_length: f64,
+    pub ref_pd: f64,
+    pub eps_crack_onset: f64,
+    pub rel_ductility: f64,
+    pub eps_fracture: f64,
+    pub equiv_strain_shear_contrib: f64,
+    pub dmg_tau: f64,
+    pub dmg_rate_exp: f64,
+    pub pl_tau: f64,
+    pub pl_rate_exp: f64,
+    pub iso_prestress: f64,
+    pub never_damage: bool,
+    pub dam_law: i32,
+    pub is_cohesive: bool,
+    pub omega: f64,
+    pub fn_: f64,
+    pub sigma_n: f64,
+    pub eps_n: f64,
+    pub rel_residual_strength: f64,
+    pub kappa_d: f64,
+    pub eps_n_pl: f64,
+    pub sigma_t: Vec3,
+    pub fs: Vec3,
+    pub eps_t_pl: Vec3,
+    pub eps_t: Vec3,
+}
+
+impl Default for CpmPhys {
+    /// The C++ defaults (NaN for the constants; sigmaN, sigmaT and relResidualStrength are left
+    /// uninitialised by YADE and always written by the law before they are read: NaN here).
+    fn default() -> Self {
+        let nan = f64::NAN;
+        CpmPhys {
+            e: nan,
+            g: nan,
+            tan_friction_angle: nan,
+            undamaged_cohesion: nan,
+            cross_section: nan,
+            ref_length: nan,
+            ref_pd: nan,
+            eps_crack_onset: nan,
+            rel_ductility: nan,
+            eps_fracture: nan,
+            equiv_strain_shear_contrib: nan,
+            dmg_tau: -1.0,
+            dmg_rate_exp: 0.0,
+            pl_tau: -1.0,
+            pl_rate_exp: 0.0,
+            iso_prestress: 0.0,
+            never_damage: false,
+            dam_law: 1,
+            is_cohesive: false,
+            omega: 0.0,
+            fn_: 0.0,
+            sigma_n: nan,
+            eps_n: 0.0,
+            rel_residual_strength: nan,
+            kappa_d: 0.0,
+            eps_n_pl: 0.0,
+            sigma_t: Vec3::new(nan, nan, nan),
+            fs: Vec3::zeros(),
+            eps_t_pl: Vec3::zeros(),
+            eps_t: Vec3::zeros(),
+        }
+    }
+}
+
+impl CpmPhys {
+    /// `CpmPhys::funcG`: the damage ω of the largest strain κ (0 below the onset or never damaged).
+    pub fn func_g(
+        kappa_d: f64,
+        eps_crack_onset: f64,
+        eps_fracture: f64,
+        never_damage: bool,
+        dam_law: i32,
+    ) -> Result<f64, String> {
+        if kappa_d < eps_crack_onset || never_damage {
+            return Ok(0.0);
+        }
+        match dam_law {
+            0 => Ok((1.0 - eps_crack_onset / kappa_d) / (1.0 - eps_crack_onset / eps_fracture)),
+            1 => Ok(1.0
+                - (eps_crack_onset / kappa_d)
+                    * (-(kappa_d - eps_crack_onset) / eps_fracture).exp()),
+            _ => Err(format!("CpmPhys.damLaw {} is not 0 or 1", dam_law)),
+        }
+    }
+}
+
+/// `Ip2_CpmMat_CpmMat_CpmPhys::go` (pkg/dem/ConcretePM.cpp) for a new contact: a shared material is
+/// copied, two materials are averaged (E, poisson·E, tan of the mean angle, ...; `damLaw` of the
+/// first); contacts made before iteration `cohesive_threshold_iter` (or always, when negative) are
+/// cohesive. kn and ks stay 0 until the law's first step sets them.
+pub fn ip2_cpm(
+    m1: &FrictMat,
+    m2: &FrictMat,
+    iter: i64,
+    cohesive_threshold_iter: i64,
+) -> Result<(FrictPhys, CpmPhys), String> {
+    let (c1, c2) = (
+        m1.cpm.as_deref().ok_or("CpmMat expected")?,
+        m2.cpm.as_deref().ok_or("CpmMat expected")?,
+    );
+    let mut p = CpmPhys {
+        dam_law: c1.dam_law,
+        is_cohesive: cohesive_threshold_iter < 0 || iter < cohesive_threshold_iter,
+        ..Default::default()
+    };
+    if m1.id >= 0 && m1.id == m2.id {
+        p.e = m1.young;
+        p.g = m1.young * m1.poisson;
+        p.tan_friction_angle = m1.friction_angle.tan();
+        p.undamaged_cohesion = c1.sigma_t;
+        p.eps_crack_onset = c1.eps_crack_onset;
+        p.rel_ductility = c1.rel_ductility;
+        p.equiv_strain_shear_contrib = c1.equiv_strain_shear_contrib;
+        p.never_damage = c1.never_damage;
+        p.dmg_tau = c1.dmg_tau;
+        p.dmg_rate_exp = c1.dmg_rate_exp;
+        p.pl_tau = c1.pl_tau;
+        p.pl_rate_exp = c1.pl_rate_exp;
+        p.iso_prestress = c1.iso_prestress;
+    } else {
+        let avg = |a: f64, b: f64| 0.5 * (a + b);
+        p.e = avg(m1.young, m2.young);
+        p.g = avg(m1.poisson, m2.poisson) * p.e;
+        p.tan_friction_angle = avg(m1.friction_angle, m2.friction_angle).tan();
+        p.undamaged_cohesion = avg(c1.sigma_t, c2.sigma_t);
+        p.eps_crack_onset = avg(c1.eps_crack_onset, c2.eps_crack_onset);
+        p.rel_ductility = avg(c1.rel_ductility, c2.rel_ductility);
+        p.equiv_strain_shear_contrib =
+            avg(c1.equiv_strain_shear_contrib, c2.equiv_strain_shear_contrib);
+        p.never_damage = c1.never_damage || c2.never_damage;
+        p.dmg_tau = avg(c1.dmg_tau, c2.dmg_tau);
+        p.dmg_rate_exp = avg(c1.dmg_rate_exp, c2.dmg_rate_exp);
+        p.pl_tau = avg(c1.pl_tau, c2.pl_tau);
+        p.pl_rate_exp = avg(c1.pl_rate_exp, c2.pl_rate_exp);
+        p.iso_prestress = avg(c1.iso_prestress, c2.iso_prestress);
+    }
+    Ok((FrictPhys::default(), p))
 }

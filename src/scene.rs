@@ -52,6 +52,12 @@ pub struct InteractionLoop {
     pub bubble_phys: bool,
     /// `Law2_ScGeom_BubblePhys_Bubble` and its state.
     pub bubble: Option<law::bubble::Params>,
+    /// `Ip2_CpmMat_CpmMat_CpmPhys` and its `cohesiveThresholdIter`.
+    pub cpm_phys: Option<i64>,
+    /// `Ip2_FrictMat_CpmMat_FrictPhys` present.
+    pub frict_cpm_phys: bool,
+    /// `Law2_ScGeom_CpmPhys_Cpm` and its attributes.
+    pub cpm: Option<law::cpm::Params>,
     /// `Ip2_FrictMat_FrictMat_MindlinPhys` and its attributes.
     pub mindlin_phys: Option<phys::MindlinIp2>,
     /// `Law2_ScGeom_FrictPhys_CundallStrack` and its parameters.
@@ -70,6 +76,18 @@ pub struct InteractionLoop {
     pub mindlin: Option<law::mindlin::Params>,
     /// Each law functor's cached `O.energy` indices (`plastDissipIx`, ...), by `LawFunctor`.
     pub energy_caches: [IdCache; LawFunctor::COUNT],
+    /// `InteractionLoop.callbacks`: one `SumIntrForcesCb` accumulator per callback, in list order.
+    pub sum_intr_forces_cb: Vec<SumIntrForcesCb>,
+}
+
+/// `SumIntrForcesCb` (pkg/dem/UnbalancedForceCallbacks.cpp): sums |normalForce + shearForce| over the
+/// real interactions (those with a non-zero force counted) during each InteractionLoop; at the start
+/// of the next loop it prints the previous sums to stderr as `(force,numIntr)`, as YADE's `stepInit`
+/// does with `cerr` (no newline), then resets them. It changes nothing else.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SumIntrForcesCb {
+    pub force: f64,
+    pub num_intr: i32,
 }
 
 impl Default for InteractionLoop {
@@ -134,6 +152,9 @@ impl InteractionLoop {
             luding_basic: false,
             bubble_phys: false,
             bubble: None,
+            cpm_phys: None,
+            frict_cpm_phys: false,
+            cpm: None,
             mindlin_phys: None,
             cundall_strack: None,
             cohesion_moment: None,
@@ -143,6 +164,7 @@ impl InteractionLoop {
             viscel_basic: false,
             mindlin: None,
             energy_caches: Default::default(),
+            sum_intr_forces_cb: Vec::new(),
         }
     }
 
@@ -206,14 +228,16 @@ impl InteractionLoop {
         v
     }
 
-    /// The physics functor for a material pair (None: no functor can handle it).
+    /// The physics functor for a material pair (None: no functor can handle it), with YADE's swap
+    /// of the two materials (the interaction keeps its order) when the functor was declared the other
+    /// way round.
     pub(crate) fn phys_functor(
         &self,
         a: MatClass,
         b: MatClass,
-    ) -> Result<Option<PhysFunctor>, String> {
+    ) -> Result<Option<(PhysFunctor, bool)>, String> {
         if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
-            return Ok(Some(PhysFunctor::Frict));
+            return Ok(Some((PhysFunctor::Frict, false)));
         }
         // registration order, on the stack (this runs for every contact every step)
         let all = [
@@ -231,21 +255,29 @@ impl InteractionLoop {
                 MatClass::FrictMat,
                 PhysFunctor::Mindlin,
             ),
+            (self.cpm_phys.is_some(), MatClass::CpmMat, PhysFunctor::Cpm),
+            (self.frict_cpm_phys, MatClass::CpmMat, PhysFunctor::FrictCpm),
         ];
         let mut buf = [Entry {
             a: MatClass::FrictMat,
             b: MatClass::FrictMat,
             f: PhysFunctor::Frict,
-        }; 6];
+        }; 8];
         let mut n = 0;
         for (on, m, f) in all {
             if on {
-                buf[n] = Entry { a: m, b: m, f };
+                // Ip2_FrictMat_CpmMat_FrictPhys is declared for (FrictMat, CpmMat)
+                let a = if f == PhysFunctor::FrictCpm {
+                    MatClass::FrictMat
+                } else {
+                    m
+                };
+                buf[n] = Entry { a, b: m, f };
                 n += 1;
             }
         }
         let v = &buf[..n];
-        Ok(dispatch::resolve(v, true, a, b, Some, Some)?.map(|(f, _)| f))
+        dispatch::resolve(v, true, a, b, Some, Some)
     }
 
     /// The law functor for a geometry/physics class pair.
@@ -309,12 +341,18 @@ impl InteractionLoop {
                 PhysClass::BubblePhys,
                 LawFunctor::Bubble,
             ),
+            (
+                self.cpm.is_some(),
+                GeomClass::ScGeom,
+                PhysClass::CpmPhys,
+                LawFunctor::Cpm,
+            ),
         ];
         let mut buf = [Entry {
             a: GeomClass::ScGeom,
             b: PhysClass::FrictPhys,
             f: LawFunctor::CundallStrack,
-        }; 9];
+        }; 10];
         let mut n = 0;
         for (on, a, b, f) in all {
             if on {
@@ -335,6 +373,10 @@ pub(crate) enum PhysFunctor {
     ViscEl,
     Mindlin,
     Luding,
+    /// `Ip2_CpmMat_CpmMat_CpmPhys`
+    Cpm,
+    /// `Ip2_FrictMat_CpmMat_FrictPhys`
+    FrictCpm,
     Bubble,
 }
 
@@ -359,6 +401,7 @@ pub enum Engine {
     /// The study's piston law (`RyadePistonController`, a ryade extension: not a YADE class).
     Piston(Box<crate::piston::PistonController>),
     PeriTriax(Box<crate::peri_triax::PeriTriax>),
+    Hydro(Box<crate::hydro::HydroForceEngine>),
     /// An engine run outside the core (e.g. a Python `PyRunner`): the step calls the hook given to
     /// `Scene::step_with` with this id, at this position in the engine list.
     External(u32),
@@ -381,9 +424,10 @@ impl Engine {
             Engine::DirectedForce(_) => "InterpolatingDirectedForceEngine",
             Engine::Force(_) => "ForceEngine",
             Engine::HarmonicForce(_) => "HarmonicForceEngine",
-            Engine::TriaxialStress(_) => "TriaxialStressController",
+            Engine::TriaxialStress(t) => t.class_name(),
             Engine::Piston(_) => "RyadePistonController",
             Engine::PeriTriax(_) => "PeriTriaxController",
+            Engine::Hydro(_) => "HydroForceEngine",
             Engine::External(_) => "External",
         }
     }
@@ -505,6 +549,12 @@ impl Scene {
                 let k = (id & !DONE_HOOK) as usize;
                 let hook = match s.engines.get(k) {
                     Some(Engine::PeriTriax(p)) => p.done_hook.clone(),
+                    Some(Engine::TriaxialStress(_)) => {
+                        return Err(format!(
+                            "TriaxialCompressionEngine writes its snapshot files at iteration {}: that needs `compat run` (or noFiles=True)",
+                            s.iter
+                        ))
+                    }
                     _ => String::new(),
                 };
                 return Err(format!(
@@ -691,7 +741,19 @@ impl Scene {
                 h.action(&mut self.forces, self.bodies.len(), self.time);
                 Ok(())
             }
-            Engine::TriaxialStress(t) => t.action(self).map_err(err),
+            Engine::Hydro(h) => h.action(&self.bodies, &mut self.forces).map_err(err),
+            Engine::TriaxialStress(t) => {
+                let r = t.action(self).map_err(err);
+                // a TriaxialCompressionEngine's snapshot files: written by the runner (Python) right
+                // after the engine, as a doneHook is
+                if t.compression
+                    .as_ref()
+                    .is_some_and(|c| !c.pending_files.is_empty())
+                {
+                    self.done_hook_pending = Some(k);
+                }
+                r
+            }
             Engine::Piston(pc) => {
                 activated = pc.periodic.is_activated(self.iter);
                 if activated {
@@ -1004,6 +1066,14 @@ impl Scene {
     /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
     /// then the law.
     fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
+        for cb in il.sum_intr_forces_cb.iter_mut() {
+            eprint!(
+                "({},{})",
+                crate::utils::cxx_stream_double(cb.force),
+                cb.num_intr
+            );
+            *cb = SumIntrForcesCb::default();
+        }
         // the laws add to O.energy as they go (YADE's scene->energy->add per contact); the tracker
         // and the functors' index caches are moved out for the loop and put back after it
         let mut tracker = std::mem::take(&mut self.energy);
@@ -1017,6 +1087,23 @@ impl Scene {
         let r = self.interaction_loop_with(il, &mut energy);
         self.energy = tracker;
         il.energy_caches = caches;
+        if !il.sum_intr_forces_cb.is_empty() {
+            // YADE calls the callback right after each interaction's law; nothing later in the loop
+            // touches an interaction's forces, so one pass in container order afterwards sums the
+            // same values in the same order
+            for it in self.interactions.list.iter().filter(|it| it.is_real()) {
+                let Some(ph) = it.phys.as_ref() else { continue };
+                let f = ph.normal_force + ph.shear_force;
+                if f == Vec3::zeros() {
+                    continue;
+                }
+                let n = crate::math::norm(&f);
+                for cb in il.sum_intr_forces_cb.iter_mut() {
+                    cb.num_intr += 1;
+                    cb.force += n;
+                }
+            }
+        }
         r
     }
 
@@ -1401,7 +1488,9 @@ impl Scene {
                         .is_some_and(|p| !p.set_cohesion_now)
                     && il.law_functor(GeomClass::ScGeom6D, PhysClass::CohFrictPhys)?
                         == Some(LawFunctor::CohesionMoment)
-                    && il.phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                    && il
+                        .phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                        .map(|(f, _)| f)
                         == Some(PhysFunctor::CohFrict) =>
             {
                 Some((p6, cm))
@@ -1540,13 +1629,14 @@ impl Scene {
                 &pr,
                 g,
             ),
-            (GeomFunctor::BoxSphere, Shape::Box { extents }, _) => geom::box_sphere::go(
-                il.box_sphere.as_ref().unwrap(),
-                extents,
-                radius(id2)?,
-                &pr,
-                g,
-            ),
+            (GeomFunctor::BoxSphere, Shape::Box { extents }, _) => {
+                let p = il.box_sphere.as_ref().unwrap();
+                if p.six_d {
+                    geom::box_sphere::go_6d(p, extents, radius(id2)?, &pr, g, &mut it.ext)
+                } else {
+                    geom::box_sphere::go(p, extents, radius(id2)?, &pr, g)
+                }
+            }
             (GeomFunctor::SphereSphere6D, _, _) => geom::grid::six_d(
                 il.sphere_sphere_6d.as_ref().unwrap(),
                 radius(id1)?,
@@ -1603,7 +1693,33 @@ impl Scene {
         let m1 = &self.materials[b.material[id1]];
         let m2 = &self.materials[b.material[id2]];
         let it = &mut self.interactions.list[k];
-        match il.phys_functor(m1.class(), m2.class())? {
+        let found = il.phys_functor(m1.class(), m2.class())?;
+        let swapped = found.is_some_and(|(_, s)| s);
+        match found.map(|(f, _)| f) {
+            Some(PhysFunctor::Cpm) => {
+                if it.phys.is_none() {
+                    let (fp, cp) = phys::ip2_cpm(m1, m2, self.iter, il.cpm_phys.unwrap_or(10))?;
+                    it.phys = Some(fp);
+                    it.ext_mut().cpm = Some(Box::new(cp));
+                }
+            }
+            Some(PhysFunctor::FrictCpm) => {
+                // Ip2_FrictMat_CpmMat_FrictPhys (Ip2_FrictMat_FrictMat_FrictPhys's formulas); with the
+                // CpmMat body first the dispatcher would swap the materials, which Debian's YADE
+                // stops on (InteractionLoop::action, `assert(!swap)`): refused alike
+                if swapped {
+                    return Err(format!(
+                        "Ip2_FrictMat_CpmMat_FrictPhys for #{} ({}) + #{} ({}): the physics functor needs the materials swapped, and YADE 2023.02a aborts there (InteractionLoop: assert(!swap)); ryade refuses it too",
+                        id1,
+                        m1.class_name(),
+                        id2,
+                        m2.class_name()
+                    ));
+                }
+                if it.phys.is_none() {
+                    it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
+                }
+            }
             Some(PhysFunctor::Frict) => {
                 if it.phys.is_none() {
                     it.phys = Some(phys::ip2_frict(m1, m2, it.geom.as_ref().unwrap()));
@@ -1712,6 +1828,8 @@ impl Scene {
             PhysClass::LudingPhys
         } else if it.ext.as_ref().is_some_and(|e| e.bubble.is_some()) {
             PhysClass::BubblePhys
+        } else if it.cpm().is_some() {
+            PhysClass::CpmPhys
         } else {
             PhysClass::FrictPhys
         };
@@ -1732,6 +1850,7 @@ impl Scene {
                     (_, PhysClass::MindlinPhys) => "Law2_ScGeom_MindlinPhys_Mindlin()",
                     (_, PhysClass::LudingPhys) => "Law2_ScGeom_LudingPhys_Basic()",
                     (_, PhysClass::BubblePhys) => "Law2_ScGeom_BubblePhys_Bubble()",
+                    (_, PhysClass::CpmPhys) => "Law2_ScGeom_CpmPhys_Cpm()",
                     _ => "Law2_ScGeom_FrictPhys_CundallStrack()",
                 }
             ));
@@ -1849,6 +1968,57 @@ impl Scene {
                     self.cell.is_some(),
                 )?;
                 apply_or_erase(&mut self.forces, id1, id2, l)
+            }
+            LawFunctor::Cpm => {
+                let cp = it
+                    .ext
+                    .as_mut()
+                    .and_then(|e| e.cpm.as_deref_mut())
+                    .ok_or_else(|| bad("CpmPhys"))?;
+                let fresh = if fresh {
+                    let plane = |s: &Shape| {
+                        matches!(s, Shape::Facet(_) | Shape::Wall { .. } | Shape::Box { .. })
+                    };
+                    let (s1, s2) = (&b.shape[id1], &b.shape[id2]);
+                    Some(match (s1, s2) {
+                        (Shape::Sphere { .. }, Shape::Sphere { .. }) => law::cpm::Fresh::Spheres {
+                            pos1: b.pos[id1],
+                            pos2: b.pos[id2],
+                            shift2: *shift2,
+                        },
+                        (Shape::Sphere { radius }, s) | (s, Shape::Sphere { radius })
+                            if plane(s) =>
+                        {
+                            law::cpm::Fresh::SphereOnPlane { radius: *radius }
+                        }
+                        _ => {
+                            return Err(format!(
+                                "Law2_ScGeom_CpmPhys_Cpm on {}+{} (#{}+#{}): YADE leaves the contact's lengths NaN there; ryade supports spheres against spheres, facets, walls and boxes",
+                                s1.class_name(),
+                                s2.class_name(),
+                                id1,
+                                id2
+                            ))
+                        }
+                    })
+                } else {
+                    None
+                };
+                let arms = if self.cell.is_some() {
+                    law::cpm::Arms::Periodic
+                } else {
+                    law::cpm::Arms::ContactPoint {
+                        pos1: b.pos[id1],
+                        pos2: b.pos[id2],
+                    }
+                };
+                match law::cpm::load(il.cpm.as_ref().unwrap(), fresh, &g, ph, cp, arms)? {
+                    law::cpm::Outcome::Load(l) => {
+                        law::apply(&mut self.forces, id1, id2, &l);
+                        true
+                    }
+                    law::cpm::Outcome::Broken => false,
+                }
             }
             LawFunctor::LudingBasic => {
                 let lp = it
@@ -2180,6 +2350,34 @@ mod tests {
     }
 
     #[test]
+    fn cpm_dispatch_declares_frictmat_first() {
+        use MatClass::*;
+        let mut il = InteractionLoop::empty();
+        il.frict_phys = true;
+        il.cpm_phys = Some(10);
+        il.frict_cpm_phys = true;
+        assert_eq!(
+            il.phys_functor(CpmMat, CpmMat).unwrap(),
+            Some((PhysFunctor::Cpm, false))
+        );
+        assert_eq!(
+            il.phys_functor(FrictMat, CpmMat).unwrap(),
+            Some((PhysFunctor::FrictCpm, false))
+        );
+        // YADE's dispatcher would swap the materials here (and Debian's YADE aborts on it)
+        assert_eq!(
+            il.phys_functor(CpmMat, FrictMat).unwrap(),
+            Some((PhysFunctor::FrictCpm, true))
+        );
+        il.frict_cpm_phys = false;
+        // without the mixed functor a CpmMat falls back to FrictMat
+        assert_eq!(
+            il.phys_functor(CpmMat, FrictMat).unwrap(),
+            Some((PhysFunctor::Frict, false))
+        );
+    }
+
+    #[test]
     fn physics_and_laws_fall_back_to_their_bases() {
         let il = InteractionLoop {
             cohfrict_phys: Some(Default::default()),
@@ -2189,15 +2387,21 @@ mod tests {
         };
         use MatClass::*;
         assert_eq!(
-            il.phys_functor(CohFrictMat, CohFrictMat).unwrap(),
+            il.phys_functor(CohFrictMat, CohFrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::CohFrict)
         );
         assert_eq!(
-            il.phys_functor(CohFrictMat, FrictMat).unwrap(),
+            il.phys_functor(CohFrictMat, FrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(
-            il.phys_functor(FrictMat, CohFrictMat).unwrap(),
+            il.phys_functor(FrictMat, CohFrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         use GeomClass as G;
@@ -2233,15 +2437,21 @@ mod tests {
             ..InteractionLoop::default()
         };
         assert_eq!(
-            ve.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            ve.phys_functor(ViscElMat, ViscElMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::ViscEl)
         );
         assert_eq!(
-            ve.phys_functor(ViscElMat, FrictMat).unwrap(),
+            ve.phys_functor(ViscElMat, FrictMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(
-            il.phys_functor(ViscElMat, ViscElMat).unwrap(),
+            il.phys_functor(ViscElMat, ViscElMat)
+                .unwrap()
+                .map(|(f, _)| f),
             Some(PhysFunctor::Frict)
         );
         assert_eq!(

@@ -84,6 +84,10 @@ pub struct TriaxialStressController {
     pub max_vel1: f64,
     pub max_vel2: f64,
     pub max_vel3: f64,
+    /// `Some` for a `TriaxialCompressionEngine` (its state machine around this controller).
+    pub compression: Option<Box<crate::triax_compression::Compression>>,
+    /// `Some` for a `ThreeDTriaxialEngine`.
+    pub three_d: Option<Box<crate::triax_compression::ThreeD>>,
 }
 
 impl Default for TriaxialStressController {
@@ -138,6 +142,8 @@ impl Default for TriaxialStressController {
             max_vel1: 0.0,
             max_vel2: 0.0,
             max_vel3: 0.0,
+            compression: None,
+            three_d: None,
         }
     }
 }
@@ -170,8 +176,35 @@ impl TriaxialStressController {
         Ok(id as usize)
     }
 
-    /// `TriaxialStressController::action`.
+    /// The engine's action: `TriaxialCompressionEngine::action` when it is one, else the
+    /// controller's.
     pub fn action(&mut self, scene: &mut Scene) -> Result<(), String> {
+        if let Some(mut c) = self.compression.take() {
+            let r = c.action(self, scene);
+            self.compression = Some(c);
+            return r;
+        }
+        if let Some(mut c) = self.three_d.take() {
+            let r = c.action(self, scene);
+            self.three_d = Some(c);
+            return r;
+        }
+        self.controller_action(scene)
+    }
+
+    /// YADE's class name of the engine.
+    pub fn class_name(&self) -> &'static str {
+        if self.compression.is_some() {
+            "TriaxialCompressionEngine"
+        } else if self.three_d.is_some() {
+            "ThreeDTriaxialEngine"
+        } else {
+            "TriaxialStressController"
+        }
+    }
+
+    /// `TriaxialStressController::action`.
+    pub fn controller_action(&mut self, scene: &mut Scene) -> Result<(), String> {
         if self.first {
             self.wall_id = self.wall_ids;
         }
@@ -519,6 +552,18 @@ impl TriaxialStressController {
 
     /// Set one attribute from JSON; Err(None) for a name it does not have.
     pub fn set(&mut self, k: &str, v: &serde_json::Value) -> Result<(), Option<String>> {
+        if let Some(c) = self.compression.as_mut() {
+            match c.set(k, v) {
+                Err(None) => {}
+                r => return r,
+            }
+        }
+        if let Some(c) = self.three_d.as_mut() {
+            match c.set(k, v) {
+                Err(None) => {}
+                r => return r,
+            }
+        }
         let num = || {
             v.as_f64()
                 .ok_or_else(|| Some(format!("{} must be a number", k)))
@@ -562,6 +607,12 @@ impl TriaxialStressController {
     /// One attribute or read-only value as JSON (None: no such name).
     pub fn get(&self, k: &str) -> Option<serde_json::Value> {
         use serde_json::json;
+        if let Some(v) = self.compression.as_ref().and_then(|c| c.get(k)) {
+            return Some(v);
+        }
+        if let Some(v) = self.three_d.as_ref().and_then(|c| c.get(k)) {
+            return Some(v);
+        }
         let v3 = |v: &Vec3| json!([v[0], v[1], v[2]]);
         if let Some(w) = k
             .strip_prefix("wall_")
@@ -608,7 +659,17 @@ impl TriaxialStressController {
     /// The scene-file object: every attribute (state included, so a saved run goes on as it was).
     pub fn to_json(&self) -> serde_json::Value {
         use serde_json::json;
-        let mut o = json!({"class": "TriaxialStressController"});
+        let mut o = json!({"class": self.class_name()});
+        if let Some(c) = &self.compression {
+            for k in crate::triax_compression::Compression::ATTRS {
+                o[*k] = c.get(k).unwrap();
+            }
+        }
+        if let Some(c) = &self.three_d {
+            for k in crate::triax_compression::ThreeD::ATTRS {
+                o[*k] = c.get(k).unwrap();
+            }
+        }
         for k in F64_ATTRS {
             o[*k] = self.get(k).unwrap();
         }
@@ -638,6 +699,11 @@ impl TriaxialStressController {
     /// From a scene-file object (missing attributes: YADE's defaults).
     pub fn from_json(e: &serde_json::Value) -> Result<Self, String> {
         let mut t = TriaxialStressController::default();
+        match e.get("class").and_then(|c| c.as_str()) {
+            Some("TriaxialCompressionEngine") => t.compression = Some(Default::default()),
+            Some("ThreeDTriaxialEngine") => t.three_d = Some(Default::default()),
+            _ => {}
+        }
         if let Some(o) = e.as_object() {
             for (k, v) in o {
                 if k == "class" || k == "_state" || k == "label" || k == "dead" {

@@ -7,6 +7,69 @@ use crate::math::{norm, norm2, Quat, Vec3};
 use crate::scene::Scene;
 use crate::shape::{Facet, Shape};
 
+/// A double as a default C++ `std::ostream` prints it (`%g`, 6 significant digits): fixed notation
+/// for exponents -5..5, else scientific with a sign and at least two exponent digits; trailing
+/// zeros dropped.
+pub fn cxx_stream_double(x: f64) -> String {
+    if x.is_nan() {
+        return if x.is_sign_negative() { "-nan" } else { "nan" }.into();
+    }
+    if x.is_infinite() {
+        return if x < 0.0 { "-inf" } else { "inf" }.into();
+    }
+    if x == 0.0 {
+        return if x.is_sign_negative() { "-0" } else { "0" }.into();
+    }
+    let sci = format!("{:.5e}", x);
+    let (mant, exp) = sci.split_once('e').unwrap();
+    let exp: i32 = exp.parse().unwrap();
+    let trim = |s: &str| -> String {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
+        }
+    };
+    if (-4..6).contains(&exp) {
+        trim(&format!("{:.*}", (5 - exp) as usize, x))
+    } else {
+        let sign = if exp < 0 { '-' } else { '+' };
+        format!("{}e{}{:02}", trim(mant), sign, exp.abs())
+    }
+}
+
+/// `Law2_ScGeom6D_CohFrictPhys_CohesionMoment::normElastEnergy` / `shearElastEnergy`
+/// (pkg/dem/CohesiveFrictionalContactLaw.cpp): Σ ½|Fn|²/kn (or ½|Fs|²/ks) over the real interactions
+/// in container order. YADE reads every physics through a static cast to CohFrictPhys, so plain
+/// FrictPhys contacts count too (the fields it reads are theirs).
+pub fn cohesion_moment_elastic_energy(scene: &Scene, shear: bool) -> f64 {
+    let mut e = 0.0;
+    for it in scene.interactions.list.iter().filter(|it| it.is_real()) {
+        if let Some(ph) = it.phys.as_ref() {
+            e += if shear {
+                0.5 * (norm2(&ph.shear_force) / ph.ks)
+            } else {
+                0.5 * (norm2(&ph.normal_force) / ph.kn)
+            };
+        }
+    }
+    e
+}
+
+/// `Law2_ScGeom_CpmPhys_Cpm::elasticEnergy` (pkg/dem/ConcretePM.cpp, the public model): over the real
+/// CpmPhys contacts in container order, ½|Fn|²/((1-ω)kn) (ω only in tension) plus ½|Fs|²/ks.
+pub fn cpm_elastic_energy(scene: &Scene) -> f64 {
+    let mut e = 0.0;
+    for it in scene.interactions.list.iter().filter(|it| it.is_real()) {
+        if let (Some(ph), Some(cp)) = (it.phys.as_ref(), it.cpm()) {
+            let w = if cp.eps_n > 0.0 { cp.omega } else { 0.0 };
+            e += 0.5 * norm2(&ph.normal_force) / ((1.0 - w) * ph.kn);
+            e += 0.5 * norm2(&ph.shear_force) / ph.ks;
+        }
+    }
+    e
+}
+
 /// `Shop::PWaveTimeStep`: min over spheres of `r / sqrt(E/rho)`, rho recovered from the mass as YADE
 /// does (`mass / ((4/3)·π·r³)`). None when there is no sphere (YADE returns 1.0 with a warning).
 pub fn pwave_time_step(scene: &Scene) -> Option<f64> {
@@ -414,4 +477,27 @@ pub fn check_time_step(scene: &Scene) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn doubles_print_as_cxx_streams() {
+        for (x, s) in [
+            (0.0, "0"),
+            (1.0, "1"),
+            (123456.0, "123456"),
+            (1234567.0, "1.23457e+06"),
+            (0.0001, "0.0001"),
+            (0.00001234, "1.234e-05"),
+            (-2.5, "-2.5"),
+            (999999.7, "1e+06"),
+            (1.0 / 3.0, "0.333333"),
+            (2.0e-300, "2e-300"),
+        ] {
+            assert_eq!(cxx_stream_double(x), s);
+        }
+    }
 }

@@ -143,6 +143,7 @@ fn unsupported_clumps_are_refused_clearly() {
         viscel: None,
         luding: None,
         bubble: None,
+        cpm: None,
     }];
     let mut b = Bodies::default();
     for x in [0.0, 0.015, 0.5] {

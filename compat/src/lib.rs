@@ -895,6 +895,23 @@ impl Sim {
         let v: Value = serde_json::from_str(json).map_err(err)?;
         scene_json::material(&v, &mut self.scene.materials).map_err(err)
     }
+    /// A material's friction angle as the core has it (engines such as TriaxialCompressionEngine
+    /// change it).
+    fn material_friction_angle(&self, idx: usize) -> PyResult<f64> {
+        self.scene
+            .materials
+            .get(idx)
+            .map(|m| m.friction_angle)
+            .ok_or_else(|| PyIndexError::new_err(format!("no material #{}", idx)))
+    }
+    /// `Shop::setContactFriction(deg·π/180)` (`skip_clumps`) or ThreeDTriaxialEngine's variant.
+    fn set_contact_friction_degrees(&mut self, degrees: f64, skip_clumps: bool) {
+        ryade::triax_compression::set_contact_friction(
+            &mut self.scene,
+            degrees * std::f64::consts::PI / 180.0,
+            skip_clumps,
+        );
+    }
     fn material_set(&mut self, idx: usize, key: &str, value: f64) -> PyResult<()> {
         let m = self
             .scene
@@ -1700,6 +1717,8 @@ impl Sim {
             "LudingPhys"
         } else if ext.and_then(|e| e.bubble.as_ref()).is_some() {
             "BubblePhys"
+        } else if ext.and_then(|e| e.cpm.as_ref()).is_some() {
+            "CpmPhys"
         } else {
             "FrictPhys"
         };
@@ -1741,6 +1760,54 @@ impl Sim {
             _ => return Ok(None),
         };
         Ok(Some(v.to_string()))
+    }
+    /// A `CpmPhys` attribute as JSON (None when the physics is not a CpmPhys or has no such attribute;
+    /// NaN as the string "nan").
+    fn intr_cpm(&self, a: u32, b: u32, field: &str) -> PyResult<Option<String>> {
+        let it = &self.scene.interactions.list[self.intr_index(a, b)?];
+        let Some(c) = it.cpm() else {
+            return Ok(None);
+        };
+        use serde_json::json as j;
+        let num = |x: f64| if x.is_nan() { j!("nan") } else { j!(x) };
+        let v = match field {
+            "omega" => num(c.omega),
+            "Fn" => num(c.fn_),
+            "Fs" => v3json(&c.fs),
+            "epsN" => num(c.eps_n),
+            "epsT" => v3json(&c.eps_t),
+            "sigmaN" => num(c.sigma_n),
+            "sigmaT" => v3json(&c.sigma_t),
+            "kappaD" => num(c.kappa_d),
+            "epsNPl" => num(c.eps_n_pl),
+            "epsTPl" => v3json(&c.eps_t_pl),
+            "relResidualStrength" => num(c.rel_residual_strength),
+            "E" => num(c.e),
+            "G" => num(c.g),
+            "tanFrictionAngle" => num(c.tan_friction_angle),
+            "undamagedCohesion" => num(c.undamaged_cohesion),
+            "crossSection" => num(c.cross_section),
+            "refLength" => num(c.ref_length),
+            "refPD" => num(c.ref_pd),
+            "epsCrackOnset" => num(c.eps_crack_onset),
+            "relDuctility" => num(c.rel_ductility),
+            "epsFracture" => num(c.eps_fracture),
+            "equivStrainShearContrib" => num(c.equiv_strain_shear_contrib),
+            "dmgTau" => num(c.dmg_tau),
+            "dmgRateExp" => num(c.dmg_rate_exp),
+            "dmgStrain" | "dmgOverstress" => j!(0.0),
+            "plTau" => num(c.pl_tau),
+            "plRateExp" => num(c.pl_rate_exp),
+            "isoPrestress" => num(c.iso_prestress),
+            "neverDamage" => j!(c.never_damage),
+            "damLaw" => j!(c.dam_law),
+            "isCohesive" => j!(c.is_cohesive),
+            _ => return Ok(None),
+        };
+        Ok(Some(v.to_string()))
+    }
+    fn cpm_elastic_energy(&self) -> f64 {
+        ryade::utils::cpm_elastic_energy(&self.scene)
     }
     /// Overwrite a stiffness or plasticity attribute of an existing interaction (calibration overrides).
     fn intr_set_scalar(&mut self, a: u32, b: u32, field: &str, v: f64) -> PyResult<()> {
@@ -1835,6 +1902,9 @@ impl Sim {
     #[pyo3(signature = (volume=None))]
     fn porosity(&self, volume: Option<f64>) -> PyResult<f64> {
         ryade::utils::porosity(&self.scene, volume).map_err(err)
+    }
+    fn cohesion_moment_elastic_energy(&self, shear: bool) -> f64 {
+        ryade::utils::cohesion_moment_elastic_energy(&self.scene, shear)
     }
     fn kinetic_energy(&self) -> f64 {
         ryade::utils::kinetic_energy(&self.scene)
@@ -2047,6 +2117,10 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
             "allowBiggerThanPeriod" => c.p.allow_bigger_than_period = boolean()?,
             "doSort" => c.do_sort = boolean()?,
             "targetInterv" => c.p.target_interv = num()? as i32,
+            // the next bound update uses it, as YADE's functor does
+            "Bo1_Sphere_Aabb.aabbEnlargeFactor" if c.p.bounds.sphere.is_some() => {
+                c.p.bounds.sphere = Some(num()?)
+            }
             _ => return Err(unsupported("InsertionSortCollider")),
         },
         Engine::Helix(h) => match key {
@@ -2098,6 +2172,49 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 }
             };
             match key.split_once('.') {
+                // the geometry functors' detection factor (read at every call, as in YADE)
+                Some(("Ig2_Sphere_Sphere_ScGeom", "interactionDetectionFactor"))
+                    if il.sphere_sphere.is_some() =>
+                {
+                    il.sphere_sphere
+                        .as_mut()
+                        .unwrap()
+                        .interaction_detection_factor = num()?
+                }
+                Some(("Ig2_Sphere_Sphere_ScGeom6D", "interactionDetectionFactor"))
+                    if il.sphere_sphere_6d.is_some() =>
+                {
+                    il.sphere_sphere_6d
+                        .as_mut()
+                        .unwrap()
+                        .ss
+                        .interaction_detection_factor = num()?
+                }
+                Some((
+                    "Ig2_Box_Sphere_ScGeom" | "Ig2_Box_Sphere_ScGeom6D",
+                    "interactionDetectionFactor",
+                )) if il.box_sphere.is_some() => {
+                    il.box_sphere.as_mut().unwrap().interaction_detection_factor = num()?
+                }
+                // fresh callback objects: their accumulators start at zero, as YADE's new instances
+                None if key == "callbacks" => {
+                    let arr = v
+                        .as_array()
+                        .ok_or_else(|| PyValueError::new_err("callbacks must be a list"))?;
+                    let mut cbs = Vec::new();
+                    for cb in arr {
+                        match cb.get("class").and_then(Value::as_str) {
+                            Some("SumIntrForcesCb") => cbs.push(Default::default()),
+                            other => {
+                                return Err(PyKeyError::new_err(format!(
+                                    "InteractionLoop callback {:?} is not supported by ryade yet",
+                                    other
+                                )))
+                            }
+                        }
+                    }
+                    il.sum_intr_forces_cb = cbs;
+                }
                 Some(("Ip2_FrictMat_FrictMat_MindlinPhys", k)) if il.mindlin_phys.is_some() => {
                     let p = il.mindlin_phys.as_mut().unwrap();
                     match k {
@@ -2172,6 +2289,10 @@ fn engine_set_attr(e: &mut Engine, key: &str, v: &Value) -> PyResult<()> {
                 _ => return Err(unsupported("InterpolatingDirectedForceEngine")),
             }
         }
+        Engine::Hydro(h) => h.set(key, v).map_err(|e| match e {
+            None => unsupported("HydroForceEngine"),
+            Some(e) => PyValueError::new_err(e),
+        })?,
         Engine::TriaxialStress(t) => t.set(key, v).map_err(|e| match e {
             None => unsupported("TriaxialStressController"),
             Some(e) => PyValueError::new_err(e),

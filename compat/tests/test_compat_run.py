@@ -25,13 +25,13 @@ def test_unsupported_class_fails_with_name_file_and_line():
     p = run('run', os.path.join(SCRIPTS, 'unsupported_class.py'))
     assert p.returncode == 1
     assert 'before' not in p.stdout
-    assert 'ryade does not support class HydroForceEngine yet' in p.stderr
+    assert 'ryade does not support class FlowEngine yet' in p.stderr
     assert 'unsupported_class.py, line 4' in p.stderr
     # without the check, the run stops where it reaches the class
     p = run('run', '--no-check', os.path.join(SCRIPTS, 'unsupported_class.py'))
     assert p.returncode == 1
     assert 'before' in p.stdout and 'never printed' not in p.stdout
-    assert 'ryade does not support class HydroForceEngine yet' in p.stderr
+    assert 'ryade does not support class FlowEngine yet' in p.stderr
     assert 'unsupported_class.py, line 4' in p.stderr
 
 
@@ -66,13 +66,13 @@ def test_check_finds_every_kind_of_unsupported_name(tmp_path):
     script.write_text("""from yade import utils, export
 import yade.polyhedra_utils
 from yade.export import gmshGeo
-O.engines = [NewtonIntegrator(kinSplit=True), PyRunner(command='O.bodies.erase(3)', iterPeriod=1)]
+O.engines = [NewtonIntegrator(densityScaling=True), PyRunner(command='O.bodies.erase(3)', iterPeriod=1)]
 x = utils.sumTorques
 facetBox((0, 0, 0), (1, 1, 1))
 O.interactions.clear()
 Omega().addScene()
 try:
-    HydroForceEngine()
+    FlowEngine()
 except NotImplementedError:
     pass
 if False:  # YADE only
@@ -88,13 +88,13 @@ print(O.energy.total(), utils.getStress(), export.VTKExporter)
     lines = [l for l in p.stderr.splitlines() if l.startswith('compat run: ryade')]
     want = ['the module yade.polyhedra_utils yet (s.py, line 2)',
             'yade.export.gmshGeo yet (s.py, line 3)',
-            'NewtonIntegrator.kinSplit yet (s.py, line 4)',
+            'NewtonIntegrator.densityScaling yet (s.py, line 4)',
             'O.bodies.erase yet (s.py, line 4)',
             'utils.sumTorques yet (s.py, line 5)',
             "the name 'facetBox' of YADE's script namespace yet (s.py, line 6)",
             'O.interactions.clear yet (s.py, line 7)',
             'O.addScene yet (s.py, line 8)',
-            'class HydroForceEngine yet (s.py, line 10)',
+            'class FlowEngine yet (s.py, line 10)',
             'O.addScene yet (s.py, line 14)']
     assert len(lines) == len(want), p.stderr
     for l, w in zip(lines, want):

@@ -187,7 +187,7 @@ impl Boundaries {
             for &sm in &sphere_mats {
                 let ms = &scene.materials[sm];
                 match il.phys_functor(mb.class(), ms.class()) {
-                    Ok(Some(PhysFunctor::Frict)) | Ok(Some(PhysFunctor::CohFrict)) => {}
+                    Ok(Some((PhysFunctor::Frict, _))) | Ok(Some((PhysFunctor::CohFrict, _))) => {}
                     _ => {
                         return Err(format!(
                             "the fast path does not support a {} of material {} against spheres of {} (#{})",

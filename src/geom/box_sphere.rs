@@ -1,21 +1,50 @@
-//! `Ig2_Box_Sphere_ScGeom` (pkg/dem/Ig2_Box_Sphere_ScGeom.cpp). Note the YADE asymmetry kept on
-//! purpose: the centre-inside branch uses the ratcheting-free relative velocity, the outside branch
-//! uses real lever arms.
+//! `Ig2_Box_Sphere_ScGeom` and `Ig2_Box_Sphere_ScGeom6D` (pkg/dem/Ig2_Box_Sphere_ScGeom.cpp). Note
+//! the YADE asymmetry kept on purpose: the centre-inside branch uses the ratcheting-free relative
+//! velocity, the outside branch uses real lever arms.
 
-use super::{Pair, ScGeom};
+use super::{GeomExt, Pair, Rot6D, ScGeom};
+use crate::interaction::IntrExt;
 use crate::math::{mat_t_vec, mat_vec, norm, normalized, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     pub interaction_detection_factor: f64,
+    /// `Ig2_Box_Sphere_ScGeom6D`: the ScGeom6D rotations on top of the ScGeom.
+    pub six_d: bool,
 }
 
 impl Default for Params {
     fn default() -> Self {
         Params {
             interaction_detection_factor: 1.0,
+            six_d: false,
         }
     }
+}
+
+/// `Ig2_Box_Sphere_ScGeom6D::go`: the ScGeom functor, then (when it made or kept a geometry) a new
+/// contact becomes a ScGeom6D and the rotations are precomputed without creep.
+pub fn go_6d(
+    p: &Params,
+    ext_half: &Vec3,
+    r: f64,
+    pr: &Pair,
+    geom: &mut Option<ScGeom>,
+    ext: &mut Option<Box<IntrExt>>,
+) -> bool {
+    let is_new = geom.is_none();
+    if !go(p, ext_half, r, pr, geom) {
+        return false;
+    }
+    let e = ext.get_or_insert_with(Default::default);
+    if is_new || e.geom.is_none() {
+        e.geom = Some(GeomExt::Sc6D(Rot6D::default()));
+    }
+    let normal = geom.as_ref().unwrap().normal;
+    if let Some(rot) = e.geom.as_mut().and_then(|g| g.rot_mut()) {
+        rot.precompute_rotations(&pr.s1.ori, &pr.s2.ori, &normal, is_new, false);
+    }
+    true
 }
 
 /// Body 1 is the box (half sizes `ext`), body 2 the sphere of radius `r`.

@@ -426,9 +426,9 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
                 moment_rotation_law: bo(m, "momentRotationLaw", d.moment_rotation_law)?,
             }))
         }
-        "ViscElMat" | "LudingMat" | "BubbleMat" => None,
+        "ViscElMat" | "LudingMat" | "BubbleMat" | "CpmMat" => None,
         _ => bail!(
-            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat)",
+            "material class '{}' is not supported by ryade yet (supported: FrictMat, CohFrictMat, ViscElMat, LudingMat, BubbleMat, CpmMat)",
             cls
         ),
     };
@@ -484,6 +484,28 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
     } else {
         None
     };
+    let cpm = if cls == "CpmMat" {
+        let d = crate::material::CpmParams::default();
+        Some(Box::new(crate::material::CpmParams {
+            sigma_t: nan_or("sigmaT")?,
+            never_damage: bo(m, "neverDamage", d.never_damage)?,
+            eps_crack_onset: nan_or("epsCrackOnset")?,
+            rel_ductility: nan_or("relDuctility")?,
+            equiv_strain_shear_contrib: fo(
+                m,
+                "equivStrainShearContrib",
+                d.equiv_strain_shear_contrib,
+            )?,
+            dam_law: fo(m, "damLaw", d.dam_law as f64)? as i32,
+            dmg_tau: fo(m, "dmgTau", d.dmg_tau)?,
+            dmg_rate_exp: fo(m, "dmgRateExp", d.dmg_rate_exp)?,
+            pl_tau: fo(m, "plTau", d.pl_tau)?,
+            pl_rate_exp: fo(m, "plRateExp", d.pl_rate_exp)?,
+            iso_prestress: fo(m, "isoPrestress", d.iso_prestress)?,
+        }))
+    } else {
+        None
+    };
     let lud = luding.is_some() || bubble.is_some();
     let fm = FrictMat {
         id: m.get("id").and_then(Value::as_i64).unwrap_or(-1) as i32,
@@ -504,6 +526,7 @@ pub fn material(m: &Value, mats: &mut Vec<FrictMat>) -> Result<usize> {
         viscel,
         luding,
         bubble,
+        cpm,
     };
     // share materials with a YADE id, as O.materials does
     if fm.id >= 0 {
@@ -787,9 +810,10 @@ pub fn engine(e: &Value) -> Result<Engine> {
                             hertzian: bo(&g, "hertzian", false)?,
                         })
                     }
-                    "Ig2_Box_Sphere_ScGeom" => {
+                    c @ ("Ig2_Box_Sphere_ScGeom" | "Ig2_Box_Sphere_ScGeom6D") => {
                         il.box_sphere = Some(geom::box_sphere::Params {
                             interaction_detection_factor: fo(&g, "interactionDetectionFactor", 1.0)?,
+                            six_d: c == "Ig2_Box_Sphere_ScGeom6D",
                         })
                     }
                     c @ ("Ig2_Sphere_Sphere_ScGeom6D" | "Ig2_GridNode_GridNode_GridNodeGeom6D") => {
@@ -841,6 +865,18 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         il.viscel_phys = true
                     }
                     "Ip2_LudingMat_LudingMat_LudingPhys" => il.luding_phys = true,
+                    "Ip2_CpmMat_CpmMat_CpmPhys" => {
+                        if p.get("E").is_some_and(|v| !v.is_null()) {
+                            bail!("Ip2_CpmMat_CpmMat_CpmPhys.E (MatchMaker) is not supported by ryade yet");
+                        }
+                        il.cpm_phys = Some(fo(&p, "cohesiveThresholdIter", 10.0)? as i64)
+                    }
+                    "Ip2_FrictMat_CpmMat_FrictPhys" => {
+                        if p.get("frictAngle").is_some_and(|v| !v.is_null()) {
+                            bail!("Ip2_FrictMat_CpmMat_FrictPhys.frictAngle (MatchMaker) is not supported by ryade yet");
+                        }
+                        il.frict_cpm_phys = true
+                    }
                     "Ip2_BubbleMat_BubbleMat_BubblePhys" => il.bubble_phys = true,
                     "Ip2_FrictMat_FrictMat_MindlinPhys" => {
                         // a number stands for a constant MatchMaker (algo 'val')
@@ -868,6 +904,12 @@ pub fn engine(e: &Value) -> Result<Engine> {
                         })
                     }
                     other => bail!("physics functor '{}' is not supported by ryade yet", other),
+                }
+            }
+            for cb in e.get("callbacks").and_then(Value::as_array).cloned().unwrap_or_default() {
+                match class(&cb)? {
+                    "SumIntrForcesCb" => il.sum_intr_forces_cb.push(Default::default()),
+                    other => bail!("InteractionLoop callback '{}' is not supported by ryade yet", other),
                 }
             }
             for l in e.get("law").and_then(Value::as_array).cloned().unwrap_or_default() {
@@ -908,6 +950,20 @@ pub fn engine(e: &Value) -> Result<Engine> {
                     }
                     "Law2_ScGeom_ViscElPhys_Basic" => il.viscel_basic = true,
                     "Law2_ScGeom_LudingPhys_Basic" => il.luding_basic = true,
+                    "Law2_ScGeom_CpmPhys_Cpm" => {
+                        let d = law::cpm::Params::default();
+                        il.cpm = Some(law::cpm::Params {
+                            omega_threshold: fo(&l, "omegaThreshold", d.omega_threshold)?,
+                            eps_soft: fo(&l, "epsSoft", d.eps_soft)?,
+                            rel_kn_soft: fo(&l, "relKnSoft", d.rel_kn_soft)?,
+                            yield_surf_type: fo(&l, "yieldSurfType", d.yield_surf_type as f64)? as i32,
+                            yield_log_speed: fo(&l, "yieldLogSpeed", d.yield_log_speed)?,
+                            yield_ellipse_shift: match l.get("yieldEllipseShift") {
+                                None | Some(Value::Null) => f64::NAN,
+                                Some(_) => f(&l, "yieldEllipseShift")?,
+                            },
+                        })
+                    }
                     "Law2_ScGeom_BubblePhys_Bubble" => {
                         il.bubble = Some(law::bubble::Params {
                             pct_max_force: fo(&l, "pctMaxForce", 0.1)?,
@@ -949,6 +1005,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
             damp_gravity: bo(e, "dampGravity", true)?,
             exact_aspherical_rot: bo(e, "exactAsphericalRot", true)?,
             mask: fo(e, "mask", -1.0)? as i32,
+            kin_split: bo(e, "kinSplit", false)?,
             ..Default::default()
         })),
         "TranslationEngine" | "RotationEngine" | "ServoPIDController" | "HelixEngine"
@@ -982,8 +1039,13 @@ pub fn engine(e: &Value) -> Result<Engine> {
             f: vec3_or(e, "f", Vec3::zeros())?,
             fi: vec3_or(e, "fi", Vec3::zeros())?,
         })),
-        "TriaxialStressController" => Engine::TriaxialStress(Box::new(
-            crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
+        "TriaxialStressController" | "TriaxialCompressionEngine" | "ThreeDTriaxialEngine" => {
+            Engine::TriaxialStress(Box::new(
+                crate::triax::TriaxialStressController::from_json(e).map_err(|m| anyhow!(m))?,
+            ))
+        }
+        "HydroForceEngine" => Engine::Hydro(Box::new(
+            crate::hydro::HydroForceEngine::from_json(e).map_err(|m| anyhow!(m))?,
         )),
         "CombinedKinematicEngine" => {
             let mut c = crate::kinematic::CombinedKinematicEngine {
@@ -1409,6 +1471,24 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             if let Some(st) = m.bubble {
                 mat["surfaceTension"] = json!(st);
             }
+            if let Some(c) = &m.cpm {
+                let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                for (k, v) in [
+                    ("sigmaT", nn(c.sigma_t)),
+                    ("neverDamage", json!(c.never_damage)),
+                    ("epsCrackOnset", nn(c.eps_crack_onset)),
+                    ("relDuctility", nn(c.rel_ductility)),
+                    ("equivStrainShearContrib", json!(c.equiv_strain_shear_contrib)),
+                    ("damLaw", json!(c.dam_law)),
+                    ("dmgTau", json!(c.dmg_tau)),
+                    ("dmgRateExp", json!(c.dmg_rate_exp)),
+                    ("plTau", json!(c.pl_tau)),
+                    ("plRateExp", json!(c.pl_rate_exp)),
+                    ("isoPrestress", json!(c.iso_prestress)),
+                ] {
+                    mat[k] = v;
+                }
+            }
             if let Some(l) = &m.luding {
                 let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
                 for (k, x) in [
@@ -1503,7 +1583,8 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     geom.push(json!({"class": "Ig2_Wall_Sphere_ScGeom", "noRatch": g.no_ratch, "hertzian": g.hertzian}));
                 }
                 if let Some(g) = &il.box_sphere {
-                    geom.push(json!({"class": "Ig2_Box_Sphere_ScGeom", "interactionDetectionFactor": g.interaction_detection_factor}));
+                    let c = if g.six_d { "Ig2_Box_Sphere_ScGeom6D" } else { "Ig2_Box_Sphere_ScGeom" };
+                    geom.push(json!({"class": c, "interactionDetectionFactor": g.interaction_detection_factor}));
                 }
                 let six_d = |c: &str, g: &geom::grid::SixDParams| json!({"class": c,
                     "interactionDetectionFactor": g.ss.interaction_detection_factor,
@@ -1542,6 +1623,12 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.luding_phys {
                     phys.push(json!({"class": "Ip2_LudingMat_LudingMat_LudingPhys"}));
                 }
+                if let Some(t) = il.cpm_phys {
+                    phys.push(json!({"class": "Ip2_CpmMat_CpmMat_CpmPhys", "cohesiveThresholdIter": t}));
+                }
+                if il.frict_cpm_phys {
+                    phys.push(json!({"class": "Ip2_FrictMat_CpmMat_FrictPhys"}));
+                }
                 if il.bubble_phys {
                     phys.push(json!({"class": "Ip2_BubbleMat_BubbleMat_BubblePhys"}));
                 }
@@ -1577,6 +1664,12 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                 if il.luding_basic {
                     law.push(json!({"class": "Law2_ScGeom_LudingPhys_Basic"}));
                 }
+                if let Some(c) = &il.cpm {
+                    let nn = |x: f64| if x.is_nan() { Value::Null } else { json!(x) };
+                    law.push(json!({"class": "Law2_ScGeom_CpmPhys_Cpm", "omegaThreshold": c.omega_threshold,
+                        "epsSoft": c.eps_soft, "relKnSoft": c.rel_kn_soft, "yieldSurfType": c.yield_surf_type,
+                        "yieldLogSpeed": c.yield_log_speed, "yieldEllipseShift": nn(c.yield_ellipse_shift)}));
+                }
                 if let Some(l) = &il.bubble {
                     law.push(json!({"class": "Law2_ScGeom_BubblePhys_Bubble", "pctMaxForce": l.pct_max_force,
                         "surfaceTension": l.surface_tension}));
@@ -1585,12 +1678,23 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
                     law.push(json!({"class": "Law2_ScGeom_MindlinPhys_Mindlin", "includeAdhesion": l.include_adhesion,
                         "includeMoment": l.include_moment, "neverErase": l.never_erase}));
                 }
-                json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law})
+                let mut d = json!({"class": "InteractionLoop", "geom": geom, "phys": phys, "law": law});
+                if !il.sum_intr_forces_cb.is_empty() {
+                    d["callbacks"] = json!(il
+                        .sum_intr_forces_cb
+                        .iter()
+                        .map(|_| json!({"class": "SumIntrForcesCb"}))
+                        .collect::<Vec<_>>());
+                }
+                d
             }
             Engine::Newton(n) => {
                 let mut e = json!({"class": "NewtonIntegrator", "damping": n.damping, "gravity": v3(&n.gravity), "dampGravity": n.damp_gravity, "mask": n.mask});
                 if !n.exact_aspherical_rot {
                     e["exactAsphericalRot"] = json!(false);
+                }
+                if n.kin_split {
+                    e["kinSplit"] = json!(true);
                 }
                 e
             }
@@ -1605,6 +1709,7 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
             Engine::HarmonicForce(h) => json!({"class": "HarmonicForceEngine", "ids": h.ids, "A": v3(&h.a),
                 "f": v3(&h.f), "fi": v3(&h.fi)}),
             Engine::TriaxialStress(t) => t.to_json(),
+            Engine::Hydro(h) => h.to_json(),
             Engine::Kinematic(k) => kinematic_value(k),
             Engine::DirectedForce(f) => json!({"class": "InterpolatingDirectedForceEngine", "ids": f.base.ids,
                 "force": v3(&f.base.force), "times": f.times, "magnitudes": f.magnitudes,

@@ -6,6 +6,7 @@
 
 pub mod bubble;
 pub mod cohesion_moment;
+pub mod cpm;
 pub mod grid;
 pub mod luding;
 pub mod mindlin;
@@ -73,11 +74,13 @@ pub enum LawFunctor {
     LudingBasic,
     /// `Law2_ScGeom_BubblePhys_Bubble`
     Bubble,
+    /// `Law2_ScGeom_CpmPhys_Cpm`
+    Cpm,
 }
 
 impl LawFunctor {
     /// Number of law functors (the size of `LawEnergy::caches`).
-    pub const COUNT: usize = 9;
+    pub const COUNT: usize = 10;
 
     pub fn class_name(&self) -> &'static str {
         match self {
@@ -90,6 +93,7 @@ impl LawFunctor {
             LawFunctor::Mindlin => "Law2_ScGeom_MindlinPhys_Mindlin",
             LawFunctor::LudingBasic => "Law2_ScGeom_LudingPhys_Basic",
             LawFunctor::Bubble => "Law2_ScGeom_BubblePhys_Bubble",
+            LawFunctor::Cpm => "Law2_ScGeom_CpmPhys_Cpm",
         }
     }
 }

@@ -166,6 +166,14 @@ def _material(b, grid=False):
     if c == 'BubbleMat':
         return {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label),
                 'surfaceTension': float(m.surfaceTension)}
+    if c == 'CpmMat':
+        d = {'id': int(m.id), 'class': c, 'young': float(m.young), 'poisson': float(m.poisson),
+             'frictionAngle': float(m.frictionAngle), 'density': float(m.density), 'label': str(m.label),
+             'neverDamage': bool(m.neverDamage), 'damLaw': int(m.damLaw)}
+        for a in ('sigmaT', 'epsCrackOnset', 'relDuctility', 'equivStrainShearContrib', 'dmgTau', 'dmgRateExp', 'plTau',
+                  'plRateExp', 'isoPrestress'):
+            d[a] = _num_or_null(getattr(m, a))
+        return d
     if c == 'LudingMat':
         d = {'id': int(m.id), 'class': c, 'density': float(m.density), 'label': str(m.label)}
         for a in ('k1', 'kp', 'kc', 'ks', 'PhiF', 'G0', 'frictionAngle'):
@@ -198,7 +206,9 @@ def _body(b, grid=False):
         _require(not grid, 'body %d: clumps are not supported in grid scenes' % b.id)
         return _clump_body(b)
     st = b.state
-    _require(_cls(st) == 'State', 'body %d: state class %s is not supported' % (b.id, _cls(st)))
+    # a CpmMat body gets a CpmState (post-processing values only: not recorded)
+    _require(_cls(st) == 'State' or (_cls(st) == 'CpmState' and _cls(b.material) == 'CpmMat'),
+             'body %d: state class %s is not supported' % (b.id, _cls(st)))
     shape = _shape(b, grid)
     if shape['class'] in ('Sphere', 'GridNode', 'GridConnection'):
         _require(not b.aspherical, 'body %d: aspherical %s' % (b.id, shape['class'].lower()))
@@ -249,7 +259,7 @@ def _geom_functor(f, grid=False):
         if f.hertzian:
             d['hertzian'] = True
         return d
-    if c == 'Ig2_Box_Sphere_ScGeom':
+    if c == 'Ig2_Box_Sphere_ScGeom' or (grid and c == 'Ig2_Box_Sphere_ScGeom6D'):
         return {'class': c, 'interactionDetectionFactor': float(f.interactionDetectionFactor)}
     raise UnsupportedScene('geometry functor class %s is not supported' % c)
 
@@ -277,6 +287,12 @@ def _phys_functor(f, grid=False):
     if c == 'Ip2_BubbleMat_BubbleMat_BubblePhys':
         return {'class': c}
     if c == 'Ip2_LudingMat_LudingMat_LudingPhys':
+        return {'class': c}
+    if c == 'Ip2_CpmMat_CpmMat_CpmPhys':
+        _require(f.E is None, '%s.E (MatchMaker) is not supported' % c)
+        return {'class': c, 'cohesiveThresholdIter': int(f.cohesiveThresholdIter)}
+    if c == 'Ip2_FrictMat_CpmMat_FrictPhys':
+        _require(f.frictAngle is None, '%s.frictAngle (MatchMaker) is not supported' % c)
         return {'class': c}
     if c == 'Ip2_FrictMat_FrictMat_MindlinPhys':
         d = {'class': c, 'gamma': float(f.gamma), 'eta': float(f.eta), 'krot': float(f.krot),
@@ -318,6 +334,10 @@ def _law_functor(f, grid=False):
         return {'class': c, 'pctMaxForce': float(f.pctMaxForce), 'surfaceTension': float(f.surfaceTension)}
     if c == 'Law2_ScGeom_LudingPhys_Basic':
         return {'class': c}
+    if c == 'Law2_ScGeom_CpmPhys_Cpm':
+        return {'class': c, 'omegaThreshold': float(f.omegaThreshold), 'epsSoft': float(f.epsSoft),
+                'relKnSoft': float(f.relKnSoft), 'yieldSurfType': int(f.yieldSurfType),
+                'yieldLogSpeed': float(f.yieldLogSpeed), 'yieldEllipseShift': _num_or_null(f.yieldEllipseShift)}
     if c == 'Law2_ScGeom_MindlinPhys_Mindlin':
         _require(not f.calcEnergy, '%s.calcEnergy is not supported' % c)
         return {'class': c, 'includeAdhesion': bool(f.includeAdhesion), 'includeMoment': bool(f.includeMoment),
@@ -369,8 +389,26 @@ def _engine(e, grid=False):
         return {'class': c, 'active': bool(e.active), 'timeStepUpdateInterval': int(e.timeStepUpdateInterval),
                 'defaultDt': float(e.defaultDt), 'maxDt': float(e.maxDt),
                 'timestepSafetyCoefficient': float(e.timestepSafetyCoefficient)}
-    if c == 'TriaxialStressController':
+    if c in ('TriaxialStressController', 'TriaxialCompressionEngine', 'ThreeDTriaxialEngine'):
         d = {'class': c}
+        if c == 'ThreeDTriaxialEngine':
+            for k in ('strainRate1', 'strainRate2', 'strainRate3', 'currentStrainRate1', 'currentStrainRate2',
+                      'currentStrainRate3', 'UnbalancedForce', 'frictionAngleDegree'):
+                d[k] = float(getattr(e, k))
+            for k in ('updateFrictionAngle', 'stressControl_1', 'stressControl_2', 'stressControl_3'):
+                d[k] = bool(getattr(e, k))
+        if c == 'TriaxialCompressionEngine':
+            _require(e.noFiles, 'TriaxialCompressionEngine.noFiles=False is not supported (snapshot files)')
+            for k in ('strainRate', 'currentStrainRate', 'UnbalancedForce', 'StabilityCriterion', 'sigmaIsoCompaction',
+                      'previousSigmaIso', 'sigmaLateralConfinement', 'frictionAngleDegree', 'epsilonMax', 'fixedPorosity',
+                      'maxStress', 'sigma_iso'):
+                d[k] = float(getattr(e, k))
+            for k in ('autoCompressionActivation', 'autoUnload', 'autoStopSimulation', 'noFiles', 'isAxisymetric'):
+                d[k] = bool(getattr(e, k))
+            d['fixedPoroCompaction'] = bool(e.fixedPoroCompaction)
+            for k in ('testEquilibriumInterval', 'currentState', 'previousState'):
+                d[k] = int(getattr(e, k))
+            d['translationAxis'] = _v3(e.translationAxis)
         for k in ('stiffnessUpdateInterval', 'radiusControlInterval', 'computeStressStrainInterval', 'stressMask'):
             d[k] = int(getattr(e, k))
         for k in ('internalCompaction', 'updatePorosity'):
@@ -382,6 +420,16 @@ def _engine(e, grid=False):
         for w in ('left', 'right', 'bottom', 'top', 'back', 'front'):
             d['wall_%s_id' % w] = int(getattr(e, 'wall_%s_id' % w))
             d['wall_%s_activated' % w] = bool(getattr(e, 'wall_%s_activated' % w))
+        return d
+    if c == 'HydroForceEngine':
+        _require(not e.lubrication, 'HydroForceEngine.lubrication=True is not supported')
+        d = {'class': c, 'ids': [int(i) for i in e.ids], 'gravity': _v3(e.gravity), 'nCell': int(e.nCell)}
+        for k in ('densFluid', 'viscoDyn', 'zRef', 'deltaZ', 'expoRZ', 'Cl'):
+            d[k] = float(getattr(e, k))
+        for k in ('lift', 'convAccOption', 'steadyFlow'):
+            d[k] = bool(getattr(e, k))
+        for k in ('vxFluid', 'phiPart', 'convAcc', 'vFluctX', 'vFluctY', 'vFluctZ'):
+            d[k] = [float(x) for x in getattr(e, k)]
         return d
     if c == 'ForceEngine':
         return {'class': c, 'ids': [int(i) for i in e.ids], 'force': _v3(e.force)}

@@ -11,7 +11,7 @@ yade_ref/compat/dump_{classes,names}.py). It reports:
 * names of YADE's `yade -x` startup namespace, of a YADE module (`yade.utils.X`, `from yade.pack import
   X`, `import yade.X`) or of `O` and its containers (`O.save`, `O.bodies.erase`) that ryade does not
   have, or has only as a stub that raises;
-* constructor keywords of implemented classes that ryade refuses (`NewtonIntegrator(kinSplit=True)`),
+* constructor keywords of implemented classes that ryade refuses (`NewtonIntegrator(densityScaling=True)`),
   found by building the object from the literal keywords.
 
 Names the script binds itself (assignment, def, import, loop variable...) are its own and never

@@ -183,6 +183,12 @@ class State(Serializable, _ryade.StateBase):
         object.__setattr__(self, '_owner', (omega, body_id))
         self._rs_bind(omega._sim, body_id)
 
+    def _missing(self, k):
+        # a CpmMat body's state is a CpmState in YADE (post-processing values CpmStateUpdater writes)
+        if k in YADE_CLASSES.get('CpmState', {}).get('attrs', ()):
+            unsupported('the attribute CpmState.%s' % k)
+        Serializable._missing(self, k)
+
     # copy/pickle: the Python attributes (the Rust base's binding is re-made from _owner)
     def __getstate__(self):
         return self.__dict__
@@ -262,8 +268,12 @@ class State(Serializable, _ryade.StateBase):
         return self._values[k]
 
     def displ(self):
-        # a method in YADE (State::displ, core/State.hpp): pos - refPos
+        """`State::displ` (core/State.hpp): pos - refPos (a method, as in YADE)."""
         return self.pos - self.refPos
+
+    def rot(self):
+        """`State::rot`: the rotation vector of refOri.conjugate() * ori (axis times angle)."""
+        return (self.refOri.conjugate() * self.ori).toRotationVector()
 
     def _json_into(self, d):
         v = self._values
@@ -609,7 +619,21 @@ class _PhysView(_GeomView):
                 'momentBend', 'momentTwist', 'radius', 'adhesionForce', 'isAdhesive', 'isSliding', 'betan', 'betas',
                 'kr', 'ktw')
 
+    _cpm = ('omega', 'Fn', 'Fs', 'epsN', 'epsT', 'sigmaN', 'sigmaT', 'kappaD', 'epsNPl', 'epsTPl', 'relResidualStrength',
+            'E', 'G', 'tanFrictionAngle', 'undamagedCohesion', 'crossSection', 'refLength', 'refPD', 'epsCrackOnset',
+            'relDuctility', 'epsFracture', 'equivStrainShearContrib', 'dmgTau', 'dmgRateExp', 'dmgStrain',
+            'dmgOverstress', 'plTau', 'plRateExp', 'isoPrestress', 'neverDamage', 'damLaw', 'isCohesive')
+
     def __getattr__(self, k):
+        if k in self._cpm:
+            omega, a, b = self._k
+            v = omega._sim.intr_cpm(a, b, k)
+            if v is not None:
+                import json
+                v = json.loads(v)
+                if isinstance(v, list):
+                    return Vector3(*v)
+                return float('nan') if v == 'nan' else v
         if k in self._mindlin:
             omega, a, b = self._k
             v = omega._sim.intr_mindlin(a, b, k)
@@ -1093,7 +1117,14 @@ class Omega(_ryade.OmegaBase):
                     setattr(builtins, lab, obj)
                     main = sys.modules.get('__main__')
                     if main is not None and getattr(main, '__ryade_script__', False):
-                        main.__dict__[lab] = obj
+                        # YADE sets only `__builtins__.label`: a global of the script's own (a module it
+                        # imported, e.g. `plot` next to a PyRunner labelled 'plot') keeps winning; a
+                        # global placed here by an earlier engine list is replaced
+                        g = main.__dict__
+                        placed = g.setdefault('__ryade_labels__', {})
+                        if lab not in g or (lab in placed and g[lab] is placed[lab]):
+                            g[lab] = obj
+                            placed[lab] = obj
 
     # ---- stepping ----
     def _one_step(self):
@@ -1187,8 +1218,11 @@ class Omega(_ryade.OmegaBase):
             return False
 
     def _python_hooks(self):
-        """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook)."""
-        return any(type(e).__name__ == 'PeriTriaxController' and not e.dead and e.doneHook for e in self._engines)
+        """Whether an engine may call back into Python during a step (a PeriTriaxController's doneHook, a
+        TriaxialCompressionEngine's snapshot files)."""
+        return any(not e.dead and ((type(e).__name__ == 'PeriTriaxController' and e.doneHook)
+                                   or (type(e).__name__ == 'TriaxialCompressionEngine' and not e.noFiles))
+                   for e in self._engines)
 
     def run(self, nSteps=-1, wait=False):
         if wait:

@@ -149,6 +149,7 @@ class BoundFunctor(Functor):
 
 class Bo1_Sphere_Aabb(BoundFunctor):
     _attrs = {'aabbEnlargeFactor': -1.0}
+    _live = ('aabbEnlargeFactor',)
 
 
 class Bo1_Facet_Aabb(BoundFunctor):
@@ -169,6 +170,7 @@ class IGeomFunctor(Functor):
 
 class Ig2_Sphere_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0, 'avoidGranularRatcheting': True}
+    _live = ('interactionDetectionFactor',)
 
 
 class Ig2_Facet_Sphere_ScGeom(IGeomFunctor):
@@ -189,6 +191,11 @@ class Ig2_Wall_Sphere_ScGeom(IGeomFunctor):
 
 class Ig2_Box_Sphere_ScGeom(IGeomFunctor):
     _attrs = {'interactionDetectionFactor': 1.0}
+    _live = ('interactionDetectionFactor',)
+
+
+class Ig2_Box_Sphere_ScGeom6D(Ig2_Box_Sphere_ScGeom):
+    pass
 
 
 class Bo1_GridConnection_Aabb(BoundFunctor):
@@ -363,8 +370,50 @@ class Ip2_LudingMat_LudingMat_LudingPhys(IPhysFunctor):
         return {'class': 'Ip2_LudingMat_LudingMat_LudingPhys'}
 
 
+class Ip2_CpmMat_CpmMat_CpmPhys(IPhysFunctor):
+    """CpmPhys from two CpmMat (ConcretePM.cpp; Rust core `phys::ip2_cpm`)."""
+    _attrs = {'cohesiveThresholdIter': 10, 'E': None}
+
+    def _json(self):
+        if self._values['E'] is not None:
+            unsupported('Ip2_CpmMat_CpmMat_CpmPhys.E (MatchMaker)')
+        return {'class': 'Ip2_CpmMat_CpmMat_CpmPhys', 'cohesiveThresholdIter': int(self._values['cohesiveThresholdIter'])}
+
+
+class Ip2_FrictMat_CpmMat_FrictPhys(IPhysFunctor):
+    """FrictPhys for a FrictMat against a CpmMat (Ip2_FrictMat_FrictMat_FrictPhys's formulas)."""
+    _attrs = {'frictAngle': None}
+
+    def _json(self):
+        if self._values['frictAngle'] is not None:
+            unsupported('Ip2_FrictMat_CpmMat_FrictPhys.frictAngle (MatchMaker)')
+        return {'class': 'Ip2_FrictMat_CpmMat_FrictPhys'}
+
+
 class LawFunctor(Functor):
     pass
+
+
+class Law2_ScGeom_CpmPhys_Cpm(LawFunctor):
+    """The concrete particle model's law, public version (ConcretePM.cpp; Rust core `law::cpm`)."""
+    _attrs = {'yieldSurfType': 2, 'yieldLogSpeed': 0.1, 'yieldEllipseShift': float('nan'), 'omegaThreshold': 1.0,
+              'epsSoft': 1.0, 'relKnSoft': 0.3}
+
+    def _json(self):
+        v = self._values
+        ys = float(v['yieldEllipseShift'])
+        return {'class': 'Law2_ScGeom_CpmPhys_Cpm', 'yieldSurfType': int(v['yieldSurfType']),
+                'yieldLogSpeed': float(v['yieldLogSpeed']), 'yieldEllipseShift': None if ys != ys else ys,
+                'omegaThreshold': float(v['omegaThreshold']), 'epsSoft': float(v['epsSoft']),
+                'relKnSoft': float(v['relKnSoft'])}
+
+    def elasticEnergy(self):
+        """Σ over real CpmPhys contacts of ½|Fn|²/((1-ω⁺)kn) + ½|Fs|²/ks (Rust core `utils::cpm_elastic_energy`)."""
+        from ._core import Omega
+        return Omega()._sim.cpm_elastic_energy()
+
+    def yieldSigmaTMagnitude(self, *a, **kw):
+        raise RuntimeError('Full CPM model not available in this build')  # as Debian's YADE
 
 
 class Law2_ScGeom_BubblePhys_Bubble(LawFunctor):
@@ -423,6 +472,16 @@ class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
 class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(LawFunctor):
     _attrs = {'neverErase': False, 'always_use_moment_law': False, 'shear_creep': False, 'twist_creep': False,
               'creep_viscosity': 1.0, 'traceEnergy': False, 'useIncrementalForm': False}
+
+    def normElastEnergy(self):
+        """Σ ½|Fn|²/kn over the real interactions (the Rust core's `utils::cohesion_moment_elastic_energy`)."""
+        from ._core import Omega
+        return Omega()._sim.cohesion_moment_elastic_energy(False)
+
+    def shearElastEnergy(self):
+        """Σ ½|Fs|²/ks over the real interactions."""
+        from ._core import Omega
+        return Omega()._sim.cohesion_moment_elastic_energy(True)
 
 
 class Law2_ScGridCoGeom_FrictPhys_CundallStrack(LawFunctor):
@@ -610,13 +669,31 @@ class InteractionLoop(GlobalEngine):
     def lawDispatcher(self):
         return _Dispatcher(self._lists[2])
 
+    def _callbacks_json(self):
+        out = []
+        for cb in self._values['callbacks']:
+            if not isinstance(cb, SumIntrForcesCb):
+                unsupported('InteractionLoop.callbacks with %s' % type(cb).__name__)
+            out.append(cb._json())
+        return out
+
+    def _changed(self, k):
+        if k == 'callbacks':
+            self._values['callbacks'] = list(self._values['callbacks'])
+            if self._owner is not None:
+                omega, index = self._owner
+                omega._sim.engine_set(index, 'callbacks', json.dumps(self._callbacks_json()))
+            return
+        GlobalEngine._changed(self, k)
+
     def _json(self):
         if self._values['loopOnSortedInteractions']:
             unsupported('InteractionLoop.loopOnSortedInteractions')
+        d = {'class': 'InteractionLoop', 'geom': [f._json() for f in self._lists[0]],
+             'phys': [f._json() for f in self._lists[1]], 'law': [f._json() for f in self._lists[2]]}
         if self._values['callbacks']:
-            unsupported('InteractionLoop.callbacks')
-        return {'class': 'InteractionLoop', 'geom': [f._json() for f in self._lists[0]],
-                'phys': [f._json() for f in self._lists[1]], 'law': [f._json() for f in self._lists[2]]}
+            d['callbacks'] = self._callbacks_json()
+        return d
 
     def _functors(self):
         return self._lists[0] + self._lists[1] + self._lists[2]
@@ -644,6 +721,19 @@ class _Dispatcher(object):
                 if parts[0] == 'Ig2' and a != b:
                     out[(b, a)] = n
         return out
+
+
+class IntrCallback(Serializable):
+    pass
+
+
+class SumIntrForcesCb(IntrCallback):
+    """Prints the summed |normalForce + shearForce| of the previous InteractionLoop and the number of
+    interactions counted, as `(force,numIntr)` on stderr at each loop (the Rust core's
+    `scene::SumIntrForcesCb`)."""
+
+    def _json(self):
+        return {'class': 'SumIntrForcesCb'}
 
 
 class NewtonIntegrator(GlobalEngine):
@@ -682,12 +772,11 @@ class NewtonIntegrator(GlobalEngine):
         return self._values[k]
 
     def _json(self):
-        if self._values['kinSplit']:
-            unsupported('NewtonIntegrator.kinSplit')
         if self._values['densityScaling']:
             unsupported('NewtonIntegrator.densityScaling')
         return {'class': 'NewtonIntegrator', 'damping': self._values['damping'], 'gravity': list(self._values['gravity']),
-                'dampGravity': self._values['dampGravity'], 'mask': self._values['mask']}
+                'dampGravity': self._values['dampGravity'], 'mask': self._values['mask'],
+                'kinSplit': bool(self._values['kinSplit'])}
 
 
 class TimeStepper(GlobalEngine):
@@ -840,6 +929,88 @@ class ForceEngine(PartialEngine):
     _convert = _AxisEngine._convert
     _read = _AxisEngine._read
     _json = _AxisEngine._json
+
+
+class HydroForceEngine(PartialEngine):
+    """YADE's HydroForceEngine (pkg/common/HydroForceEngine.cpp): drag, lift, buoyancy and convective
+    acceleration on the listed spheres from the 1-D fluid profile (Rust core `hydro`). The fluid
+    resolution, the averaging and the turbulent-fluctuation models are not in ryade: those methods say
+    so. Profiles are plain lists here, as YADE returns copies."""
+    _core = {'gravity': (0.0, 0.0, -9.81), 'densFluid': 1000.0, 'viscoDyn': 1e-3, 'zRef': 0.0, 'deltaZ': float('nan'),
+             'nCell': 1, 'expoRZ': 3.1, 'lift': False, 'Cl': 0.2, 'convAccOption': False, 'steadyFlow': True,
+             'vxFluid': [], 'phiPart': [], 'convAcc': [], 'vFluctX': [], 'vFluctY': [], 'vFluctZ': []}
+    #: the other attributes only the refused methods read (kept as given)
+    _other = {'radiusParts': [], 'compatibilityOldVersion': False, 'vCell': float('nan'), 'radiusPart': 0.0, 'dpdx': 0.0,
+              'turbulentViscosity': [], 'phiMax': 0.64, 'irheolf': 0, 'iturbu': 1, 'ilm': 2, 'iusl': 1, 'uTop': 1.0,
+              'kappa': 0.41, 'viscousSubLayer': 0, 'fluidWallFriction': False, 'fluidFrictionCoef': 1.0,
+              'channelWidth': 1.0, 'phiBed': 0.08, 'taufsi': [], 'lubrication': False, 'roughnessPartScale': 1e-3,
+              'vPart': [], 'nbAverageT': 0, 'pointParticleAverage': False, 'enableMultiClassAverage': False,
+              'velFluct': False, 'ReynoldStresses': [], 'bedElevation': 0.0, 'fluctTime': [], 'dtFluct': float('nan'),
+              'unCorrelatedFluctuations': False, 'twoSize': False, 'radiusPart1': 0.0, 'radiusPart2': 0.0,
+              'vxPart': [], 'vyPart': [], 'vzPart': [], 'averageDrag': []}
+    _attrs = dict(_core, **_other)
+    _live = ('ids',) + tuple(_core)
+
+    def _convert(self, k, v):
+        if k == 'gravity':
+            return tuple(_vec3_attr('HydroForceEngine', k, v))
+        if k in ('vxFluid', 'phiPart', 'convAcc', 'vFluctX', 'vFluctY', 'vFluctZ'):
+            return [float(x) for x in v]
+        if k == 'nCell':
+            return int(v)
+        if k == 'lubrication' and v:
+            unsupported('HydroForceEngine.lubrication')
+        return PartialEngine._convert(self, k, v)
+
+    def _read(self, k):
+        if k == 'gravity':
+            from .minieigen import Vector3
+            return Vector3(*self._values[k])
+        v = self._values[k]
+        return list(v) if isinstance(v, list) else v
+
+    def _changed(self, k):
+        if k in self._other:
+            return
+        PartialEngine._changed(self, k)
+
+    def _json(self):
+        d = {'class': 'HydroForceEngine', 'ids': list(self._values['ids'])}
+        for k in self._core:
+            v = self._values[k]
+            d[k] = list(v) if isinstance(v, (list, tuple)) else v
+        if d['deltaZ'] != d['deltaZ']:
+            d['deltaZ'] = None
+        return d
+
+    def computeRadiusParts(self):
+        """The distinct radii of the listed spheres, in list order (clumps skipped)."""
+        from ._core import Omega, Sphere
+        out = []
+        bodies = Omega().bodies
+        for i in self._values['ids']:
+            if 0 <= i < len(bodies):
+                b = bodies[i]
+                if b is not None and not b.isClump and isinstance(b.shape, Sphere) and b.shape.radius not in out:
+                    out.append(b.shape.radius)
+        self._values['radiusParts'] = out
+
+    def initialization(self):
+        """`HydroForceEngine::initialization`: zero profiles (nCell cells, nCell + 1 fluid velocities) and
+        per-body fluctuations, then computeRadiusParts."""
+        from ._core import Omega
+        n = int(self._values['nCell'])
+        nb = len(Omega().bodies)
+        for k in ('vxPart', 'phiPart', 'averageDrag', 'ReynoldStresses', 'turbulentViscosity', 'taufsi'):
+            setattr(self, k, [0.0] * n)
+        from .minieigen import Vector3
+        self._values['vPart'] = [Vector3(0, 0, 0) for _ in range(n)]
+        self.vxFluid = [0.0] * (n + 1)
+        if not self._values['convAccOption']:
+            self.convAcc = [0.0] * n
+        for k in ('vFluctX', 'vFluctY', 'vFluctZ'):
+            setattr(self, k, [0.0] * nb)
+        self.computeRadiusParts()
 
 
 class HarmonicForceEngine(PartialEngine):
@@ -1267,6 +1438,102 @@ class TriaxialStressController(BoundaryController):
         omega._sim.triax_compute_stress_strain(index)
 
 
+class TriaxialCompressionEngine(TriaxialStressController):
+    """YADE's TriaxialCompressionEngine (pkg/dem/TriaxialCompressionEngine.cpp): the controller driven by
+    its state machine (compaction, unloading, confined loading), run in the Rust core
+    (`ryade::triax_compression`). Its snapshot files (noFiles=False) are refused when they would be
+    written (YADE's .xml cannot be written by ryade)."""
+    _attrs = {'strainRate': 0.0, 'currentStrainRate': 0.0, 'UnbalancedForce': 1.0, 'StabilityCriterion': 0.001,
+              'translationAxis': (0.0, 1.0, 0.0), 'autoCompressionActivation': True, 'autoUnload': True,
+              'autoStopSimulation': False, 'testEquilibriumInterval': 20, 'currentState': 0, 'previousState': 0,
+              'sigmaIsoCompaction': 1.0, 'previousSigmaIso': 0.0, 'sigmaLateralConfinement': 1.0, 'noFiles': False,
+              'frictionAngleDegree': -1.0, 'epsilonMax': 0.5, 'fixedPoroCompaction': False, 'fixedPorosity': 0.0,
+              'maxStress': 0.0, 'sigma_iso': 0.0, 'isAxisymetric': True, 'Key': '',
+              # kept on the Python side: a counter and a value YADE never updates
+              'warn': 0, 'uniaxialEpsilonCurr': 1.0}
+    _local = ('warn', 'uniaxialEpsilonCurr')
+    _own = TriaxialStressController._own + tuple(k for k in _attrs if k not in ('warn', 'uniaxialEpsilonCurr'))
+    _ints = TriaxialStressController._ints + ('testEquilibriumInterval', 'currentState', 'previousState', 'warn')
+    _bools = TriaxialStressController._bools + ('autoCompressionActivation', 'autoUnload', 'autoStopSimulation',
+                                                'noFiles', 'fixedPoroCompaction', 'isAxisymetric')
+    _class = 'TriaxialCompressionEngine'
+    # YADE's attribute strainRate shadows the controller's strainRate() method in this class
+    strainRate = property(lambda self: self._read('strainRate'), lambda self, v: self._assign('strainRate', v))
+
+    def _convert(self, k, v):
+        if k == 'translationAxis':
+            return tuple(_vec3_attr('TriaxialCompressionEngine', k, v))
+        if k == 'Key':
+            return str(v)
+        return TriaxialStressController._convert(self, k, v)
+
+    def _read(self, k):
+        v = TriaxialStressController._read(self, k)
+        if k == 'translationAxis':
+            from .minieigen import Vector3
+            return Vector3(*v)
+        return v
+
+    def _changed(self, k):
+        if k in self._local:
+            return
+        TriaxialStressController._changed(self, k)
+
+    def _json(self):
+        d = TriaxialStressController._json(self)
+        d['translationAxis'] = list(d['translationAxis'])
+        return d
+
+    def _run_done_hook(self):
+        """The snapshot files YADE writes during this step (noFiles=False): `.spheres` as
+        Shop::saveSpheresToFile (x y z r of each dynamic sphere, C++ stream format), `.xml` through
+        O.save (ryade's own format, as O.save writes for any name: YADE's XML cannot be written)."""
+        from ._core import Omega, Sphere
+        omega, index = self._owner
+        names = json.loads(omega._sim.engine_get(index, '_pendingFiles'))
+        omega._sim.engine_set(index, '_pendingFiles', '[]')
+        for name in names:
+            if name.endswith('.spheres'):
+                with open(name, 'w') as f:
+                    for b in Omega().bodies:
+                        if b is None or not b.dynamic or not isinstance(b.shape, Sphere):
+                            continue
+                        p = b.state.pos
+                        f.write('%g %g %g %g\n' % (p[0], p[1], p[2], b.shape.radius))
+            else:
+                Omega().save(name)
+
+    def setContactProperties(self, frictionDegree):
+        """`Shop::setContactFriction`: dynamic bodies' materials and the real contacts get the angle."""
+        from ._core import Omega
+        Omega()._sim.set_contact_friction_degrees(float(frictionDegree), True)
+
+
+class ThreeDTriaxialEngine(TriaxialStressController):
+    """YADE's ThreeDTriaxialEngine (pkg/dem/ThreeDTriaxialEngine.cpp): per axis stress control (the
+    controller's servo) or strain control at strainRate_i, run in the Rust core
+    (`ryade::triax_compression::ThreeD`). Its strainDamping (0.9997) is its own, as in YADE (the
+    controller keeps 0.99)."""
+    _attrs = {'strainRate1': 0.0, 'currentStrainRate1': 0.0, 'strainRate2': 0.0, 'currentStrainRate2': 0.0,
+              'strainRate3': 0.0, 'currentStrainRate3': 0.0, 'UnbalancedForce': 1.0, 'frictionAngleDegree': -1.0,
+              'updateFrictionAngle': False, 'stressControl_1': True, 'stressControl_2': True, 'stressControl_3': True,
+              'strainDamping': 0.9997, 'Key': ''}
+    _own = TriaxialStressController._own + tuple(k for k in _attrs if k != 'strainDamping')
+    _bools = TriaxialStressController._bools + ('updateFrictionAngle', 'stressControl_1', 'stressControl_2',
+                                                'stressControl_3')
+    _class = 'ThreeDTriaxialEngine'
+
+    def _convert(self, k, v):
+        if k == 'Key':
+            return str(v)
+        return TriaxialStressController._convert(self, k, v)
+
+    def setContactProperties(self, frictionDegree):
+        """Dynamic bodies' materials and the real contacts get the angle (clumps not skipped, as YADE's)."""
+        from ._core import Omega
+        Omega()._sim.set_contact_friction_degrees(float(frictionDegree), False)
+
+
 class PeriodicEngine(GlobalEngine):
     """Run every `iterPeriod` steps / `virtPeriod` s of simulated time / `realPeriod` s of wall time
     (pkg/common/PeriodicEngines.hpp, isActivated, including its counting of the first call in nDone)."""
@@ -1337,6 +1604,18 @@ class DomainLimiter(PeriodicEngine):
             unsupported('DomainLimiter deleting bodies (#%s: O.bodies.erase)' % ', #'.join(str(i) for i in out[:10]))
 
 
+class CpmStateUpdater(PeriodicEngine):
+    """YADE's CpmStateUpdater (ConcretePM.cpp) writes only post-processing values: each body's CpmState
+    (normDmg, stress, damageTensor, from its contacts' damage and the broken ones) and colour, and its
+    own avgRelResidual/maxOmega; none of them feeds the simulation. ryade keeps none of them: the
+    engine runs on YADE's schedule and changes nothing, and reading any of those values says that
+    ryade does not support it."""
+    _attrs = {'initRun': True}
+
+    def _action(self, omega):
+        pass
+
+
 class PyRunner(PeriodicEngine):
     """`PyRunner(command, iterPeriod, ...)`: `command` runs in the script's `__main__` globals."""
     _attrs = {'command': '', 'ignoreErrors': False, 'updateGlobals': True}
@@ -1386,10 +1665,47 @@ class ElastMat(Material):
 class FrictMat(ElastMat):
     _attrs = {'frictionAngle': 0.5}
 
+    def _read(self, k):
+        # engines (TriaxialCompressionEngine, ThreeDTriaxialEngine.setContactProperties) change it in
+        # the core
+        if k == 'frictionAngle' and self._owner is not None:
+            omega, idx = self._owner
+            return omega._sim.material_friction_angle(idx)
+        return ElastMat._read(self, k)
+
     def _json(self):
         v = self._values
         return {'class': 'FrictMat', 'id': v['id'], 'label': v['label'], 'young': float(v['young']),
                 'poisson': float(v['poisson']), 'frictionAngle': float(v['frictionAngle']), 'density': float(v['density'])}
+
+
+class CpmMat(FrictMat):
+    """The concrete particle model's material (pkg/dem/ConcretePM.hpp): a FrictMat, density 4800 by
+    default; NaN (not given) travels as null."""
+    _attrs = {'density': 4800.0, 'sigmaT': float('nan'), 'neverDamage': False, 'epsCrackOnset': float('nan'),
+              'relDuctility': float('nan'), 'equivStrainShearContrib': 0.0, 'damLaw': 1, 'dmgTau': -1.0,
+              'dmgRateExp': 0.0, 'plTau': -1.0, 'plRateExp': 0.0, 'isoPrestress': 0.0}
+    _OWN = ('sigmaT', 'neverDamage', 'epsCrackOnset', 'relDuctility', 'equivStrainShearContrib', 'damLaw', 'dmgTau',
+            'dmgRateExp', 'plTau', 'plRateExp', 'isoPrestress')
+
+    def _json(self):
+        d = FrictMat._json(self)
+        d['class'] = 'CpmMat'
+        for k in CpmMat._OWN:
+            v = self._values[k]
+            if k == 'neverDamage':
+                d[k] = bool(v)
+            elif k == 'damLaw':
+                d[k] = int(v)
+            else:
+                x = float(v)
+                d[k] = None if x != x else x
+        return d
+
+    def _changed(self, k):
+        if self._owner is not None and k in CpmMat._OWN:
+            unsupported('changing CpmMat.%s after the material is in use' % k)
+        FrictMat._changed(self, k)
 
 
 class CohFrictMat(FrictMat):
@@ -1565,13 +1881,13 @@ def _make_unsupported(name):
 
 _IMPLEMENTED = {c.__name__: c for c in [
     Serializable, Functor, BoundFunctor, Bo1_Sphere_Aabb, Bo1_Facet_Aabb, Bo1_Box_Aabb, Bo1_Wall_Aabb, IGeomFunctor,
-    Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, IPhysFunctor,
+    Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom6D, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
-    ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
+    ForceResetter, InsertionSortCollider, InteractionLoop, IntrCallback, SumIntrForcesCb, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
-    BoundaryController, PeriTriaxController, TriaxialStressController, Recorder, TriaxialStateRecorder,
+    BoundaryController, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine, ThreeDTriaxialEngine, HydroForceEngine, Recorder, TriaxialStateRecorder,
     CohFrictMat, Bo1_GridConnection_Aabb, Ig2_Sphere_Sphere_ScGeom6D,
     Ig2_GridNode_GridNode_GridNodeGeom6D, Ig2_Sphere_GridConnection_ScGridCoGeom,
     Ig2_GridConnection_GridConnection_GridCoGridCoGeom, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
@@ -1580,7 +1896,8 @@ _IMPLEMENTED = {c.__name__: c for c in [
     ElastMat, FrictMat, ViscElMat, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
     Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, LudingMat,
     Ip2_LudingMat_LudingMat_LudingPhys, Law2_ScGeom_LudingPhys_Basic, BubbleMat, Ip2_BubbleMat_BubbleMat_BubblePhys,
-    Law2_ScGeom_BubblePhys_Bubble]}
+    Law2_ScGeom_BubblePhys_Bubble, CpmMat, Ip2_CpmMat_CpmMat_CpmPhys, Ip2_FrictMat_CpmMat_FrictPhys,
+    Law2_ScGeom_CpmPhys_Cpm, CpmStateUpdater]}
 
 
 #: ryade's own engine classes (no YADE class of that name: a script using them runs under ryade only)
