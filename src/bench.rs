@@ -350,7 +350,14 @@ fn run_script_in(
             c.args(["run", "-j", &t.to_string()]);
             c
         }
-        Variant::Fast(_) => bail!("the fast path cannot run script scenes"),
+        // `compat run --fast`: every O.run the fast path can take (the study's cycles with the
+        // native piston: spheres, boxes, facets, rolling resistance; not the grid case)
+        Variant::Fast(t) => {
+            let mut c = Command::new(crate::harness::env::compat_exe()?);
+            c.env("RYADE_FAST", "on")
+                .args(["run", "-j", &t.to_string()]);
+            c
+        }
     };
     if let Some(t) = timings {
         cmd.arg(root.join(TIMED_RUN)).arg(t);
@@ -387,7 +394,7 @@ fn run_script_in(
     let steps = ph["steps"].as_f64().unwrap_or(0.0);
     // one thread: CPU seconds (robust on a shared machine); more: wall seconds (the CPU of all
     // threads adds up)
-    let threaded = matches!(v, Variant::YadeOrder(t) if t > 1);
+    let threaded = matches!(v, Variant::YadeOrder(t) | Variant::Fast(t) if t > 1);
     let cpu = ph[if threaded { "wall_s" } else { "cpu_s" }]
         .as_f64()
         .unwrap_or(0.0);
@@ -473,13 +480,7 @@ pub fn bench(
     } else {
         None
     };
-    // script scenes: YADE and the YADE-order path only (the fast path models spheres only)
-    let variants: Vec<Variant> = variants
-        .iter()
-        .copied()
-        .filter(|v| script.is_none() || !matches!(v, Variant::Fast(_)))
-        .collect();
-    let variants = &variants[..];
+    let variants = variants;
     if variants.is_empty() {
         bail!(
             "{}: nothing to time (a script scene runs in YADE and the YADE-order path only)",
@@ -561,8 +562,10 @@ pub fn bench(
     Ok(BenchReport {
         scene: scene.display().to_string(),
         histories_identical: script.as_ref().map(|_| {
+            // the fast path's runs agree with YADE in its band, not in its bits: not compared here
             let h: Vec<&Option<String>> = samples
                 .iter()
+                .filter(|s| !s.engine.starts_with("ryade fast"))
                 .map(|s: &Sample| &s.history)
                 .chain(profiles.iter().map(|p| &p.history))
                 .collect();
@@ -728,9 +731,9 @@ pub fn format_report(r: &BenchReport) -> String {
         }
     }
     if r.script.is_some() {
-        out += "  (script scene: CPU seconds of the timed phase, wall seconds for 2+ threads, particles = spheres; contacts not counted; the fast path models spheres only)\n";
+        out += "  (script scene: CPU seconds of the timed phase, wall seconds for 2+ threads, particles = spheres; contacts not counted; `ryade fast` is `compat run --fast`: its runs agree with YADE in the seed band, `compat diff rXX --engine fast`, not in its bits)\n";
         out += &format!(
-            "  history.csv of every run, both engines: {}\n",
+            "  history.csv of every YADE and YADE-order run: {}\n",
             if r.histories_identical == Some(true) {
                 "byte-identical"
             } else {
@@ -812,7 +815,7 @@ mod tests {
             assert_eq!(sc.phase, "cycles");
             n += 1;
         }
-        assert_eq!(n, 3, "scenes (b), (c) and (d)");
+        assert_eq!(n, 4, "scenes (b), (c), (d) and (e)");
     }
 
     /// The per-engine table divides each engine's ns by the steps of its run, adds a TOTAL row, and

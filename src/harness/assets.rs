@@ -31,6 +31,8 @@ pub const FILES: &[(&str, &[u8])] = embed!(
     "bench/scenes/r05_G_medium_s1.specimen.json",
     "bench/scenes/r05_G_full_paper200.study.json",
     "bench/scenes/r05_G_full_paper200_s1.specimen.json",
+    "bench/scenes/r05_N_medium_paper200.study.json",
+    "bench/scenes/r05_N_medium_paper200_s1.specimen.json",
 );
 
 /// Marker written last: a folder without it is incomplete (an interrupted write) and is redone.
