@@ -166,7 +166,7 @@ def test_stop_at_iter_semantics_match_yade():
 def test_fast_path_flag_runs_the_fast_path(tmp_path):
     """O.ryadeFastPath = True: the fast path follows the YADE-order path (bit-identical to YADE) to
     round-off on a small periodic scene with sliding and spin, keeps the contacts across two runs,
-    and refuses a scene it does not model (a facet) with the reason."""
+    and refuses a scene it does not model (a spinning facet) with the reason."""
     out = tmp_path / 'o.json'
     p = run('run', os.path.join(SCRIPTS, 'fast_path.py'), str(out))
     assert p.returncode == 0, p.stderr

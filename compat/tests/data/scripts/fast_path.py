@@ -27,7 +27,8 @@ gotv = [tuple(b.state.vel) + tuple(b.state.angVel) for b in O.bodies]
 out = {'iter': O.iter, 'real_ref': nref, 'real_fast': O.interactions.countReal(),
        'max_dpos': max(abs(a - b) for r, g in zip(ref, got) for a, b in zip(r, g)),
        'max_dvel': max(abs(a - b) for r, g in zip(refv, gotv) for a, b in zip(r, g))}
-O.bodies.append(utils.facet([(-1, -1, 0), (1, -1, 0), (0, 1, 0)], material=mat))
+fid = O.bodies.append(utils.facet([(-1, -1, 0), (1, -1, 0), (0, 1, 0)], material=mat))
+O.bodies[fid].state.angVel = (0, 0, 1.0)   # a spinning facet: outside the fast path
 try:
     O.run(1, True)
 except RuntimeError as e:
