@@ -480,7 +480,6 @@ pub fn bench(
     } else {
         None
     };
-    let variants = variants;
     if variants.is_empty() {
         bail!(
             "{}: nothing to time (a script scene runs in YADE and the YADE-order path only)",

@@ -275,7 +275,7 @@ impl SpherePack {
     /// shorter than 2, psdCumm not from 0 to 1, non-monotonic PSD, rMean combined with a PSD,
     /// nothing to size the spheres by, a null-volume `h_size`, a num-mode box with zero volume
     /// and area. ryade-only errors, where YADE would produce garbage or undefined behaviour:
-    /// non-finite arguments, `max_corner < min_corner` on some axis, a box of zero volume and
+    /// non-finite arguments, a box of zero volume and
     /// zero area (no `h_size`), `r_rel_fuzz` outside [0, 1], `porosity >= 1` without `r_mean`, a random draw
     /// outside the PSD's cumulative curve.
     pub fn make_cloud(&mut self, p: &CloudParams) -> Result<usize> {
@@ -609,15 +609,10 @@ fn validate(p: &CloudParams) -> Result<()> {
     let h_found = p.h_size.is_some_and(|h| h != Mat3::zeros());
     let size = p.max_corner - p.min_corner;
     if !h_found {
-        if size.iter().any(|&s| s < 0.0) {
-            bail!(
-                "makeCloud: maxCorner {:?} is below minCorner {:?} on some axis; give \
-                 maxCorner >= minCorner on every axis",
-                p.max_corner.as_slice(),
-                p.min_corner.as_slice()
-            );
-        }
-        let nonzero = size.iter().filter(|&&s| s > 0.0).count();
+        // maxCorner below minCorner on an axis is accepted, as YADE does (SpherePack::makeCloud
+        // draws minCorner + u * (maxCorner - minCorner): the box is the same, walked the other way;
+        // YADE's examples/funnel.py relies on it)
+        let nonzero = size.iter().filter(|&&s| s != 0.0).count();
         if nonzero < 2 {
             bail!(
                 "makeCloud: the box minCorner {:?} .. maxCorner {:?} has zero volume and zero area; \

@@ -234,13 +234,7 @@ fn bad_arguments_are_errors() {
         ..Default::default()
     };
     let err = |p: CloudParams| SpherePack::new().make_cloud(&p).unwrap_err().to_string();
-    // maxCorner below minCorner / empty box
-    assert!(err(CloudParams {
-        r_mean: 0.1,
-        max_corner: Vec3::new(1.0, -1.0, 1.0),
-        ..base.clone()
-    })
-    .contains("below minCorner"));
+    // an empty box (maxCorner below minCorner is accepted, as YADE does: funnel.py)
     assert!(err(CloudParams {
         r_mean: 0.1,
         max_corner: Vec3::zeros(),
@@ -290,4 +284,43 @@ fn bad_arguments_are_errors() {
         ..base.clone()
     })
     .contains("rRelFuzz"));
+}
+
+/// maxCorner below minCorner on an axis (YADE's examples/funnel.py): YADE fills the same box walked
+/// the other way. `yade -n -x` printed, for `makeCloud(Vector3(-1, -9, 30), Vector3(1, -13, 32), .2,
+/// rRelFuzz=.3, seed=3)`: 122 spheres, the first at (0.57894206775246371, -9.3728587617011048,
+/// 31.118038991903653) with radius 0.1484869856541268, the last at (-0.17597846877631751,
+/// -13.175185226552859, 31.350154231091793).
+#[test]
+#[allow(clippy::excessive_precision)] // YADE's 17-digit prints, verbatim
+fn inverted_box_fills_as_yade() {
+    let p = CloudParams {
+        min_corner: Vec3::new(-1.0, -9.0, 30.0),
+        max_corner: Vec3::new(1.0, -13.0, 32.0),
+        r_mean: 0.2,
+        r_rel_fuzz: 0.3,
+        seed: 3,
+        ..Default::default()
+    };
+    let mut sp = SpherePack::new();
+    assert_eq!(sp.make_cloud(&p).unwrap(), 122);
+    let (c0, r0) = sp.spheres[0];
+    assert_eq!(
+        [c0[0], c0[1], c0[2], r0],
+        [
+            0.57894206775246371,
+            -9.3728587617011048,
+            31.118038991903653,
+            0.1484869856541268
+        ]
+    );
+    let (cl, _) = sp.spheres[121];
+    assert_eq!(
+        [cl[0], cl[1], cl[2]],
+        [
+            -0.17597846877631751,
+            -13.175185226552859,
+            31.350154231091793
+        ]
+    );
 }
