@@ -143,15 +143,9 @@ impl HydroForceEngine {
     /// Set one attribute from JSON (the scene files, the compat layer); Err(None) for a name it does
     /// not have.
     pub fn set(&mut self, k: &str, v: &serde_json::Value) -> Result<(), Option<String>> {
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| Some(format!("HydroForceEngine.{} must be a number", k)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .or_else(|| v.as_f64().map(|x| x != 0.0))
-                .ok_or_else(|| Some(format!("HydroForceEngine.{} must be a bool", k)))
-        };
+        let what = format!("HydroForceEngine.{}", k);
+        let num = || crate::utils::attr_f64(&what, v);
+        let boolean = || crate::utils::attr_bool(&what, v);
         let list = || -> Result<Vec<f64>, Option<String>> {
             serde_json::from_value(v.clone())
                 .map_err(|_| Some(format!("HydroForceEngine.{} must be a list of numbers", k)))

@@ -564,15 +564,8 @@ impl TriaxialStressController {
                 r => return r,
             }
         }
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| Some(format!("{} must be a number", k)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .or_else(|| v.as_f64().map(|x| x != 0.0))
-                .ok_or_else(|| Some(format!("{} must be a bool", k)))
-        };
+        let num = || crate::utils::attr_f64(k, v);
+        let boolean = || crate::utils::attr_bool(k, v);
         if let Some(w) = k
             .strip_prefix("wall_")
             .and_then(|r| r.strip_suffix("_id"))

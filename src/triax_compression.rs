@@ -302,15 +302,8 @@ impl Compression {
 
     /// Set one attribute from JSON; Err(None) for a name it does not have.
     pub fn set(&mut self, k: &str, v: &serde_json::Value) -> Result<(), Option<String>> {
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| Some(format!("{} must be a number", k)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .or_else(|| v.as_f64().map(|x| x != 0.0))
-                .ok_or_else(|| Some(format!("{} must be a bool", k)))
-        };
+        let num = || crate::utils::attr_f64(k, v);
+        let boolean = || crate::utils::attr_bool(k, v);
         match k {
             "strainRate" => self.strain_rate = num()?,
             "currentStrainRate" => self.current_strain_rate = num()?,
@@ -514,15 +507,8 @@ impl ThreeD {
 
     /// Set one attribute from JSON; Err(None) for a name it does not have.
     pub fn set(&mut self, k: &str, v: &serde_json::Value) -> Result<(), Option<String>> {
-        let num = || {
-            v.as_f64()
-                .ok_or_else(|| Some(format!("{} must be a number", k)))
-        };
-        let boolean = || {
-            v.as_bool()
-                .or_else(|| v.as_f64().map(|x| x != 0.0))
-                .ok_or_else(|| Some(format!("{} must be a bool", k)))
-        };
+        let num = || crate::utils::attr_f64(k, v);
+        let boolean = || crate::utils::attr_bool(k, v);
         let axis = |p: &str| -> Option<usize> {
             k.strip_prefix(p)
                 .and_then(|n| n.parse::<usize>().ok())

@@ -479,6 +479,19 @@ pub fn check_time_step(scene: &Scene) -> Result<(), String> {
     Ok(())
 }
 
+/// An engine attribute set from Python (JSON) as a number; `what` names it in the error (Err(Some)).
+pub fn attr_f64(what: &str, v: &serde_json::Value) -> Result<f64, Option<String>> {
+    v.as_f64()
+        .ok_or_else(|| Some(format!("{} must be a number", what)))
+}
+
+/// The same for a bool (a number is read as != 0, as Python's bool()).
+pub fn attr_bool(what: &str, v: &serde_json::Value) -> Result<bool, Option<String>> {
+    v.as_bool()
+        .or_else(|| v.as_f64().map(|x| x != 0.0))
+        .ok_or_else(|| Some(format!("{} must be a bool", what)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
