@@ -97,22 +97,15 @@ pub(super) struct Boundaries {
     avoid_self: i32,
     /// Every body's groupMask, by scene id.
     masks: Vec<i32>,
-    /// The periodic cell's sizes (a static, unsheared cell: `FastSim::from_scene`).
-    period: Option<Vec3>,
+    /// The periodic cell (static and unsheared: `FastSim::from_scene`).
+    cell: Option<crate::cell::Cell>,
     /// Scene id -> index in `list`.
     at: FxHashMap<u32, u32>,
 }
 
-/// The shift of period `cd` in a cell of sizes `period` (zeros without one).
-fn shift_of(period: &Option<Vec3>, cd: &[i32; 3]) -> Vec3 {
-    match period {
-        Some(l) => Vec3::new(
-            cd[0] as f64 * l[0],
-            cd[1] as f64 * l[1],
-            cd[2] as f64 * l[2],
-        ),
-        None => Vec3::zeros(),
-    }
+/// The shift of period `cd` (`Cell::shift_pos`; zeros without a cell).
+fn shift_of(cell: &Option<crate::cell::Cell>, cd: &[i32; 3]) -> Vec3 {
+    cell.as_ref().map_or_else(Vec3::zeros, |c| c.shift_pos(cd))
 }
 
 fn v(a: &V3) -> Vec3 {
@@ -120,8 +113,8 @@ fn v(a: &V3) -> Vec3 {
 }
 
 impl Boundaries {
-    /// The scene's walls, boxes and facets, or why one is outside the fast path. `is_boundary(id)`
-    /// tells the caller which bodies are taken here.
+    /// The scene's walls, boxes and facets, or why one is outside the fast path (`has(id)` tells
+    /// which bodies are taken here).
     pub(super) fn from_scene(
         scene: &Scene,
         il: &InteractionLoop,
@@ -232,7 +225,7 @@ impl Boundaries {
             law: il.cundall_strack.unwrap_or_default(),
             avoid_self: collider.avoid_self_interaction_mask,
             masks: b.mask.clone(),
-            period: scene.cell.as_ref().map(|c| c.size()),
+            cell: scene.cell.clone(),
             at: FxHashMap::default(),
         };
         // the scene's real boundary contacts carry over with their history
@@ -280,14 +273,9 @@ impl Boundaries {
         &self.list[self.at[&(id as u32)] as usize]
     }
 
-    /// Real boundary contacts now.
-    pub(super) fn real(&self) -> usize {
-        self.contacts.iter().filter(|c| c.geom.is_some()).count()
-    }
-
     /// The period of the sphere image at `x` nearest `at` (zeros without a periodic cell).
     fn nearest_image(&self, at: &Vec3, x: &V3) -> [i32; 3] {
-        match self.period {
+        match self.cell.as_ref().map(|c| c.size()) {
             Some(l) => std::array::from_fn(|a| ((at[a] - x[a]) / l[a]).round() as i32),
             None => [0; 3],
         }
@@ -349,7 +337,7 @@ impl Boundaries {
                     continue;
                 }
                 let cd = self.nearest_image(&bd.pos, x);
-                let xs = v(x) + shift_of(&self.period, &cd);
+                let xs = v(x) + shift_of(&self.cell, &cd);
                 if self.may_collide(bd.id, id) && Self::near(bd, &rot, &xs, rad[k], skin) {
                     out.push(BContact {
                         b: bk as u32,
@@ -382,7 +370,7 @@ impl Boundaries {
             let bd = &mut self.list[c.b as usize];
             let k = c.k as usize;
             let r = s.rad[k];
-            let shift2 = shift_of(&self.period, &c.cd);
+            let shift2 = shift_of(&self.cell, &c.cd);
             let pr = Pair {
                 s1: Kin {
                     pos: bd.pos,

@@ -1177,9 +1177,4 @@ impl FastSim {
             }
         }
     }
-
-    /// Real wall, box and facet contacts now.
-    pub fn boundary_contacts(&self) -> usize {
-        self.bnd.real()
-    }
 }
