@@ -1065,7 +1065,7 @@ impl Scene {
     /// `InteractionLoop::action` (core/InteractionLoop.cpp): every interaction in container order:
     /// geometry, physics (created on first contact; the cohesive Ip2 also runs on existing physics),
     /// then the law.
-    fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
+    pub(crate) fn interaction_loop(&mut self, il: &mut InteractionLoop) -> Result<(), String> {
         for cb in il.sum_intr_forces_cb.iter_mut() {
             eprint!(
                 "({},{})",

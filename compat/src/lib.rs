@@ -1428,11 +1428,27 @@ impl Sim {
             ));
         }
         let scene = &mut self.scene;
+        let opt = ryade::fast::FastOptions {
+            threads: threads.max(1),
+            ..Default::default()
+        };
+        let mut n = n;
+        if n > 0 && ryade::fast::cohesion_now_pending(scene) {
+            // a setCohesionNow acts in this iteration: that step runs on the YADE-order path (when
+            // the fast path can take the rest; else nothing changes here and the caller falls back)
+            py.allow_threads(|| {
+                ryade::fast::FastSim::check_after_cohesion_now(scene, opt)
+                    .map_err(|e| format!("O.ryadeFastPath: {}", e))?;
+                scene.stop_requested = false;
+                scene.step().map_err(|e| e.to_string())
+            })
+            .map_err(PyRuntimeError::new_err)?;
+            n -= 1;
+            if std::mem::take(&mut scene.stop_requested) || n == 0 {
+                return Ok(());
+            }
+        }
         py.allow_threads(|| {
-            let opt = ryade::fast::FastOptions {
-                threads: threads.max(1),
-                ..Default::default()
-            };
             ryade::fast::FastSim::from_scene(scene, opt)
                 .map_err(|e| format!("O.ryadeFastPath: {}", e))
         })
@@ -1455,6 +1471,12 @@ impl Sim {
                 }
             }
             py.allow_threads(|| f.write_back(scene));
+            if let Some(e) = f.take_error() {
+                return Err(PyRuntimeError::new_err(format!(
+                    "fast path, iteration {}: {}",
+                    scene.iter, e
+                )));
+            }
             r
         })
     }

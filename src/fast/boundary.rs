@@ -131,7 +131,8 @@ impl Boundaries {
         let mut list = Vec::new();
         for id in 0..b.len() {
             let shape = match &b.shape[id] {
-                Shape::Sphere { .. } => continue,
+                // (the grid's bodies are `grid`'s)
+                Shape::Sphere { .. } | Shape::GridNode(_) | Shape::GridConnection(_) => continue,
                 Shape::Wall { axis, sense } => (
                     BShape::Wall {
                         axis: *axis,

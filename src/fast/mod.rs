@@ -21,6 +21,7 @@
 
 mod boundary;
 pub mod contact;
+mod grid;
 pub mod neighbors;
 pub mod newton;
 mod six;
@@ -118,6 +119,10 @@ pub struct FastSim {
     stop: bool,
     /// Rolling-resistance contacts (ScGeom6D + CohFrictPhys) instead of `contacts`.
     six: Option<six::SixCfg>,
+    /// The geogrid: nodes, bonds, sphere-connection contacts.
+    grid: Option<grid::GridPart>,
+    /// An error of the grid's interaction loop (the run stops; `take_error`).
+    error: Option<String>,
     contacts6: Vec<six::C6>,
     fmats: Vec<crate::material::FrictMat>,
     pool: Option<rayon::ThreadPool>,
@@ -406,15 +411,86 @@ fn v3(v: &Vec3) -> V3 {
     [v[0], v[1], v[2]]
 }
 
+/// A body's constants for the integrator, or why it cannot be integrated.
+fn inert_of(b: &crate::body::Bodies, id: usize) -> Result<newton::Inert, String> {
+    let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
+    let blocked = b.blocked[id];
+    if blocked != DOF_ALL && (b.mass[id] <= 0.0 || b.inertia[id].min() <= 0.0) {
+        return Err(format!(
+            "body #{} is dynamic but has no mass or inertia",
+            id
+        ));
+    }
+    Ok(newton::Inert {
+        inv_mass: inv(b.mass[id]),
+        inv_inertia: [
+            inv(b.inertia[id][0]),
+            inv(b.inertia[id][1]),
+            inv(b.inertia[id][2]),
+        ],
+        blocked,
+        damped: b.is_damped[id],
+    })
+}
+
+/// Does an `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionNow=True)` of the scene still act
+/// (in this iteration, or at its first use)? Its flag switches itself off at its first call in a
+/// later iteration (`CohFrictIp2::go`); the fast path runs only once it has expired
+/// (`compat`'s runner takes one YADE-order step first).
+pub fn cohesion_now_pending(scene: &Scene) -> bool {
+    scene.engines.iter().any(|e| match e {
+        Engine::InteractionLoop(il) => il.cohfrict_phys.as_ref().is_some_and(|p| {
+            p.set_cohesion_now
+                && (p.cohesion_definition_iteration == -1
+                    || p.cohesion_definition_iteration == scene.iter)
+        }),
+        _ => false,
+    })
+}
+
+/// The loop as the fast path runs it: an expired setCohesionNow switched off as its next call
+/// would (with no effect on any contact); `settle_pending`: a pending one too (a check of what the
+/// scene will be after the one YADE-order step).
+fn settled(
+    il: &crate::scene::InteractionLoop,
+    iter: i64,
+    settle_pending: bool,
+) -> crate::scene::InteractionLoop {
+    let mut il = il.clone();
+    if let Some(p) = il.cohfrict_phys.as_mut() {
+        let expired =
+            p.cohesion_definition_iteration != -1 && p.cohesion_definition_iteration != iter;
+        if p.set_cohesion_now && (expired || settle_pending) {
+            p.set_cohesion_now = false;
+            p.cohesion_definition_iteration = -1;
+        }
+    }
+    il
+}
+
 impl FastSim {
     /// Build the fast stepper from a scene, or say why the scene is outside the fast path.
     pub fn from_scene(scene: &Scene, opt: FastOptions) -> Result<FastSim, String> {
+        Self::from_scene_with(scene, opt, false)
+    }
+
+    /// `from_scene` as the scene will be after a pending setCohesionNow has acted (see
+    /// `cohesion_now_pending`): whether the fast path can take over after one YADE-order step.
+    pub fn check_after_cohesion_now(scene: &Scene, opt: FastOptions) -> Result<(), String> {
+        Self::from_scene_with(scene, opt, true).map(|_| ())
+    }
+
+    fn from_scene_with(
+        scene: &Scene,
+        opt: FastOptions,
+        settle_pending: bool,
+    ) -> Result<FastSim, String> {
         let unsupported = |what: String| Err(format!("the fast path does not support {}", what));
         if scene.track_energy {
             return unsupported("energy tracking (O.trackEnergy)".into());
         }
         let mut newton = None;
-        let mut il_seen = None;
+        let mut il_seen: Option<crate::scene::InteractionLoop> = None;
         let mut collider = None;
         let mut six_cfg = None;
         let mut piston = None;
@@ -426,6 +502,7 @@ impl FastSim {
                 Engine::ForceResetter => {}
                 Engine::Collider(c) => collider = Some(&c.p),
                 Engine::InteractionLoop(il) => {
+                    let il = &settled(il, scene.iter, settle_pending);
                     let ss = il.sphere_sphere.as_ref();
                     let cs_ok = il
                         .cundall_strack
@@ -462,7 +539,7 @@ impl FastSim {
                             cm: il.cohesion_moment.unwrap(),
                         });
                     }
-                    il_seen = Some(il.as_ref());
+                    il_seen = Some(il.clone());
                 }
                 Engine::Piston(pc) if newton.is_some() && piston.is_none() => {
                     piston = Some((k, pc.as_ref().clone()));
@@ -479,7 +556,7 @@ impl FastSim {
         let Some(nw) = newton else {
             return unsupported("a scene without NewtonIntegrator".into());
         };
-        let Some(il) = il_seen else {
+        let Some(il) = il_seen.as_ref() else {
             return unsupported("a scene without InteractionLoop".into());
         };
         let Some(collider) = collider else {
@@ -572,28 +649,9 @@ impl FastSim {
         }
         let inert = sphere_ids
             .iter()
-            .map(|&id| {
-                let id = id as usize;
-                let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
-                let blocked = b.blocked[id];
-                if blocked != DOF_ALL && (b.mass[id] <= 0.0 || b.inertia[id].min() <= 0.0) {
-                    return Err(format!(
-                        "body #{} is dynamic but has no mass or inertia",
-                        id
-                    ));
-                }
-                Ok(newton::Inert {
-                    inv_mass: inv(b.mass[id]),
-                    inv_inertia: [
-                        inv(b.inertia[id][0]),
-                        inv(b.inertia[id][1]),
-                        inv(b.inertia[id][2]),
-                    ],
-                    blocked,
-                    damped: b.is_damped[id],
-                })
-            })
+            .map(|&id| inert_of(b, id as usize))
             .collect::<Result<Vec<_>, String>>()?;
+        let grid = grid::GridPart::from_scene(scene, il, collider, &sphere_ids)?;
         let threads = opt.threads.max(1);
         let pool = if threads > 1 {
             Some(
@@ -647,6 +705,8 @@ impl FastSim {
             chunks: vec![],
             bnd,
             six: six_cfg,
+            grid,
+            error: None,
             piston,
             stop: false,
             contacts6: vec![],
@@ -718,6 +778,11 @@ impl FastSim {
     pub fn active_contacts(&self) -> usize {
         self.contacts.iter().filter(|c| c.active).count()
             + self.contacts6.iter().filter(|c| c.is_real()).count()
+    }
+
+    /// Real interactions of the geogrid (node bonds and sphere-connection contacts).
+    pub fn grid_interactions(&self) -> usize {
+        self.grid.as_ref().map_or(0, |g| g.real())
     }
 
     /// Pairs in the Verlet list.
@@ -829,6 +894,9 @@ impl FastSim {
         }
         self.bnd
             .rebuild(&self.ids, &self.pos, &self.radius, self.skin);
+        if let Some(g) = &mut self.grid {
+            g.rebuild(&self.ids, &self.pos, &self.radius, self.skin);
+        }
         self.x_ref = self.pos.clone();
         self.max_disp2 = 0.0;
         self.rebuilds += 1;
@@ -947,6 +1015,7 @@ impl FastSim {
         self.contact_phase(false);
         debug_assert!(self.chunks[0].ghosts.is_empty());
         self.boundary_phase();
+        self.grid_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         let cfg = self.cfg;
@@ -961,8 +1030,48 @@ impl FastSim {
             &mut self.ori,
             &self.x_ref,
         );
-        self.max_disp2 = self.max_disp2.max(self.bnd.advance(cfg.dt));
+        self.max_disp2 = self
+            .max_disp2
+            .max(self.bnd.advance(cfg.dt))
+            .max(self.integrate_nodes());
         self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    /// The grid's loads (serial, after the sphere and boundary contacts; see `grid`). Spheres owned
+    /// by other chunks get their loads here too: the parallel integration reads `force` after this.
+    fn grid_phase(&mut self) {
+        let Some(g) = &mut self.grid else { return };
+        if let Err(e) = g.forces(
+            &self.pos,
+            &self.vel,
+            &self.ang_vel,
+            &self.ori,
+            self.iter,
+            self.time,
+            &mut self.force,
+            &mut self.torque,
+        ) {
+            self.error.get_or_insert(e);
+            self.stop = true;
+        }
+    }
+
+    /// The grid nodes' step (the spheres' integrator); their largest squared displacement since
+    /// the last rebuild.
+    fn integrate_nodes(&mut self) -> f64 {
+        let cfg = self.cfg;
+        match &mut self.grid {
+            None => 0.0,
+            Some(g) => integrate(
+                &cfg, &g.inert, &g.force, &g.torque, &mut g.pos, &mut g.vel, &mut g.w, &mut g.ori,
+                &g.x_ref,
+            ),
+        }
+    }
+
+    /// The error that ended the run, if any (cleared by this call).
+    pub fn take_error(&mut self) -> Option<String> {
+        self.error.take()
     }
 
     /// The sphere-sphere contacts of every chunk (in parallel, or the one chunk of one thread).
@@ -1049,6 +1158,7 @@ impl FastSim {
         // contact phase: each chunk sums its owned bodies' forces in place and queues the others
         self.contact_phase(true);
         self.boundary_phase();
+        self.grid_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
         // integration over each chunk's own bodies (the thread that summed their forces, whose
@@ -1093,7 +1203,7 @@ impl FastSim {
                 integrate(&cfg, &inert[lo..hi], f, t, x, v, w, q, &x_ref[lo..hi])
             })
             .reduce(|| 0.0, f64::max);
-        self.max_disp2 = md.max(self.bnd.advance(cfg.dt));
+        self.max_disp2 = md.max(self.bnd.advance(cfg.dt)).max(self.integrate_nodes());
         self.timing.newton += t1.elapsed().as_secs_f64();
     }
 
@@ -1114,7 +1224,10 @@ impl FastSim {
         }
         scene.iter = self.iter;
         scene.time = self.time;
-        scene.interactions.clear();
+        match &self.grid {
+            Some(g) => g.write_back(scene),
+            None => scene.interactions.clear(),
+        }
         for (p, c) in self.pairs.iter().zip(&self.contacts) {
             if !c.active {
                 continue;

@@ -1,0 +1,512 @@
+//! The fast path's geogrid: `GridNode` bodies bonded by `GridConnection`s
+//! (`Ig2_GridNode_GridNode_GridNodeGeom6D`, CohFrictPhys, CohesionMoment) and the spheres' contacts
+//! with the connections (`Ig2_Sphere_GridConnection_ScGridCoGeom`, with its hand-over of a sliding
+//! sphere between neighbouring connections, and `Law2_ScGridCoGeom_*`).
+//!
+//! These interactions run through the YADE-order path's own interaction loop
+//! (`Scene::interaction_loop`) on a companion scene that holds the same bodies but only the grid's
+//! interactions: every formula, the hand-over and its shared objects are the Scene's code. What is
+//! the fast path's: the candidate sphere-connection pairs are listed at each Verlet rebuild (a
+//! sphere within `r + R + skin` of a connection, found through a hash grid), the states of the
+//! bodies involved are copied in before each step's grid loop and the loads added to the fast
+//! path's sums after it; the nodes are integrated by the fast path's integrator. The grid is small
+//! next to the packing (the study's full r05 G: 120 nodes, 360 connections, 3,837 spheres), so it
+//! runs serially after the sphere contacts.
+
+use super::contact::V3;
+use super::newton;
+use crate::interaction::{Interaction, Interactions};
+use crate::math::{Quat, Vec3};
+use crate::scene::{InteractionLoop, Scene};
+use crate::shape::Shape;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+pub(super) struct GridPart {
+    /// The companion scene: all bodies (those the grid loop reads are refreshed each step), the
+    /// grid's interactions only.
+    sub: Box<Scene>,
+    il: InteractionLoop,
+    /// The nodes' scene ids and state (integrated with the spheres' integrator).
+    pub nodes: Vec<u32>,
+    pub pos: Vec<V3>,
+    pub vel: Vec<V3>,
+    pub w: Vec<V3>,
+    pub ori: Vec<Quat>,
+    pub inert: Vec<newton::Inert>,
+    pub force: Vec<V3>,
+    pub torque: Vec<V3>,
+    pub x_ref: Vec<V3>,
+    conns: Vec<u32>,
+    /// The spheres of the grid's interactions since the last rebuild: (fast-path slot, scene id).
+    touched: Vec<(u32, u32)>,
+    /// Connections may meet each other (`Ig2_GridConnection_GridConnection_GridCoGridCoGeom`).
+    conn_conn: bool,
+    masks: Vec<i32>,
+    avoid_self: i32,
+    /// Largest sphere radius.
+    rmax: f64,
+}
+
+fn v(a: &V3) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+fn a3(v: &Vec3) -> V3 {
+    [v[0], v[1], v[2]]
+}
+
+/// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp).
+fn may_collide(ma: i32, mb: i32, avoid: i32) -> bool {
+    (ma & mb) != 0 && !(ma == mb && (ma & avoid) != 0)
+}
+
+/// Points binned in cells at least `h` wide (a periodic axis: equal cells over the period,
+/// positions wrapped), so that points within `h` of each other are in neighbouring cells.
+struct HashGrid {
+    h: f64,
+    /// Per periodic axis: cell width and count.
+    dims: [Option<(f64, i64)>; 3],
+    bins: FxHashMap<[i64; 3], Vec<u32>>,
+}
+
+impl HashGrid {
+    fn new(h: f64, size: Option<Vec3>) -> HashGrid {
+        let dims = std::array::from_fn(|a| {
+            size.map(|l| {
+                let n = ((l[a] / h).floor() as i64).max(1);
+                (l[a] / n as f64, n)
+            })
+        });
+        HashGrid {
+            h,
+            dims,
+            bins: FxHashMap::default(),
+        }
+    }
+
+    fn key(&self, x: &Vec3) -> [i64; 3] {
+        std::array::from_fn(|a| match self.dims[a] {
+            Some((w, n)) => {
+                let l = w * n as f64;
+                (((x[a] - (x[a] / l).floor() * l) / w).floor() as i64).clamp(0, n - 1)
+            }
+            None => (x[a] / self.h).floor() as i64,
+        })
+    }
+
+    fn add(&mut self, x: &Vec3, k: u32) {
+        self.bins.entry(self.key(x)).or_default().push(k);
+    }
+
+    /// Every point in the cells around `x` (each cell once: a periodic axis of fewer than three
+    /// cells wraps onto itself).
+    fn near(&self, x: &Vec3, mut f: impl FnMut(u32)) {
+        let kc = self.key(x);
+        let offs = |a: usize| -> Vec<i64> {
+            match self.dims[a] {
+                Some((_, n)) if n < 3 => (0..n).collect(),
+                Some((_, n)) => vec![(kc[a] + n - 1) % n, kc[a], (kc[a] + 1) % n],
+                None => vec![kc[a] - 1, kc[a], kc[a] + 1],
+            }
+        };
+        let (ox, oy, oz) = (offs(0), offs(1), offs(2));
+        for &x in &ox {
+            for &y in &oy {
+                for &z in &oz {
+                    if let Some(list) = self.bins.get(&[x, y, z]) {
+                        list.iter().for_each(|&k| f(k));
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl GridPart {
+    /// The scene's grid (None without GridNode/GridConnection bodies), or why the fast path cannot
+    /// run it. `sphere_ids`: the fast path's spheres; `il`: the scene's loop (setCohesionNow settled).
+    pub(super) fn from_scene(
+        scene: &Scene,
+        il: &InteractionLoop,
+        collider: &crate::collider::ColliderParams,
+        sphere_ids: &[u32],
+    ) -> Result<Option<GridPart>, String> {
+        let b = &scene.bodies;
+        let unsupported = |what: String| Err(format!("the fast path does not support {}", what));
+        let (mut nodes, mut conns) = (Vec::new(), Vec::new());
+        for id in 0..b.len() {
+            match &b.shape[id] {
+                Shape::GridNode(_) => nodes.push(id as u32),
+                Shape::GridConnection(_) => conns.push(id as u32),
+                _ => {}
+            }
+        }
+        if nodes.is_empty() && conns.is_empty() {
+            return Ok(None);
+        }
+        let avoid = collider.avoid_self_interaction_mask;
+        // nodes meet nothing through the collider (gridNode's mask is 0), connections meet spheres
+        // only: the fast path lists sphere-connection pairs and nothing else of the grid
+        for &n in &nodes {
+            let mn = b.mask[n as usize];
+            if let Some(o) =
+                (0..b.len()).find(|&o| o != n as usize && may_collide(mn, b.mask[o], avoid))
+            {
+                return unsupported(format!(
+                    "a GridNode whose groupMask lets it collide (#{} with #{}; gridNode's mask is 0)",
+                    n, o
+                ));
+            }
+        }
+        let other =
+            |id: usize| !matches!(b.shape[id], Shape::Sphere { .. } | Shape::GridConnection(_));
+        for &c in &conns {
+            let mc = b.mask[c as usize];
+            if let Some(o) = (0..b.len()).find(|&o| other(o) && may_collide(mc, b.mask[o], avoid)) {
+                return unsupported(format!(
+                    "a GridConnection that may collide with a {} (#{} with #{}: give the connections a groupMask the other bodies do not share, or an avoidSelfInteractionMask)",
+                    b.shape[o].class_name(),
+                    c,
+                    o
+                ));
+            }
+        }
+        let conn_conn = conns.iter().any(|&c| {
+            conns
+                .iter()
+                .any(|&d| d != c && may_collide(b.mask[c as usize], b.mask[d as usize], avoid))
+        });
+        if conn_conn && !il.gridco_gridco {
+            return unsupported(
+                "GridConnections that may meet each other without Ig2_GridConnection_GridConnection_GridCoGridCoGeom".into(),
+            );
+        }
+        if il.sphere_gridco.is_none() && !conns.is_empty() {
+            return unsupported(
+                "GridConnections without Ig2_Sphere_GridConnection_ScGridCoGeom (YADE then meets them as spheres)".into(),
+            );
+        }
+        // the grid's interactions: node-node bonds and sphere-connection contacts (with their
+        // shared hand-over objects); potential ones are listed again at the first rebuild
+        let mut intrs: Interactions = scene.interactions.clone();
+        let is_grid = |id: u32| {
+            matches!(
+                b.shape[id as usize],
+                Shape::GridNode(_) | Shape::GridConnection(_)
+            )
+        };
+        for k in (0..intrs.len()).rev() {
+            let it = &intrs.list[k];
+            if !(is_grid(it.id1) || is_grid(it.id2)) || !it.is_real() {
+                intrs.erase_at(k);
+                continue;
+            }
+            let kinds = (&b.shape[it.id1 as usize], &b.shape[it.id2 as usize]);
+            let ok = matches!(
+                kinds,
+                (Shape::GridNode(_), Shape::GridNode(_))
+                    | (Shape::Sphere { .. }, Shape::GridConnection(_))
+                    | (Shape::GridConnection(_), Shape::Sphere { .. })
+                    | (Shape::GridConnection(_), Shape::GridConnection(_))
+            );
+            if !ok {
+                return unsupported(format!(
+                    "a grid interaction other than node-node, sphere-connection or connection-connection (#{}+#{})",
+                    it.id1, it.id2
+                ));
+            }
+        }
+        let inert = nodes
+            .iter()
+            .map(|&id| super::inert_of(b, id as usize))
+            .collect::<Result<Vec<_>, String>>()?;
+        let rmax = sphere_ids
+            .iter()
+            .filter_map(|&id| b.shape[id as usize].sphere_radius())
+            .fold(0.0, f64::max);
+        let mut sub = Box::new(Scene {
+            bodies: b.clone(),
+            materials: scene.materials.clone(),
+            interactions: intrs,
+            cell: scene.cell.clone(),
+            dt: scene.dt,
+            iter: scene.iter,
+            time: scene.time,
+            ..Scene::default()
+        });
+        sub.forces.resize(b.len());
+        Ok(Some(GridPart {
+            pos: nodes.iter().map(|&id| a3(&b.pos[id as usize])).collect(),
+            vel: nodes.iter().map(|&id| a3(&b.vel[id as usize])).collect(),
+            w: nodes
+                .iter()
+                .map(|&id| a3(&b.ang_vel[id as usize]))
+                .collect(),
+            ori: nodes.iter().map(|&id| b.ori[id as usize]).collect(),
+            x_ref: nodes.iter().map(|&id| a3(&b.pos[id as usize])).collect(),
+            force: vec![[0.0; 3]; nodes.len()],
+            torque: vec![[0.0; 3]; nodes.len()],
+            inert,
+            nodes,
+            conns,
+            sub,
+            il: il.clone(),
+            touched: vec![],
+            conn_conn,
+            masks: b.mask.clone(),
+            avoid_self: avoid,
+            rmax,
+        }))
+    }
+
+    /// Copy the nodes' state into the companion scene.
+    fn sync_nodes(&mut self) {
+        let sb = &mut self.sub.bodies;
+        for (j, &id) in self.nodes.iter().enumerate() {
+            let id = id as usize;
+            sb.pos[id] = v(&self.pos[j]);
+            sb.vel[id] = v(&self.vel[j]);
+            sb.ang_vel[id] = v(&self.w[j]);
+            sb.ori[id] = self.ori[j];
+        }
+    }
+
+    /// List the sphere-connection pairs again (after the spheres were re-sorted into `ids`): every
+    /// sphere image within `r + R + skin` of a connection gets a potential interaction (the nearest
+    /// image: its period is the pair's cellDist), potential pairs no longer near are dropped, real
+    /// ones kept with their state.
+    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
+        self.x_ref = self.pos.clone();
+        self.sync_nodes();
+        let slot: FxHashMap<u32, u32> = ids
+            .iter()
+            .enumerate()
+            .map(|(k, &id)| (id, k as u32))
+            .collect();
+        for (k, &id) in ids.iter().enumerate() {
+            self.sub.bodies.pos[id as usize] = v(&pos[k]);
+        }
+        let cell = self.sub.cell.clone();
+        let size = cell.as_ref().map(|c| c.size());
+        // a bounding ball per connection: around its midpoint, radius half its length + R + the
+        // largest sphere radius + skin
+        let mut balls = Vec::with_capacity(self.conns.len());
+        let mut h: f64 = 0.0;
+        for &c in &self.conns {
+            let Shape::GridConnection(gc) = &self.sub.bodies.shape[c as usize] else {
+                unreachable!()
+            };
+            let seg = crate::geom::grid::segment(gc, &self.sub.bodies, cell.as_ref());
+            let mid = self.sub.bodies.pos[gc.node1 as usize] + seg * 0.5;
+            let rho = 0.5 * seg.norm() + gc.radius + self.rmax + skin;
+            h = h.max(rho);
+            balls.push((c, mid, rho, gc.radius));
+        }
+        let mut spheres = HashGrid::new(h, size);
+        for (k, p) in pos.iter().enumerate() {
+            spheres.add(&v(p), k as u32);
+        }
+        let mut want: FxHashSet<(u32, u32)> = FxHashSet::default();
+        let iter = self.sub.iter;
+        let (bodies, intrs) = (&self.sub.bodies, &mut self.sub.interactions);
+        // the image of body 2 nearest body 1 (x1, x2 its reference points): its period
+        let image = |x1: &Vec3, x2: &Vec3| -> [i32; 3] {
+            match size {
+                Some(l) => std::array::from_fn(|a| ((x1[a] - x2[a]) / l[a]).round() as i32),
+                None => [0; 3],
+            }
+        };
+        let shift = |cd: &[i32; 3]| {
+            cell.as_ref()
+                .map_or_else(Vec3::zeros, |cl| cl.shift_pos(cd))
+        };
+        // a pair to keep listed: a potential interaction with period `cd` (a real one as it is)
+        let mut list = |id1: u32, id2: u32, cd: [i32; 3]| {
+            want.insert((id1.min(id2), id1.max(id2)));
+            match intrs.find(id1, id2) {
+                Some(j) if intrs.list[j].is_real() || intrs.list[j].cell_dist == cd => {}
+                Some(j) => {
+                    intrs.erase_at(j);
+                    intrs.insert(Interaction::new(id1, id2, cd, iter));
+                }
+                None => {
+                    intrs.insert(Interaction::new(id1, id2, cd, iter));
+                }
+            }
+        };
+        for &(c, mid, _, _) in &balls {
+            spheres.near(&mid, |k| {
+                let sid = ids[k as usize];
+                if !may_collide(
+                    self.masks[sid as usize],
+                    self.masks[c as usize],
+                    self.avoid_self,
+                ) {
+                    return;
+                }
+                // (body 1 the sphere, shifted back by body 2's period: `sphere_gridco`)
+                let cd = image(&v(&pos[k as usize]), &mid);
+                let Some((sp, q, reach)) = crate::geom::grid::sphere_gridco_reach(
+                    bodies,
+                    cell.as_ref(),
+                    sid,
+                    c,
+                    rad[k as usize],
+                    &shift(&cd),
+                ) else {
+                    return;
+                };
+                if (sp - q).norm() <= reach + skin {
+                    list(sid, c, cd);
+                }
+            });
+        }
+        if self.conn_conn {
+            // connection pairs whose bounding balls (without the sphere radius) come within the
+            // skin; two sharing a node never touch (`gridco_gridco`)
+            let ball = |&(_, _, rho, _): &(u32, Vec3, f64, f64)| rho - self.rmax - 0.5 * skin;
+            let hc = 2.0 * balls.iter().map(ball).fold(0.0, f64::max) + skin;
+            let mut cg = HashGrid::new(hc.max(f64::MIN_POSITIVE), size);
+            for (j, x) in balls.iter().enumerate() {
+                cg.add(&x.1, j as u32);
+            }
+            let nodes_of = |c: u32| match &bodies.shape[c as usize] {
+                Shape::GridConnection(gc) => (gc.node1, gc.node2),
+                _ => unreachable!(),
+            };
+            for b1 in &balls {
+                cg.near(&b1.1, |o| {
+                    let b2 = &balls[o as usize];
+                    let (c1, c2) = (b1.0, b2.0);
+                    if c1 >= c2
+                        || !may_collide(
+                            self.masks[c1 as usize],
+                            self.masks[c2 as usize],
+                            self.avoid_self,
+                        )
+                    {
+                        return;
+                    }
+                    let ((a1, a2), (d1, d2)) = (nodes_of(c1), nodes_of(c2));
+                    if a1 == d1 || a1 == d2 || a2 == d1 || a2 == d2 {
+                        return;
+                    }
+                    let cd = image(&b1.1, &b2.1);
+                    let d = (b1.1 - (b2.1 + shift(&cd))).norm();
+                    if d <= ball(b1) + ball(b2) + skin {
+                        list(c1, c2, cd);
+                    }
+                });
+            }
+        }
+        // potential sphere-connection pairs no longer near go (YADE's collider erases them when
+        // the bounds part)
+        let is_conn =
+            |id: u32| matches!(self.sub.bodies.shape[id as usize], Shape::GridConnection(_));
+        let intrs = &mut self.sub.interactions;
+        for k in (0..intrs.len()).rev() {
+            let it = &intrs.list[k];
+            let pair = (it.id1.min(it.id2), it.id1.max(it.id2));
+            if !it.is_real() && (is_conn(it.id1) || is_conn(it.id2)) && !want.contains(&pair) {
+                intrs.erase_at(k);
+            }
+        }
+        // (node bonds and connection pairs have no sphere: `slot` knows spheres only)
+        let mut touched: Vec<(u32, u32)> = intrs
+            .list
+            .iter()
+            .flat_map(|it| [it.id1, it.id2])
+            .filter_map(|id| slot.get(&id).map(|&k| (k, id)))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        self.touched = touched;
+    }
+
+    /// The grid's loads this step: the companion scene's interaction loop on the current states,
+    /// its forces added to the spheres' sums (`force`, `torque` by slot) and to the nodes'.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn forces(
+        &mut self,
+        pos: &[V3],
+        vel: &[V3],
+        w: &[V3],
+        ori: &[Quat],
+        iter: i64,
+        time: f64,
+        force: &mut [V3],
+        torque: &mut [V3],
+    ) -> Result<(), String> {
+        self.sync_nodes();
+        let sub = &mut self.sub;
+        for &(k, id) in &self.touched {
+            let (k, id) = (k as usize, id as usize);
+            sub.bodies.pos[id] = v(&pos[k]);
+            sub.bodies.vel[id] = v(&vel[k]);
+            sub.bodies.ang_vel[id] = v(&w[k]);
+            sub.bodies.ori[id] = ori[k];
+        }
+        sub.iter = iter;
+        sub.time = time;
+        let zero = crate::forces::Wrench::default();
+        for &(_, id) in &self.touched {
+            sub.forces.ft[id as usize] = zero;
+        }
+        for &id in self.nodes.iter().chain(&self.conns) {
+            sub.forces.ft[id as usize] = zero;
+        }
+        sub.interaction_loop(&mut self.il)?;
+        for &(k, id) in &self.touched {
+            let wr = &sub.forces.ft[id as usize];
+            let k = k as usize;
+            force[k] = super::contact::add(force[k], a3(&wr.f));
+            torque[k] = super::contact::add(torque[k], a3(&wr.t));
+        }
+        for (j, &id) in self.nodes.iter().enumerate() {
+            let wr = &sub.forces.ft[id as usize];
+            self.force[j] = a3(&wr.f);
+            self.torque[j] = a3(&wr.t);
+        }
+        Ok(())
+    }
+
+    /// Real grid interactions now (node bonds and sphere-connection contacts).
+    pub(super) fn real(&self) -> usize {
+        self.sub.interactions.count_real()
+    }
+
+    /// The grid's state back into the scene: nodes (state and last forces), connections (the
+    /// node-node geometry moves them), and the real grid interactions as the scene's container
+    /// (the caller adds the other contacts; the collider re-initialises on the next YADE-order step).
+    pub(super) fn write_back(&self, scene: &mut Scene) {
+        let sb = &self.sub.bodies;
+        for (j, &id) in self.nodes.iter().enumerate() {
+            let id = id as usize;
+            let b = &mut scene.bodies;
+            b.pos[id] = v(&self.pos[j]);
+            b.vel[id] = v(&self.vel[j]);
+            b.ang_vel[id] = v(&self.w[j]);
+            b.ori[id] = self.ori[j];
+            *scene.forces.force_mut(id) = v(&self.force[j]);
+            *scene.forces.torque_mut(id) = v(&self.torque[j]);
+        }
+        for &id in &self.conns {
+            let id = id as usize;
+            let b = &mut scene.bodies;
+            b.pos[id] = sb.pos[id];
+            b.vel[id] = sb.vel[id];
+            b.ang_vel[id] = sb.ang_vel[id];
+            b.ori[id] = sb.ori[id];
+        }
+        let mut intrs = self.sub.interactions.clone();
+        for k in (0..intrs.len()).rev() {
+            if !intrs.list[k].is_real() {
+                intrs.erase_at(k);
+            }
+        }
+        intrs.dirty = true;
+        scene.interactions = intrs;
+        // the functors' own state (setCohesionNow, the facet shrink factor) stays the scene's
+        let _ = &self.il;
+    }
+}
