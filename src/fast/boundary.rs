@@ -306,8 +306,15 @@ impl Boundaries {
                 q2 <= (r + skin) * (r + skin)
             }
             BShape::Facet { f, reach, .. } => {
+                // near its plane, and within r + skin of the triangle in it: the triangle is where
+                // ne_i · p <= icr for its three edge normals (local origin at the incircle's
+                // centre, as in `facet_sphere::go`), so a point that close has ne_i · p <= icr + r + skin
                 let l = mat_t_vec(rot, &d);
-                l.dot(&f.normal).abs() <= r + skin && l.norm() <= reach + r + skin
+                let h = l.dot(&f.normal);
+                let cp = l - f.normal * h;
+                h.abs() <= r + skin
+                    && l.norm() <= reach + r + skin
+                    && f.ne.iter().all(|n| n.dot(&cp) <= f.icr + r + skin)
             }
         }
     }
