@@ -150,7 +150,7 @@ impl Interaction {
 
 /// Ask the CPU to bring `v` into cache (a hint only: no effect on results).
 #[inline(always)]
-fn prefetch_value<T>(v: &T) {
+pub(crate) fn prefetch_value<T>(v: &T) {
     #[cfg(target_arch = "x86_64")]
     {
         let p = v as *const T as *const i8;

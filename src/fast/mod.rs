@@ -233,6 +233,10 @@ trait Kernel {
     type I: Copy;
     fn body(&self, i: usize) -> Self::I;
     fn pair(&self, bi: &Self::I, p: &Pair, c: &mut Self::C) -> Option<(V3, V3, V3)>;
+    /// Ask the CPU to bring what `pair` will read of a state out of line (a hint: no effect on
+    /// results), a few pairs ahead.
+    #[inline(always)]
+    fn prefetch(&self, _c: &Self::C) {}
 }
 
 /// The Cundall-Strack kernel (`contact::pair`).
@@ -289,6 +293,14 @@ impl Kernel for Six<'_, '_> {
     fn pair(&self, _: &(), p: &Pair, c: &mut six::C6) -> Option<(V3, V3, V3)> {
         six::pair(self.cfg, self.b, p, c)
     }
+    #[inline(always)]
+    fn prefetch(&self, c: &six::C6) {
+        // a real contact's rotations and cohesive physics live in their own allocation
+        if let Some(e) = c.ext.as_deref() {
+            crate::interaction::prefetch_value(&e.geom);
+            crate::interaction::prefetch_value(&e.coh);
+        }
+    }
 }
 
 #[inline(always)]
@@ -343,6 +355,10 @@ fn chunk_loop<K: Kernel>(
         let bi = k.body(i);
         let (mut fi, mut ti) = ([0.0; 3], [0.0; 3]);
         while p < np && pairs[p].i as usize == i {
+            const AHEAD: usize = 6;
+            if p + AHEAD < np {
+                k.prefetch(&cs[p + AHEAD]);
+            }
             let pr = pairs[p];
             let j = pr.j as usize;
             if let Some((lf, lti, ltj)) = k.pair(&bi, &pr, &mut cs[p]) {
