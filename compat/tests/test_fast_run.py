@@ -92,3 +92,21 @@ def test_fast_deposit_in_a_facet_box_agrees_with_the_yade_order_path():
     cf, cr = [s['contacts'] for s in fast], [s['contacts'] for s in ref]
     band = 3 * statistics.stdev(cr) + 0.01 * statistics.mean(cr)
     assert abs(statistics.mean(cf) - statistics.mean(cr)) < band, (cf, cr)
+
+
+@needs_compat
+def test_fast_threads_from_the_environment():
+    """RYADE_FAST_THREADS sets the fast path's threads for `compat run --fast`: 2 threads give other bits
+    than 1 (the chunks' summation order), the same physics to round-off; a bad value is refused up front."""
+    def run_env(threads):
+        p = subprocess.run([COMPAT, 'run', '--fast', SCRIPT], capture_output=True, text=True, timeout=300,
+                           env=dict(os.environ, RYADE_PYTHON=sys.executable, RYADE_FAST_THREADS=threads))
+        states = {int(l.split()[1]): [float(x) for x in l.split()[2:]] for l in p.stdout.splitlines() if l.startswith('S ')}
+        return p, states
+    p1, one = run_env('1')
+    p2, two = run_env('2')
+    assert p1.returncode == 0 and p2.returncode == 0, p2.stderr[-600:]
+    diffs = [abs(a - b) for i in one for a, b in zip(one[i], two[i])]
+    assert max(diffs) < 1e-12
+    p0, _ = run_env('zero')
+    assert p0.returncode != 0 and 'RYADE_FAST_THREADS' in p0.stderr, p0.stderr[-600:]

@@ -111,10 +111,11 @@ enum Cmd {
         /// yade_ref/study/README.md "Preset paper200")
         #[arg(long)]
         preset: Option<String>,
-        /// ryade's engine: yade-order (YADE's bits; the default while the fast engine's band checks
-        /// do not yet cover every case) or fast (every O.run the fast path can take, as
-        /// `compat run --fast`; the others, e.g. the grid case's, say why and stay on the YADE-order path)
-        #[arg(long, default_value = "yade-order", value_parser = ["yade-order", "fast"])]
+        /// ryade's engine: fast (the default: every O.run the fast path can take, as
+        /// `compat run --fast`, the three cases' loading included; results in YADE's seed band, not
+        /// its bits; one that it cannot take says why and runs on the YADE-order path) or yade-order
+        /// (YADE's bits, run for run)
+        #[arg(long, default_value = "fast", value_parser = ["yade-order", "fast"])]
         engine: String,
     },
     /// Run an unmodified YADE script (as `yade -n -x script.py args`) on ryade.

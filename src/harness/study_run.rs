@@ -946,6 +946,11 @@ fn summary_markdown(
     } else {
         ""
     };
+    s += if o.fast {
+        "; ryade's engine: fast, every O.run the fast path takes, results in YADE's seed band, not its bits"
+    } else {
+        "; ryade's engine: yade-order, YADE's bits"
+    };
     s += "). Histories: `histories.csv`; surface displacement ratio (seed-paper.txt Eq 1): `sdr.csv`; figures: `fig_rutting.png`, `fig_porosity.png` (seed mean and range), `fig_sdr.png`, `fig_profiles.png` (every run's profile at `--profile-cycle`, or its last, in one figure) and `profile.png` per run (paper Fig 7).\n\n";
     s += "## Rutting and porosity under the piston (last cycle run)\n\n";
     s += "| engine | ratio | case | seed | cycles | rut [mm] | porosity (cycle 0 -> last) | status |\n|---|---|---|---|---|---|---|---|\n";

@@ -31,6 +31,19 @@ def _blocked_str(bits):
 
 # ---------------------------------------------------------------- shapes
 
+
+def _fast_threads_env():
+    """RYADE_FAST_THREADS (default 1): the fast path's thread count for `compat run --fast`."""
+    v = os.environ.get('RYADE_FAST_THREADS', '1')
+    try:
+        n = int(v)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise RuntimeError('RYADE_FAST_THREADS=%r: give a thread count of 1 or more' % v)
+    return n
+
+
 class Shape(Serializable):
     _attrs = {'color': (1.0, 1.0, 1.0), 'wire': False, 'highlight': False}
 
@@ -983,7 +996,8 @@ class Omega(_ryade.OmegaBase):
         # ryade only: O.run(n, True) without Python engines runs on the fast path (issue 6; same physics,
         # free summation order, so agreement with YADE is statistical) with this many threads
         self.ryadeFastPath = False
-        self.ryadeFastThreads = 1
+        # (env RYADE_FAST_THREADS: the default for `compat run --fast`; each count gives its own bits)
+        self.ryadeFastThreads = _fast_threads_env()
         # `compat run --fast[=strict]` (env RYADE_FAST=on|strict): every O.run the fast path can take runs
         # there; any other says why once and runs on the YADE-order path ('strict': an error instead)
         self._fast_env = os.environ.get('RYADE_FAST', '')
