@@ -295,10 +295,9 @@ impl Kernel for Six<'_, '_> {
     }
     #[inline(always)]
     fn prefetch(&self, c: &six::C6) {
-        // a real contact's rotations and cohesive physics live in their own allocation
-        if let Some(e) = c.ext.as_deref() {
-            crate::interaction::prefetch_value(&e.geom);
-            crate::interaction::prefetch_value(&e.coh);
+        // a real contact's state lives in its own allocation
+        if let Some(s) = c.0.as_deref() {
+            crate::interaction::prefetch_value(s);
         }
     }
 }
@@ -761,15 +760,9 @@ impl FastSim {
             if let (true, GeomFunctor::SphereSphere6D, true) =
                 (it.is_real(), it.functor, sim.six.is_some())
             {
-                known6.insert(
-                    (it.id1.min(it.id2), it.id1.max(it.id2)),
-                    six::C6 {
-                        geom: it.geom,
-                        phys: it.phys,
-                        ext: it.ext.clone(),
-                        made_real: it.iter_made_real,
-                    },
-                );
+                if let Some(c) = six::C6::from_interaction(it) {
+                    known6.insert((it.id1.min(it.id2), it.id1.max(it.id2)), c);
+                }
             }
         }
         sim.rebuild_with(
@@ -821,9 +814,8 @@ impl FastSim {
             .map(|c| c.ghosts.capacity() * size_of::<Ghost>())
             .sum();
         let n = self.len().max(1) as f64;
-        // (a rolling-resistance contact also holds its boxed extension: 6-D rotations, CohFrictPhys)
-        let ext6 = self.contacts6.iter().filter(|c| c.ext.is_some()).count()
-            * size_of::<crate::interaction::IntrExt>();
+        // (a rolling-resistance contact holds its state in its own allocation)
+        let ext6 = self.contacts6.iter().filter(|c| c.is_real()).count() * size_of::<six::State6>();
         let pair_bytes = (self.pairs.capacity() * size_of::<Pair>()
             + self.contacts.capacity() * size_of::<Contact>()
             + self.contacts6.capacity() * size_of::<six::C6>()
@@ -1291,12 +1283,15 @@ impl FastSim {
             } else {
                 (b, a, [-cd[0], -cd[1], -cd[2]])
             };
-            let mut it = Interaction::new(id1, id2, cd, c.made_real);
+            let Some((g, ph, ext, made_real)) = c.to_interaction_parts() else {
+                continue;
+            };
+            let mut it = Interaction::new(id1, id2, cd, made_real);
             it.functor = GeomFunctor::SphereSphere6D;
-            it.iter_made_real = c.made_real;
-            it.geom = c.geom;
-            it.phys = c.phys;
-            it.ext = c.ext.clone();
+            it.iter_made_real = made_real;
+            it.geom = Some(g);
+            it.phys = Some(ph);
+            it.ext = Some(ext);
             scene.interactions.insert(it);
         }
         self.bnd.write_back(scene, &self.ids);

@@ -2,9 +2,11 @@
 //! `Ip2_CohFrictMat_CohFrictMat_CohFrictPhys` and `Law2_ScGeom6D_CohFrictPhys_CohesionMoment`, the
 //! aggregate model of the study (`--eta-roll`).
 //!
-//! Each contact keeps the Scene's own interaction state (`ScGeom`, `FrictPhys` and the boxed
-//! `IntrExt` with the 6-D rotations and the cohesive physics), and the kernel calls the YADE-order
-//! path's functions on it (`geom::grid::six_d`, `phys::CohFrictIp2::go`,
+//! Each contact keeps the Scene's own state types (`ScGeom`, `FrictPhys`, the 6-D rotations `Rot6D`
+//! and `CohFrictPhys`) in one allocation made when the contact forms: a listed pair that does not
+//! touch holds only a null pointer, so the pair loop streams 8 bytes per pair. The kernel calls the
+//! YADE-order path's functions on that state (`geom::sphere_sphere::go` and
+//! `Rot6D::precompute_rotations`, which `geom::grid::six_d` composes, `phys::CohFrictIp2::go`,
 //! `law::cohesion_moment::load`): one formula, one place. What differs is the scheduling (Verlet
 //! list, spatial order, threads owning bodies) and so the order of the force sums. A pair is always
 //! evaluated with the lower scene id as body 1, as YADE orders sphere-sphere interactions, so the
@@ -12,12 +14,12 @@
 
 use super::contact::{Pair, V3};
 use crate::geom::{self, GeomCtx, Kin};
-use crate::geom::{GeomExt, ScGeom};
+use crate::geom::{GeomExt, Rot6D, ScGeom};
 use crate::interaction::IntrExt;
 use crate::law::cohesion_moment;
 use crate::material::FrictMat;
 use crate::math::{Quat, Vec3};
-use crate::phys::{CohAction, CohFrictIp2, FrictPhys};
+use crate::phys::{CohAction, CohFrictIp2, CohFrictPhys, FrictPhys};
 
 /// The functors' parameters (from the scene's InteractionLoop).
 #[derive(Clone, Debug)]
@@ -27,22 +29,55 @@ pub(super) struct SixCfg {
     pub cm: cohesion_moment::Params,
 }
 
-/// One listed pair's interaction state (None/None: potential).
-#[derive(Clone, Debug, Default)]
-pub(super) struct C6 {
+/// A real contact's state: the Scene's `ScGeom6D` (ScGeom + rotations) and `CohFrictPhys`
+/// (FrictPhys + the cohesive part).
+#[derive(Clone, Debug)]
+pub(super) struct State6 {
     pub geom: Option<ScGeom>,
     pub phys: Option<FrictPhys>,
-    pub ext: Option<Box<IntrExt>>,
+    pub rot: Rot6D,
+    pub coh: Option<CohFrictPhys>,
     pub made_real: i64,
 }
 
+/// One listed pair: its contact state while real, None while potential.
+#[derive(Clone, Debug, Default)]
+pub(super) struct C6(pub Option<Box<State6>>);
+
 impl C6 {
     pub fn is_real(&self) -> bool {
-        self.geom.is_some() && self.phys.is_some()
+        self.0.is_some()
     }
 
-    fn erase(&mut self) {
-        *self = C6::default();
+    /// A real interaction of the Scene (body 1 the lower id), or None when it is no ScGeom6D contact.
+    pub fn from_interaction(it: &crate::interaction::Interaction) -> Option<C6> {
+        let e = it.ext.as_deref()?;
+        let rot = match e.geom.as_ref()? {
+            GeomExt::Sc6D(r) => *r,
+            _ => return None,
+        };
+        Some(C6(Some(Box::new(State6 {
+            geom: it.geom,
+            phys: it.phys,
+            rot,
+            coh: e.coh,
+            made_real: it.iter_made_real,
+        }))))
+    }
+
+    /// The state as the Scene's interaction holds it: geometry, physics, the boxed extension.
+    pub fn to_interaction_parts(&self) -> Option<(ScGeom, FrictPhys, Box<IntrExt>, i64)> {
+        let s = self.0.as_deref()?;
+        Some((
+            s.geom?,
+            s.phys?,
+            Box::new(IntrExt {
+                geom: Some(GeomExt::Sc6D(s.rot)),
+                coh: s.coh,
+                ..Default::default()
+            }),
+            s.made_real,
+        ))
     }
 }
 
@@ -100,54 +135,55 @@ pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V
         },
     };
     let (r1, r2) = (b.rad[k1], b.rad[k2]);
-    let mut conn_sync = None;
-    if !geom::grid::six_d(
-        &cfg.p6,
-        r1,
-        r2,
-        &pr,
-        &mut c.geom,
-        &mut c.ext,
-        false,
-        &mut conn_sync,
-    ) {
-        if was_real {
-            c.erase();
+    // Ig2_Sphere_Sphere_ScGeom6D::go (`geom::grid::six_d`): the sphere-sphere geometry, then, on a
+    // contact, the rotations (reset when new)
+    let is_new = !was_real;
+    if is_new {
+        let mut g = None;
+        if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut g) {
+            return None;
         }
+        c.0 = Some(Box::new(State6 {
+            geom: g,
+            phys: None,
+            rot: Rot6D::default(),
+            coh: None,
+            made_real: b.iter,
+        }));
+    } else if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut c.0.as_mut().unwrap().geom) {
+        c.0 = None;
         return None;
     }
-    if !was_real {
+    let s = c.0.as_deref_mut().unwrap();
+    if cfg.p6.update_rotations {
+        let n = s.geom.as_ref().unwrap().normal;
+        s.rot
+            .precompute_rotations(&pr.s1.ori, &pr.s2.ori, &n, is_new, cfg.p6.creep);
+    }
+    if is_new {
         // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys on the new contact (setCohesionNow is refused
         // by `FastSim::from_scene`, so the functor's own state does not change here)
         let mut ip2 = cfg.ip2.clone();
-        let g = c.geom.as_ref().unwrap();
+        let g = s.geom.as_ref().unwrap();
         let (gr1, gr2) = (g.radius1, g.radius2);
-        let e = c.ext.get_or_insert_with(Default::default);
         let m1 = &b.mats[b.mat[k1] as usize];
         let m2 = &b.mats[b.mat[k2] as usize];
-        if ip2.go(b.iter, m1, m2, gr1, gr2, &mut c.phys, &mut e.coh) == CohAction::InitRotations {
-            if let Some(rot) = e.geom.as_mut().and_then(|g| g.rot_mut()) {
-                rot.init_rotations(&b.ori[k1], &b.ori[k2]);
-            }
+        if ip2.go(b.iter, m1, m2, gr1, gr2, &mut s.phys, &mut s.coh) == CohAction::InitRotations {
+            s.rot.init_rotations(&b.ori[k1], &b.ori[k2]);
         }
-        c.made_real = b.iter;
+        s.made_real = b.iter;
     }
-    let fresh = c.made_real == b.iter;
-    let g = *c.geom.as_ref().unwrap();
-    let e = c.ext.as_mut().unwrap();
-    let rot = match e.geom.as_mut() {
-        Some(GeomExt::Sc6D(r)) => r,
-        _ => unreachable!("six_d makes an ScGeom6D"),
-    };
-    let cp = e.coh.as_mut().expect("CohFrictPhys");
+    let fresh = s.made_real == b.iter;
+    let g = *s.geom.as_ref().unwrap();
+    let cp = s.coh.as_mut().expect("CohFrictPhys");
     let lb = cohesion_moment::Bodies2 {
         pos1: pr.s1.pos,
         pos2_shifted: pr.s2.pos + shift2,
         ang_vel1: pr.s1.ang_vel,
         ang_vel2: pr.s2.ang_vel,
     };
-    let ph = c.phys.as_mut().unwrap();
-    match cohesion_moment::load(&cfg.cm, b.dt, fresh, &g, rot, ph, cp, &lb, None) {
+    let ph = s.phys.as_mut().unwrap();
+    match cohesion_moment::load(&cfg.cm, b.dt, fresh, &g, &mut s.rot, ph, cp, &lb, None) {
         Ok(Some(l)) => {
             // the net loads of `cohesion_moment::apply`: force on 1, torques 1 and 2 with the moment
             let m = l.moment.unwrap_or_else(Vec3::zeros);
@@ -159,7 +195,7 @@ pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V
             })
         }
         Ok(None) => {
-            c.erase();
+            c.0 = None;
             None
         }
         // excluded by `FastSim::from_scene` (the law's only error is a parameter check)
