@@ -45,6 +45,12 @@ echo "   failed as it must: $(grep -c OUTSIDE "${TMPDIR:-/tmp}/ryade_diff_neg.lo
 echo "== preset paper200: ryade on YADE's medium r05 specimens (the first 20 of YADE's 200 cycles) inside YADE's band"
 ./target/release/compat diff r05 --preset paper200 --size medium --cycles 20 --yade-from golden/study_paper200 \
     --out "${TMPDIR:-/tmp}/ryade_diff_p200"
+echo "== the fast engine (compat study's default) on the G case: grid, rolling resistance, setCohesionNow; r05 paper200 medium, 5 cycles, inside YADE's band"
+./target/release/compat diff r05 --preset paper200 --size medium --case G --cycles 5 --engine fast --yade-from golden/study_paper200 \
+    --out "${TMPDIR:-/tmp}/ryade_diff_p200_fast"
+if grep -l "YADE-order path for this run" "${TMPDIR:-/tmp}"/ryade_diff_p200_fast/*/ryade/ryade.log; then
+  echo "the fast engine left a G run to the YADE-order path (see the log above)" >&2; exit 1
+fi
 echo "== unmodified YADE scripts under compat run reproduce YADE's files"
 yade_ref/check_compat.sh
 if command -v yade >/dev/null 2>&1; then
