@@ -1471,6 +1471,25 @@ impl Sim {
                 }
             }
             py.allow_threads(|| f.write_back(scene));
+            if std::env::var_os("RYADE_FAST_STATS").is_some() {
+                // one line per fast run: what it held and where its time went
+                let m = f.memory();
+                eprintln!(
+                    "[ryade] fast run to iteration {}: {} bodies, {} listed pairs, {} contacts, {} grid interactions, {} list builds; memory {:.0} B/particle, {:.0} B/listed pair, {:.0} B/contact; time: lists {:.3} s, contacts {:.3} s, integration {:.3} s",
+                    f.iter,
+                    f.len(),
+                    f.pairs(),
+                    f.active_contacts(),
+                    f.grid_interactions(),
+                    f.rebuilds,
+                    m.per_particle,
+                    m.per_pair,
+                    m.per_contact,
+                    f.timing.rebuild,
+                    f.timing.contacts,
+                    f.timing.newton
+                );
+            }
             if let Some(e) = f.take_error() {
                 return Err(PyRuntimeError::new_err(format!(
                     "fast path, iteration {}: {}",
