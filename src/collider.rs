@@ -49,6 +49,13 @@ struct VecBounds {
     lo_idx: usize,
 }
 
+/// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp): the groupMasks share a bit, and two
+/// equal masks do not carry a bit of `avoidSelfInteractionMask`.
+#[inline(always)]
+pub fn masks_may_collide(ma: i32, mb: i32, avoid: i32) -> bool {
+    (ma & mb) != 0 && !(ma == mb && (ma & avoid) != 0)
+}
+
 impl VecBounds {
     /// `VecBounds::norm`: index modulo the list size, negative indices wrapped.
     #[inline(always)]
@@ -162,8 +169,11 @@ impl Collider {
         {
             return false;
         }
-        let (ma, mb) = (bodies.mask[a], bodies.mask[b]);
-        (ma & mb) != 0 && !(ma == mb && (ma & self.p.avoid_self_interaction_mask) != 0)
+        masks_may_collide(
+            bodies.mask[a],
+            bodies.mask[b],
+            self.p.avoid_self_interaction_mask,
+        )
     }
 
     #[inline(always)]

@@ -284,8 +284,11 @@ impl Boundaries {
 
     /// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp).
     fn may_collide(&self, a: u32, b: u32) -> bool {
-        let (ma, mb) = (self.masks[a as usize], self.masks[b as usize]);
-        (ma & mb) != 0 && !(ma == mb && (ma & self.avoid_self) != 0)
+        crate::collider::masks_may_collide(
+            self.masks[a as usize],
+            self.masks[b as usize],
+            self.avoid_self,
+        )
     }
 
     /// Is a sphere at `x` of radius `r` within `reach` of the boundary (rotation matrix `rot`)? (A

@@ -15,6 +15,7 @@
 
 use super::contact::V3;
 use super::newton;
+use crate::collider::masks_may_collide as may_collide;
 use crate::interaction::{Interaction, Interactions};
 use crate::math::{Quat, Vec3};
 use crate::scene::{InteractionLoop, Scene};
@@ -53,11 +54,6 @@ fn v(a: &V3) -> Vec3 {
 
 fn a3(v: &Vec3) -> V3 {
     [v[0], v[1], v[2]]
-}
-
-/// `Collider::mayCollide`'s mask rule (pkg/common/Collider.cpp).
-fn may_collide(ma: i32, mb: i32, avoid: i32) -> bool {
-    (ma & mb) != 0 && !(ma == mb && (ma & avoid) != 0)
 }
 
 /// Points binned in cells at least `h` wide (a periodic axis: equal cells over the period,
@@ -506,7 +502,5 @@ impl GridPart {
         }
         intrs.dirty = true;
         scene.interactions = intrs;
-        // the functors' own state (setCohesionNow, the facet shrink factor) stays the scene's
-        let _ = &self.il;
     }
 }

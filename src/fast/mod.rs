@@ -623,7 +623,7 @@ impl FastSim {
         let avoid = collider.avoid_self_interaction_mask;
         for &ma in &masks {
             for &mb in &masks {
-                if (ma & mb) == 0 || (ma == mb && (ma & avoid) != 0) {
+                if !crate::collider::masks_may_collide(ma, mb, avoid) {
                     return unsupported(format!(
                         "sphere groupMasks that keep some spheres apart ({} and {})",
                         ma, mb

@@ -155,11 +155,8 @@ pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V
         return None;
     }
     let s = c.0.as_deref_mut().unwrap();
-    if cfg.p6.update_rotations {
-        let n = s.geom.as_ref().unwrap().normal;
-        s.rot
-            .precompute_rotations(&pr.s1.ori, &pr.s2.ori, &n, is_new, cfg.p6.creep);
-    }
+    let n = s.geom.as_ref().unwrap().normal;
+    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, is_new);
     if is_new {
         // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys on the new contact (setCohesionNow is refused
         // by `FastSim::from_scene`, so the functor's own state does not change here)

@@ -63,10 +63,8 @@ pub fn six_d(
     }
     let g = geom.as_ref().unwrap();
     let ge = e.geom.as_mut().unwrap();
-    if p.update_rotations {
-        if let Some(rot) = ge.rot_mut() {
-            rot.precompute_rotations(&pr.s1.ori, &pr.s2.ori, &g.normal, is_new, p.creep);
-        }
+    if let Some(rot) = ge.rot_mut() {
+        six_d_rotations(p, pr, &g.normal, rot, is_new);
     }
     if let GeomExt::GridNode {
         connection_body: Some(cb),
@@ -76,6 +74,14 @@ pub fn six_d(
         *conn_sync = Some((*cb, pr.s1.pos));
     }
     true
+}
+
+/// The rotations' part of `six_d`, on a contact whose geometry (normal `normal`) was just made
+/// (`is_new`) or updated: `ScGeom6D::precomputeRotations` unless `updateRotations` is off.
+pub fn six_d_rotations(p: &SixDParams, pr: &Pair, normal: &Vec3, rot: &mut Rot6D, is_new: bool) {
+    if p.update_rotations {
+        rot.precompute_rotations(&pr.s1.ori, &pr.s2.ori, normal, is_new, p.creep);
+    }
 }
 
 /// `GridConnection::getSegment`: node 2 minus node 1, node 2 shifted by `hSize*cellDist` when the
