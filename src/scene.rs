@@ -383,6 +383,8 @@ pub(crate) enum PhysFunctor {
 #[derive(Clone, Debug)]
 pub enum Engine {
     ForceResetter,
+    /// A standalone `BoundDispatcher` (bounds without a collider).
+    Bounds(Box<crate::bound::BoundFunctors>),
     Collider(Box<Collider>),
     InteractionLoop(Box<InteractionLoop>),
     Newton(Box<Newton>),
@@ -411,6 +413,7 @@ impl Engine {
     pub fn class_name(&self) -> &'static str {
         match self {
             Engine::ForceResetter => "ForceResetter",
+            Engine::Bounds(_) => "BoundDispatcher",
             Engine::Collider(_) => "InsertionSortCollider",
             Engine::InteractionLoop(_) => "InteractionLoop",
             Engine::Newton(_) => "NewtonIntegrator",
@@ -639,6 +642,20 @@ impl Scene {
                 }
                 Ok(())
             }
+            // BoundDispatcher::action on its own: YADE's defaults sweepDist=0, targetInterv=-1 give
+            // plain boxes (the sweep is the collider's business)
+            Engine::Bounds(f) => crate::bound::update_bounds(
+                f,
+                &mut self.bodies,
+                self.cell.as_ref(),
+                self.iter,
+                &crate::bound::Sweep {
+                    sweep_dist: 0.0,
+                    min_sweep_dist_factor: 0.2,
+                    target_interv: -1,
+                },
+            )
+            .map_err(err),
             Engine::Collider(c) => {
                 activated =
                     c.is_activated(self.bodies.len(), newton_indicator, self.interactions.dirty);

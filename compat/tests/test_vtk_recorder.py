@@ -1,5 +1,6 @@
 """VTKRecorder writes YADE's frames and arrays (issue 18): the iteration-0 frame (YADE's initRun) and,
-for 'velocity', linVelLen/angVelLen next to the vectors, with YADE's values."""
+for 'velocity', linVelLen/angVelLen next to the vectors, with YADE's values; 'colors' (issue 19,
+funnel.py) the shapes' colours, per sphere and per facet."""
 import os
 import subprocess
 import sys
@@ -47,5 +48,8 @@ def test_arrays_equal_yades(tmp_path):
     for f in os.listdir(tmp_path / 'y'):
         if 'spheres' in f:
             y, r = arrays(tmp_path / 'y' / f), arrays(tmp_path / 'r' / f)
-            for k in ('radii', 'linVelVec', 'angVelVec', 'linVelLen', 'angVelLen'):
+            for k in ('radii', 'linVelVec', 'angVelVec', 'linVelLen', 'angVelLen', 'color'):
                 assert r[k] == y[k], (f, k)
+        else:
+            y, r = arrays(tmp_path / 'y' / f), arrays(tmp_path / 'r' / f)
+            assert r['color'] == y['color'] == [0.7, 0.6, 0.5], f

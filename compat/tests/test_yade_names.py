@@ -61,3 +61,18 @@ def test_default_engines_have_yades_labels():
 @needs_yade
 def test_default_engines_labels_as_yade():
     assert tagged_lines('ryade', 'default_labels.py', tags='L') == tagged_lines('yade', 'default_labels.py', tags='L')
+
+
+@needs_compat
+def test_missing_container_member_says_does_not_support(tmp_path):
+    """A member of YADE's O.bodies / O.interactions ryade lacks (mpi/ompPerf.py's O.bodies.insertAtId) stops
+    a run with the message and the line even past the check before the run; a member YADE lacks too stays
+    an AttributeError."""
+    script = tmp_path / 's.py'
+    script.write_text("x = 1\nO.bodies.insertAtId(sphere((0, 0, 0), 1), 3)\n")
+    p = run('run', '--no-check', str(script), cwd=tmp_path)
+    assert p.returncode == 1 and 'AttributeError' not in p.stderr, p.stderr
+    assert 'ryade does not support O.bodies.insertAtId yet (%s, line 2)' % script in p.stderr, p.stderr
+    script.write_text("O.bodies.notAYadeMember\n")
+    p = run('run', '--no-check', str(script), cwd=tmp_path)
+    assert "AttributeError: 'BodyContainer' object has no attribute 'notAYadeMember'" in p.stderr, p.stderr

@@ -6,6 +6,7 @@
 //! differ); any class or attribute we do not implement is an error naming it.
 
 use crate::body::BodySpec;
+use crate::bound::BoundFunctors;
 use crate::cell::Cell;
 use crate::collider::{Collider, ColliderParams};
 use crate::geom;
@@ -751,6 +752,54 @@ fn quat_of(v: &Value) -> Result<Quat> {
     Ok(Quat::new(c(0)?, c(1)?, c(2)?, c(3)?))
 }
 
+/// The `bounds` list of a collider or a standalone BoundDispatcher (its Bo1 functors).
+fn bound_functors(e: &Value) -> Result<BoundFunctors> {
+    let mut f = BoundFunctors {
+        sphere: None,
+        facet: false,
+        box_: false,
+        ..Default::default()
+    };
+    for b in e
+        .get("bounds")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default()
+    {
+        match class(&b)? {
+            "Bo1_Sphere_Aabb" => f.sphere = Some(fo(&b, "aabbEnlargeFactor", -1.0)?),
+            "Bo1_Facet_Aabb" => f.facet = true,
+            "Bo1_Wall_Aabb" => f.wall = true,
+            "Bo1_Box_Aabb" => f.box_ = true,
+            "Bo1_GridConnection_Aabb" => f.grid_connection = true,
+            other => bail!("bound functor '{}' is not supported by ryade yet", other),
+        }
+    }
+    Ok(f)
+}
+
+fn bound_functors_json(f: &BoundFunctors) -> Vec<Value> {
+    let mut bounds = Vec::new();
+    if let Some(x) = f.sphere {
+        bounds.push(serde_json::json!({"class": "Bo1_Sphere_Aabb", "aabbEnlargeFactor": x}));
+    }
+    if f.facet {
+        bounds.push(serde_json::json!({"class": "Bo1_Facet_Aabb"}));
+    }
+    if f.wall {
+        bounds.push(serde_json::json!({"class": "Bo1_Wall_Aabb"}));
+    }
+    if f.box_ {
+        bounds.push(serde_json::json!({"class": "Bo1_Box_Aabb"}));
+    }
+    if f.grid_connection {
+        bounds.push(
+            serde_json::json!({"class": "Bo1_GridConnection_Aabb", "aabbEnlargeFactor": -1.0}),
+        );
+    }
+    bounds
+}
+
 pub fn engine(e: &Value) -> Result<Engine> {
     let cls = class(e)?;
     Ok(match cls {
@@ -772,21 +821,10 @@ pub fn engine(e: &Value) -> Result<Engine> {
                 avoid_self_interaction_mask: fo(e, "avoidSelfInteractionMask", 0.0)? as i32,
                 ..Default::default()
             };
-            p.bounds.sphere = None;
-            p.bounds.facet = false;
-            p.bounds.box_ = false;
-            for b in e.get("bounds").and_then(Value::as_array).cloned().unwrap_or_default() {
-                match class(&b)? {
-                    "Bo1_Sphere_Aabb" => p.bounds.sphere = Some(fo(&b, "aabbEnlargeFactor", -1.0)?),
-                    "Bo1_Facet_Aabb" => p.bounds.facet = true,
-                    "Bo1_Wall_Aabb" => p.bounds.wall = true,
-                    "Bo1_Box_Aabb" => p.bounds.box_ = true,
-                    "Bo1_GridConnection_Aabb" => p.bounds.grid_connection = true,
-                    other => bail!("bound functor '{}' is not supported by ryade yet", other),
-                }
-            }
+            p.bounds = bound_functors(e)?;
             Engine::Collider(Box::new(Collider::new(p)))
         }
+        "BoundDispatcher" => Engine::Bounds(Box::new(bound_functors(e)?)),
         "InteractionLoop" => {
             let mut il = InteractionLoop::empty();
             for g in e.get("geom").and_then(Value::as_array).cloned().unwrap_or_default() {
@@ -1544,25 +1582,10 @@ pub fn to_value(scene: &Scene, steps: u64) -> Value {
         .iter()
         .map(|e| match e {
             Engine::ForceResetter => json!({"class": "ForceResetter"}),
+            Engine::Bounds(f) => json!({"class": "BoundDispatcher", "bounds": bound_functors_json(f)}),
             Engine::Collider(c) => {
                 let p = &c.p;
-                let mut bounds = Vec::new();
-                if let Some(f) = p.bounds.sphere {
-                    bounds.push(json!({"class": "Bo1_Sphere_Aabb", "aabbEnlargeFactor": f}));
-                }
-                if p.bounds.facet {
-                    bounds.push(json!({"class": "Bo1_Facet_Aabb"}));
-                }
-                if p.bounds.wall {
-                    bounds.push(json!({"class": "Bo1_Wall_Aabb"}));
-                }
-                if p.bounds.box_ {
-                    bounds.push(json!({"class": "Bo1_Box_Aabb"}));
-                }
-                if p.bounds.grid_connection {
-                    bounds.push(json!({"class": "Bo1_GridConnection_Aabb", "aabbEnlargeFactor": -1.0}));
-                }
-                let mut c = json!({"class": "InsertionSortCollider", "bounds": bounds, "verletDist": p.verlet_dist,
+                let mut c = json!({"class": "InsertionSortCollider", "bounds": bound_functors_json(&p.bounds), "verletDist": p.verlet_dist,
                        "allowBiggerThanPeriod": p.allow_bigger_than_period, "targetInterv": p.target_interv,
                        "minSweepDistFactor": p.min_sweep_dist_factor, "sortAxis": p.sort_axis,
                        "sortThenCollide": p.sort_then_collide});

@@ -388,7 +388,22 @@ class Body(Serializable):
 
 # ---------------------------------------------------------------- containers
 
-class BodyContainer(object):
+class _YadeMembers(object):
+    """A member YADE's container has and ryade's lacks fails with the "does not support" message (the
+    script's line named), not a bare AttributeError; `_yade_table` names its list in _yade_names.json."""
+    _yade_table = None
+
+    def __getattr__(self, k):
+        if not k.startswith('_'):
+            from ._check import _tables
+            if k in _tables()['objects'].get(self._yade_table, ()):
+                unsupported('%s.%s' % (self._yade_table, k))
+        raise AttributeError("'%s' object has no attribute '%s'" % (type(self).__name__, k))
+
+
+class BodyContainer(_YadeMembers):
+    _yade_table = 'O.bodies'
+
     def __init__(self, omega):
         self._o = omega
         self._objs = []
@@ -544,7 +559,9 @@ for _name, _hint in (('replaceByClumps', 'build the clumps with O.bodies.appendC
     setattr(BodyContainer, _name, _unsupported_clump_op(_name, _hint))
 
 
-class MaterialContainer(object):
+class MaterialContainer(_YadeMembers):
+    _yade_table = 'O.materials'
+
     def __init__(self, omega):
         self._o = omega
         self._mats = []
@@ -727,7 +744,9 @@ class Interaction(object):
         return '<Interaction instance at %#x>' % id(self)
 
 
-class InteractionContainer(object):
+class InteractionContainer(_YadeMembers):
+    _yade_table = 'O.interactions'
+
     def __init__(self, omega):
         self._o = omega
 
@@ -770,7 +789,9 @@ class InteractionContainer(object):
         unsupported('O.interactions.clear')
 
 
-class ForceContainer(object):
+class ForceContainer(_YadeMembers):
+    _yade_table = 'O.forces'
+
     def __init__(self, omega):
         self._o = omega
         # O.forces.f(id, sync=False) / O.forces.t(id, sync=False), read every step by controllers:

@@ -210,10 +210,12 @@ class VTKRecorder(PeriodicEngine):
     """`VTKRecorder(fileName, recorders, iterPeriod)`: at iteration 0 and every period (YADE's initRun),
     writes `<fileName>spheres.<iter>.vtu` (and `facets`) as VTK XML unstructured grids (ASCII) that
     ParaView opens, with YADE's arrays (radii; linVelVec, angVelVec, linVelLen, angVelLen for 'velocity').
-    Recorders: 'spheres', 'facets', 'velocity', 'all' (= spheres, facets, velocity); others fail loudly."""
+    Recorders: 'spheres', 'facets', 'velocity', 'colors' (the shapes' colours: point data `color` of the
+    spheres, cell data `color` of the facets, as YADE's VTKRecorder::action), 'id', 'mass', 'all' (=
+    spheres, facets, velocity, colors); others fail loudly."""
     _attrs = {'fileName': '', 'recorders': ['all'], 'ascii': False, 'compress': False, 'mask': 0,
               'skipFacetIntr': True, 'skipNondynamic': False, 'multiblock': False, 'initRun': True}
-    _supported = {'all', 'spheres', 'facets', 'velocity', 'id', 'mass'}
+    _supported = {'all', 'spheres', 'facets', 'velocity', 'colors', 'id', 'mass'}
 
     def _json(self):
         bad = [r for r in self._values['recorders'] if r not in self._supported]
@@ -224,7 +226,7 @@ class VTKRecorder(PeriodicEngine):
     def _action(self, omega):
         rec = set(self._values['recorders'])
         if 'all' in rec:
-            rec |= {'spheres', 'facets', 'velocity'}
+            rec |= {'spheres', 'facets', 'velocity', 'colors'}
         base = self._values['fileName']
         d = os.path.dirname(base)
         if d:
@@ -236,6 +238,8 @@ class VTKRecorder(PeriodicEngine):
                 fields.append(('id', 1, [[b.id] for b in bodies]))
             if 'mass' in rec:
                 fields.append(('mass', 1, [[b.state.mass] for b in bodies]))
+            if 'colors' in rec:
+                fields.append(('color', 3, [list(b.shape.color) for b in bodies]))
             if 'velocity' in rec:
                 lin, ang = [b.state.vel for b in bodies], [b.state.angVel for b in bodies]
                 fields.append(('linVelVec', 3, [list(v) for v in lin]))
@@ -250,7 +254,8 @@ class VTKRecorder(PeriodicEngine):
                 p, o = b.state.pos, b.state.ori
                 cells.append([len(pts), len(pts) + 1, len(pts) + 2])
                 pts.extend(list(p + o * v) for v in b.shape.vertices)
-            _write_vtu('%sfacets.%d.vtu' % (base, omega.iter), pts, cells, [])
+            colors = [('color', 3, [list(b.shape.color) for b in bodies])] if 'colors' in rec else []
+            _write_vtu('%sfacets.%d.vtu' % (base, omega.iter), pts, cells, [], colors)
 
 
 def _norm(v):
@@ -259,8 +264,9 @@ def _norm(v):
     return math.sqrt(v[0] * v[0] + (v[1] * v[1] + v[2] * v[2]))
 
 
-def _write_vtu(path, points, triangles, point_fields):
-    """VTK XML UnstructuredGrid, ASCII: vertices (one cell per point) or triangles."""
+def _write_vtu(path, points, triangles, point_fields, cell_fields=()):
+    """VTK XML UnstructuredGrid, ASCII: vertices (one cell per point) or triangles, with point and cell
+    data arrays."""
     n = len(points)
     with open(path, 'w') as f:
         f.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">\n<UnstructuredGrid>\n')
@@ -280,13 +286,15 @@ def _write_vtu(path, points, triangles, point_fields):
         f.write('\n</DataArray>\n<DataArray type="UInt8" Name="types" format="ascii">\n')
         f.write(' '.join(str(ctype) for _ in range(ncells)))
         f.write('\n</DataArray>\n</Cells>\n')
-        if point_fields:
-            f.write('<PointData>\n')
-            for name, ncomp, vals in point_fields:
+        for tag, fields in (('PointData', point_fields), ('CellData', cell_fields)):
+            if not fields:
+                continue
+            f.write('<%s>\n' % tag)
+            for name, ncomp, vals in fields:
                 f.write('<DataArray type="Float64" Name="%s" NumberOfComponents="%d" format="ascii">\n' % (name, ncomp))
                 f.write('\n'.join(' '.join(repr(float(x)) for x in v) for v in vals))
                 f.write('\n</DataArray>\n')
-            f.write('</PointData>\n')
+            f.write('</%s>\n' % tag)
         f.write('</Piece>\n</UnstructuredGrid>\n</VTKFile>\n')
 
 

@@ -598,6 +598,25 @@ class ForceResetter(GlobalEngine):
         return {'class': 'ForceResetter'}
 
 
+class BoundDispatcher(GlobalEngine):
+    """`BoundDispatcher([Bo1 functors])` on its own in O.engines: every bounded body's axis-aligned box
+    each step (BoundDispatcher::action), without the collider's sweep (YADE's defaults sweepDist=0,
+    targetInterv=-1; other values are refused)."""
+    _attrs = {'functors': [], 'sweepDist': 0.0, 'minSweepDistFactor': 0.2, 'targetInterv': -1,
+              'updatingDispFactor': -1.0}
+    _positional = ('functors',)
+
+    def _convert(self, k, v):
+        return list(v) if k == 'functors' else v
+
+    def _json(self):
+        v = self._values
+        for k, d in (('sweepDist', 0.0), ('targetInterv', -1), ('updatingDispFactor', -1.0)):
+            if v[k] != d:
+                unsupported('BoundDispatcher.%s=%r on its own (the collider sets the sweep)' % (k, v[k]))
+        return {'class': 'BoundDispatcher', 'bounds': [b._json() for b in v['functors']]}
+
+
 class InsertionSortCollider(GlobalEngine):
     _attrs = {'verletDist': -0.5, 'allowBiggerThanPeriod': False, 'targetInterv': 100, 'minSweepDistFactor': 0.1,
               'sortAxis': 0, 'sortThenCollide': False, 'overlapTolerance': 1e-7, 'avoidSelfInteractionMask': 0,
@@ -1883,7 +1902,7 @@ _IMPLEMENTED = {c.__name__: c for c in [
     Serializable, Functor, BoundFunctor, Bo1_Sphere_Aabb, Bo1_Facet_Aabb, Bo1_Box_Aabb, Bo1_Wall_Aabb, IGeomFunctor,
     Ig2_Sphere_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom, Ig2_Box_Sphere_ScGeom6D, IPhysFunctor,
     Ip2_FrictMat_FrictMat_FrictPhys, LawFunctor, Law2_ScGeom_FrictPhys_CundallStrack, Engine, GlobalEngine,
-    ForceResetter, InsertionSortCollider, InteractionLoop, IntrCallback, SumIntrForcesCb, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
+    ForceResetter, BoundDispatcher, InsertionSortCollider, InteractionLoop, IntrCallback, SumIntrForcesCb, NewtonIntegrator, PeriodicEngine, PyRunner, Material,
     TimeStepper, GlobalStiffnessTimeStepper, PartialEngine, KinematicEngine, TranslationEngine, RotationEngine, ServoPIDController,
     HelixEngine, CombinedKinematicEngine, ForceEngine, HarmonicForceEngine, DomainLimiter, RyadePistonController,
     InterpolatingHelixEngine, BicyclePedalEngine, InterpolatingDirectedForceEngine,
