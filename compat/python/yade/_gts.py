@@ -6,7 +6,9 @@ cleanup / translate / scale / rotate / write, and `read` of GTS files), in pure 
 A deliberate difference: GTS keeps a surface's faces and vertices in hash tables keyed by their memory
 addresses, so YADE lists them (`Surface.faces()`, hence the ids of `pack.gtsSurface2Facets`' facets, and
 which vertex survives `cleanup`) in an order that changes from run to run. This stand-in keeps them in
-insertion order. Anything of PyGTS not listed above fails with ryade's does-not-support error.
+insertion order. As PyGTS, an Edge between two vertices an Edge already joins is that Edge, and a Face on
+three edges a Face already uses is that Face (so `pack.sweptPolylines2gtsSurface` of one polyline capped
+at both ends has the start cap's faces only, as in YADE). Anything of PyGTS not listed above fails with ryade's does-not-support error.
 
 `import gts` finds this module under `compat run` (yade/_fallback/gts.py), and yade.pack uses it when
 no real PyGTS is importable.
@@ -131,9 +133,19 @@ def _connecting(v1, v2):
 
 
 class Segment(Object):
-    """A segment between two distinct vertices."""
+    """A segment between two distinct vertices. As PyGTS's (segment.c/edge.c new), asking again for a
+    segment of this class (or a subclass) between two vertices it already joins returns that one."""
+
+    def __new__(cls, v1=None, v2=None):
+        if isinstance(v1, Vertex) and isinstance(v2, Vertex) and v1 is not v2:
+            for s in v1._segments:
+                if isinstance(s, cls) and s.connects(v1, v2):
+                    return s
+        return object.__new__(cls)
 
     def __init__(self, v1, v2):
+        if 'v1' in self.__dict__:  # an existing segment returned by __new__
+            return
         if not (isinstance(v1, Vertex) and isinstance(v2, Vertex)):
             raise TypeError('expected two Vertices')
         if v1 is v2:
@@ -164,13 +176,38 @@ def _common(a, b):
     return None
 
 
+def _edges_of(o1, o2, o3):
+    """The three edges a triangle is asked for: the segments given, or for three vertices the Edges
+    joining them (existing Edges reused, as PyGTS; a plain Segment between them is not one); None for
+    anything else (the constructor says why)."""
+    if all(isinstance(o, Vertex) for o in (o1, o2, o3)):
+        if o1 is o2 or o2 is o3 or o3 is o1:
+            return None
+        return [Edge(a, b) for a, b in ((o1, o2), (o2, o3), (o3, o1))]
+    if all(isinstance(o, Segment) for o in (o1, o2, o3)):
+        return [o1, o2, o3]
+    return None
+
+
 class Triangle(Object):
     """A triangle of three edges, each touching the two others (or built from three vertices, reusing
     the edges that already join them)."""
 
+    def __new__(cls, o1=None, o2=None, o3=None):
+        # PyGTS (triangle.c/face.c new): a triangle of this class (or a subclass) on the same three edges,
+        # in any order, is returned instead of a second one (gts_triangle_use_edges)
+        es = _edges_of(o1, o2, o3)
+        if es is not None:
+            for t in es[0]._triangles:
+                if isinstance(t, cls) and all(any(e is f for f in t._edges()) for e in es[1:]):
+                    return t
+        return object.__new__(cls)
+
     def __init__(self, o1, o2, o3):
+        if 'e1' in self.__dict__:  # an existing triangle returned by __new__
+            return
         if all(isinstance(o, Vertex) for o in (o1, o2, o3)):
-            o1, o2, o3 = [_connecting(a, b) or Edge(a, b) for a, b in ((o1, o2), (o2, o3), (o3, o1))]
+            o1, o2, o3 = _edges_of(o1, o2, o3)
         if not all(isinstance(o, Segment) for o in (o1, o2, o3)):
             raise TypeError('expected three Edges or three Vertices')
         if not (o1.touches(o2) and o2.touches(o3) and o3.touches(o1)):
