@@ -10,6 +10,9 @@
 //! O.engines = [BoundDispatcher([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()])]
 //! O.step(); print b.bound.min, b.bound.max (None for the unbounded sphere)
 //! ```
+// YADE's `%.17g` output kept verbatim (some digits beyond what an f64 needs)
+#![allow(clippy::excessive_precision)]
+
 use ryade::io::scene_json;
 use serde_json::json;
 

@@ -62,6 +62,15 @@ enum Cmd {
         /// rXX: band half-width in YADE standard deviations
         #[arg(long, default_value_t = 3.0)]
         band_k: f64,
+        /// rXX: the verdict: band (every run inside YADE's band on every cycle; the YADE-order path's
+        /// rule) or mean (the paired t test of ryade - YADE over the seeds at each cycle, Bonferroni
+        /// over the cycles: for the fast engine, whose single runs leave a few-seed band as often as
+        /// YADE's own reruns do). Both are printed.
+        #[arg(long, default_value = "band", value_parser = ["band", "mean"])]
+        rule: String,
+        /// rXX: family-wise level of the paired mean test
+        #[arg(long, default_value_t = 0.01)]
+        alpha: f64,
         /// rXX: extra study.py argument for the ryade runs only (repeatable; e.g. --ryade-arg=--friction=20
         /// to see the diff fail)
         #[arg(long, allow_hyphen_values = true)]
@@ -527,12 +536,20 @@ fn run(cli: Cli) -> Result<ExitCode> {
             out,
             yade_from,
             band_k,
+            rule,
+            alpha,
             ryade_arg,
             preset,
             engine,
         } => {
             if target.starts_with('r') && target.len() == 3 {
                 check_cycles(cycles)?;
+                if !(alpha > 0.0 && alpha < 1.0) {
+                    bail!(
+                        "--alpha {}: the family-wise level of the paired mean test must lie between 0 and 1 (e.g. 0.01)",
+                        alpha
+                    );
+                }
                 use ryade::harness::{study, study_run};
                 let (extra, preset_cycles) = study_run::preset_args(preset.as_deref(), &[])?;
                 let o = study_run::DiffOptions {
@@ -548,6 +565,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     jobs: jobs.unwrap_or_else(cores),
                     yade_from,
                     band_k,
+                    rule: if rule == "mean" {
+                        study_run::DiffRule::Mean
+                    } else {
+                        study_run::DiffRule::Band
+                    },
+                    alpha,
                     extra,
                     ryade_extra: ryade_arg,
                     quiet: false,

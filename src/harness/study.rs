@@ -313,6 +313,86 @@ pub fn band(cycle: u32, metric: &'static str, yade: &[f64], ryade: &[f64], k: f6
     }
 }
 
+/// The paired mean test of a chaotic engine against YADE on the same specimens: per cycle and metric,
+/// Student's t of the differences ryade - YADE over the seeds (paired: seed s of both engines starts
+/// from the same specimen), against the two-sided critical value at family-wise level `alpha` with
+/// Bonferroni's correction over the `m` comparisons of the case. It asks whether the engine is biased
+/// beyond what the seeds can resolve; unlike the band rule, YADE's own second runs pass it at the
+/// nominal rate (a new run of the same distribution gives t ~ Student(n - 1)).
+#[derive(Clone, Debug, Serialize)]
+pub struct MeanTest {
+    /// Seeds (pairs).
+    pub n: usize,
+    /// Comparisons (cycles x metrics where the two engines differ).
+    pub m: usize,
+    pub alpha: f64,
+    pub t_crit: f64,
+    /// Largest |t| and where.
+    pub t_max: f64,
+    pub cycle: u32,
+    pub metric: &'static str,
+    /// The smallest mean difference the test detects at that cycle, in YADE's seed sd (t_crit sd(d) /
+    /// sqrt(n) / sd(YADE)): how coarse the verdict is with these seeds.
+    pub detectable_sd: f64,
+    pub pass: bool,
+}
+
+/// Student's t of the paired differences b - a (0 when all are equal; infinite when they are all
+/// equal to a non-zero value).
+pub fn paired_t(a: &[f64], b: &[f64]) -> f64 {
+    let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
+    let (m, sd) = mean_sd(&d);
+    if sd > 0.0 {
+        m / (sd / (d.len() as f64).sqrt())
+    } else if m == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY.copysign(m)
+    }
+}
+
+/// [`MeanTest`] over one case's bands; None without pairs (different seed counts, or fewer than 2).
+pub fn mean_test(bands: &[CycleBand], alpha: f64) -> Option<MeanTest> {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    let paired: Vec<&CycleBand> = bands
+        .iter()
+        .filter(|b| b.yade.len() == b.ryade.len() && b.yade != b.ryade)
+        .collect();
+    let n = bands.first()?.yade.len();
+    if n < 2 || bands.iter().any(|b| b.yade.len() != b.ryade.len()) {
+        return None;
+    }
+    let m = paired.len().max(1);
+    let t_crit = StudentsT::new(0.0, 1.0, (n - 1) as f64)
+        .ok()?
+        .inverse_cdf(1.0 - alpha / (2.0 * m as f64));
+    let mut worst = (0.0f64, 0u32, METRICS[0], 0.0f64);
+    for b in &paired {
+        let t = paired_t(&b.yade, &b.ryade).abs();
+        if t > worst.0 || worst.0 == 0.0 {
+            let d: Vec<f64> = b.yade.iter().zip(&b.ryade).map(|(x, y)| y - x).collect();
+            let sd_d = mean_sd(&d).1;
+            let det = if b.yade_sd > 0.0 {
+                t_crit * sd_d / (n as f64).sqrt() / b.yade_sd
+            } else {
+                f64::INFINITY
+            };
+            worst = (t, b.cycle, b.metric, det);
+        }
+    }
+    Some(MeanTest {
+        n,
+        m: paired.len(),
+        alpha,
+        t_crit,
+        t_max: worst.0,
+        cycle: worst.1,
+        metric: worst.2,
+        detectable_sd: worst.3,
+        pass: worst.0 <= t_crit,
+    })
+}
+
 /// Metrics compared cycle by cycle.
 pub const METRICS: [&str; 2] = ["rut_mm", "porosity_box"];
 
@@ -384,6 +464,45 @@ mod tests {
         };
         assert_eq!(c.name(), "r03_G_tiny_s2");
         assert_eq!(c.study_args()[1], "0.3");
+    }
+
+    /// The paired mean test: t of the differences, Student's quantile with Bonferroni's correction
+    /// (t(4) at 1 - 0.01/22 is 8.827, as tables give), a constant offset of every seed fails it.
+    #[test]
+    fn paired_mean_test() {
+        assert!(
+            (paired_t(&[1.0, 2.0, 3.0], &[2.0, 2.0, 5.0]) - 1.0 / (1.0 / 3f64.sqrt())).abs()
+                < 1e-12
+        );
+        assert_eq!(paired_t(&[1.0, 2.0], &[1.0, 2.0]), 0.0);
+        assert_eq!(paired_t(&[1.0, 2.0], &[2.0, 3.0]), f64::INFINITY);
+        let y: Vec<Vec<f64>> = (0..11)
+            .map(|c| {
+                [1.0, 2.0, 3.5, 4.0, 6.0]
+                    .iter()
+                    .map(|x| x + c as f64)
+                    .collect()
+            })
+            .collect();
+        let bands = |shift: f64, noise: f64| -> Vec<CycleBand> {
+            y.iter()
+                .enumerate()
+                .map(|(c, v)| {
+                    let r: Vec<f64> = v
+                        .iter()
+                        .enumerate()
+                        .map(|(s, x)| x + shift + noise * (s as f64 - 2.0))
+                        .collect();
+                    band(c as u32, "rut_mm", v, &r, 3.0)
+                })
+                .collect()
+        };
+        let t = mean_test(&bands(0.0, 0.1), 0.01).unwrap();
+        assert_eq!((t.n, t.m), (5, 11));
+        assert!((t.t_crit - 8.827).abs() < 2e-3, "{}", t.t_crit);
+        assert!(t.pass && t.t_max < 1e-9);
+        let t = mean_test(&bands(1.0, 0.1), 0.01).unwrap();
+        assert!(!t.pass && (t.t_max - 14.142).abs() < 1e-3, "{:?}", t);
     }
 
     /// The band rule: inside within k sd, outside beyond; exact equality passes with zero spread.
