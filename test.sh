@@ -51,6 +51,17 @@ echo "== the fast engine (compat study's default) on the G case: grid, rolling r
 if grep -l "YADE-order path for this run" "${TMPDIR:-/tmp}"/ryade_diff_p200_fast/*/ryade/ryade.log; then
   echo "the fast engine left a G run to the YADE-order path (see the log above)" >&2; exit 1
 fi
+echo "== the fast engine on r03/r05/r07 tiny, 5 of YADE's seeds: no bias by the paired mean test (results/fast_engine_band/README.md)"
+for r in r03 r05 r07; do
+  ./target/release/compat diff $r --case all --size tiny --seeds 5 --engine fast --rule mean --yade-from golden/study \
+      --out "${TMPDIR:-/tmp}/ryade_diff_${r}_fast" | grep -E "paired mean test|tiny:"
+done
+echo "== the paired mean test is not vacuous: the loading friction at 10 deg instead of 30 must fail it"
+if ./target/release/compat diff r05 --case F --size tiny --seeds 5 --engine fast --rule mean --yade-from golden/study \
+    --ryade-arg=--load-friction=10 --out "${TMPDIR:-/tmp}/ryade_diff_mean_neg" >"${TMPDIR:-/tmp}/ryade_diff_mean_neg.log" 2>&1; then
+  echo "compat diff r05 --rule mean with --load-friction=10 passed: the paired mean test cannot fail" >&2; exit 1
+fi
+echo "   failed as it must: $(grep "paired mean test" "${TMPDIR:-/tmp}/ryade_diff_mean_neg.log")"
 echo "== unmodified YADE scripts under compat run reproduce YADE's files"
 yade_ref/check_compat.sh
 if command -v yade >/dev/null 2>&1; then
