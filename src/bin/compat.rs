@@ -64,8 +64,8 @@ enum Cmd {
         band_k: f64,
         /// rXX: the verdict: band (every run inside YADE's band on every cycle; the YADE-order path's
         /// rule) or mean (the paired t test of ryade - YADE over the seeds at each cycle, Bonferroni
-        /// over the cycles: for the fast engine, whose single runs leave a few-seed band as often as
-        /// YADE's own reruns do). Both are printed.
+        /// over the cycles: for the fast engine, whose runs are other realisations of YADE's chaos;
+        /// its false-alarm rate is --alpha). Both are printed.
         #[arg(long, default_value = "band", value_parser = ["band", "mean"])]
         rule: String,
         /// rXX: family-wise level of the paired mean test

@@ -335,8 +335,9 @@ pub struct DiffOptions {
 }
 
 /// The verdict of `compat diff rXX`: every ryade run inside YADE's mean +- k sd on every cycle (the
-/// rule for the YADE-order path, whose runs are YADE's), or the paired mean test (for the fast engine:
-/// a chaotic engine's single runs leave a 3- or 5-seed band as often as YADE's own second runs do).
+/// rule for the YADE-order path, whose runs are YADE's), or the paired mean test (for the fast engine,
+/// whose runs are other realisations of YADE's chaos: its false-alarm rate is the chosen alpha, where
+/// the band rule's grows with the cycles compared and shrinks with the seeds).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum DiffRule {
     Band,
