@@ -71,8 +71,8 @@ enum Cmd {
         /// rXX: family-wise level of the paired mean test
         #[arg(long, default_value_t = 0.01)]
         alpha: f64,
-        /// rXX: extra study.py argument for the ryade runs only (repeatable; e.g. --ryade-arg=--friction=20
-        /// to see the diff fail)
+        /// rXX: extra study.py argument for the ryade runs only (repeatable; e.g.
+        /// --ryade-arg=--load-friction=10 to see the diff fail)
         #[arg(long, allow_hyphen_values = true)]
         ryade_arg: Vec<String>,
         /// rXX: a study.py preset for both engines (e.g. paper200: 200 cycles, rolling resistance;

@@ -187,8 +187,16 @@ def parse_args(argv):
         with open(a.import_specimen) as f:
             a.specimen = json.load(f)
         sp = a.specimen['params']
+        fixed = {k: sp.get(k, KNOB_DEFAULTS.get(k)) if k in KNOB_DEFAULTS else sp[k] for k in SPECIMEN_PARAMS}
+        # a specimen parameter asked for on the command line that the imported specimen contradicts
+        clash = ['--%s %s (the specimen has %s)' % (k.replace('_', '-'), getattr(a, k), fixed[k]) for k in SPECIMEN_PARAMS
+                 if getattr(a, k, None) is not None and getattr(a, k) != ap.get_default(k) and getattr(a, k) != fixed[k]]
+        if clash:
+            ap.error('--import-specimen fixes the generation and the materials; these options would be ignored: %s. '
+                     'Leave them out, or generate a specimen with them (the loading has its own knobs, e.g. --load-friction)'
+                     % ', '.join(clash))
         for k in SPECIMEN_PARAMS:
-            setattr(a, k, sp.get(k, KNOB_DEFAULTS.get(k)) if k in KNOB_DEFAULTS else sp[k])
+            setattr(a, k, fixed[k])
         if a.piston_d is None:
             a.piston_d = sp['piston_d']
     nx, ny, D, cyc = SIZES[a.size]
