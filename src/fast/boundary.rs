@@ -322,29 +322,136 @@ impl Boundaries {
         }
     }
 
-    /// The candidate list again (after the spheres were re-sorted): every sphere near a boundary,
-    /// real contacts kept with their state.
-    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
-        let mut known: FxHashMap<(u32, u32), BContact> = FxHashMap::default();
-        for c in self.contacts.drain(..) {
-            if c.geom.is_some() {
-                known.insert((c.b, c.sphere), c);
+    /// A box around every point at which `near` can hold for a sphere of radius up to `rmax`
+    /// (world frame, half-widths; infinite along a wall's plane): a cheap first test.
+    fn reach_box(bd: &Boundary, rot: &crate::math::Mat3, rmax: f64, skin: f64) -> Vec3 {
+        match &bd.shape {
+            BShape::Wall { axis, .. } => {
+                let mut h = Vec3::repeat(f64::INFINITY);
+                h[*axis] = rmax + skin;
+                h
+            }
+            BShape::Box { ext, p } => {
+                let d = rmax * p.interaction_detection_factor.max(1.0) + skin;
+                Vec3::from_fn(|a, _| (0..3).map(|j| rot[(a, j)].abs() * ext[j]).sum::<f64>() + d)
+            }
+            BShape::Facet { f, reach } => {
+                // within reach + r + skin of the position and r + skin of the plane: a disc
+                // thickened by r + skin
+                let (big, d) = (reach + rmax + skin, rmax + skin);
+                let n = rot * f.normal;
+                Vec3::from_fn(|a, _| big * (1.0 - n[a] * n[a]).max(0.0).sqrt() + d * n[a].abs())
             }
         }
-        let mut out = Vec::new();
+    }
+
+    /// The candidate list again (after the spheres were re-sorted): every sphere near a boundary,
+    /// real contacts kept with their state. Per boundary in slot order, as a walk over all
+    /// spheres would list them; a box around the boundary keeps `near` off the far spheres.
+    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
+        let mut slot = vec![u32::MAX; self.masks.len()];
+        for (k, &id) in ids.iter().enumerate() {
+            slot[id as usize] = k as u32;
+        }
+        // the real contacts of each boundary, by slot (a sphere no longer listed loses its own)
+        let mut known: Vec<Vec<BContact>> = vec![Vec::new(); self.list.len()];
+        for mut c in self.contacts.drain(..) {
+            let k = slot.get(c.sphere as usize).copied().unwrap_or(u32::MAX);
+            if c.geom.is_some() && k != u32::MAX {
+                c.k = k;
+                known[c.b as usize].push(c);
+            }
+        }
         for bd in self.list.iter_mut() {
             bd.x_ref = bd.pos;
         }
-        for (bk, bd) in self.list.iter().enumerate() {
+        let rmax = rad.iter().copied().fold(0.0, f64::max);
+        // periodic: positions wrapped into the cell once, offsets brought into (-l/2, l/2] below
+        let size = self.cell.as_ref().map(|c| c.size());
+        let wrap = |x: f64, a: usize| size.map_or(x, |l| x - l[a] * (x / l[a]).floor());
+        let wrapped: Vec<V3> = pos
+            .iter()
+            .map(|x| std::array::from_fn(|a| wrap(x[a], a)))
+            .collect();
+        // the slots by wrapped height: a boundary's candidates are a range (two across the period)
+        let mut by_z: Vec<(f64, u32)> = wrapped
+            .iter()
+            .enumerate()
+            .map(|(k, w)| (w[2], k as u32))
+            .collect();
+        by_z.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let mut cand: Vec<u32> = Vec::new();
+        let mut out = Vec::new();
+        for (bk, (bd, mut kept)) in self.list.iter().zip(known).enumerate() {
             if !bd.touch {
                 continue;
             }
             let rot = bd.ori.to_rotation_matrix();
-            for (k, (&id, x)) in ids.iter().zip(pos).enumerate() {
-                let key = (bk as u32, id);
-                if let Some(mut c) = known.remove(&key) {
-                    c.k = k as u32;
-                    out.push(c);
+            // (a margin for the rounding of the wrapped offsets)
+            let half =
+                Self::reach_box(bd, &rot, rmax, skin) + size.map_or(Vec3::zeros(), |l| l * 1e-12);
+            let at: V3 = std::array::from_fn(|a| wrap(bd.pos[a], a));
+            cand.clear();
+            let (zlo, zhi) = (at[2] - half[2], at[2] + half[2]);
+            let mut take = |lo: f64, hi: f64| {
+                let a = by_z.partition_point(|e| e.0 < lo);
+                let b = by_z.partition_point(|e| e.0 <= hi);
+                cand.extend(by_z[a..b.max(a)].iter().map(|e| e.1));
+            };
+            match size.map(|l| l[2]) {
+                _ if !half[2].is_finite() => take(f64::NEG_INFINITY, f64::INFINITY),
+                Some(l) if 2.0 * half[2] >= l => take(f64::NEG_INFINITY, f64::INFINITY),
+                Some(l) => {
+                    take(zlo.max(0.0), zhi.min(l));
+                    if zlo < 0.0 {
+                        take(zlo + l, l);
+                    }
+                    if zhi > l {
+                        take(0.0, zhi - l);
+                    }
+                }
+                None => take(zlo, zhi),
+            }
+            cand.sort_unstable();
+            cand.dedup();
+            // in slot order: a real contact kept, else a candidate the box and `near` let through
+            kept.sort_unstable_by_key(|c| c.k);
+            let mut kept = kept.into_iter().peekable();
+            let mut cands = cand.iter().copied().peekable();
+            loop {
+                let k = match (kept.peek(), cands.peek()) {
+                    (None, None) => break,
+                    (Some(c), Some(&k)) if c.k <= k => {
+                        if c.k == k {
+                            cands.next();
+                        }
+                        out.push(kept.next().unwrap());
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        out.push(kept.next().unwrap());
+                        continue;
+                    }
+                    (_, Some(&k)) => {
+                        cands.next();
+                        k as usize
+                    }
+                };
+                let (id, x, xw) = (ids[k], &pos[k], &wrapped[k]);
+                // the nearest image's offset from the boundary (the period itself, rounded as
+                // YADE does, only for the spheres the box lets through)
+                let far = (0..3).any(|a| {
+                    let mut d = xw[a] - at[a];
+                    if let Some(l) = size {
+                        if d > 0.5 * l[a] {
+                            d -= l[a];
+                        } else if d < -0.5 * l[a] {
+                            d += l[a];
+                        }
+                    }
+                    d.abs() > half[a]
+                });
+                if far {
                     continue;
                 }
                 let cd = self.nearest_image(&bd.pos, x);
@@ -530,5 +637,127 @@ impl crate::piston::PistonIo for Boundaries {
     }
     fn force_z(&self, id: usize) -> f64 {
         self.get(id).force[2]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Mat3;
+
+    /// The walk over every sphere that `rebuild` replaced: (boundary, sphere, slot, period) of
+    /// each pair `near` accepts.
+    fn brute(
+        bs: &Boundaries,
+        pos: &[V3],
+        rad: &[f64],
+        skin: f64,
+    ) -> Vec<(u32, u32, u32, [i32; 3])> {
+        let mut out = Vec::new();
+        for (bk, bd) in bs.list.iter().enumerate() {
+            let rot = bd.ori.to_rotation_matrix();
+            for (k, x) in pos.iter().enumerate() {
+                let cd = bs.nearest_image(&bd.pos, x);
+                let xs = v(x) + shift_of(&bs.cell, &cd);
+                if Boundaries::near(bd, &rot, &xs, rad[k], skin) {
+                    out.push((bk as u32, k as u32, k as u32, cd));
+                }
+            }
+        }
+        out
+    }
+
+    /// The box and height prefilter of `rebuild` drops no pair that `near` accepts (walls,
+    /// rotated boxes, facets of every orientation, open and periodic), and adds none.
+    #[test]
+    fn rebuild_lists_what_the_walk_over_all_spheres_lists() {
+        let mut s: u64 = 99;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for periodic in [false, true] {
+            let l = Vec3::new(1.0, 0.8, 1.3);
+            let mut list = Vec::new();
+            let mut unit_quat = |r: &mut dyn FnMut() -> f64| {
+                let q = Quat::new(r() - 0.5, r() - 0.5, r() - 0.5, r() - 0.5);
+                let n = q.norm2().sqrt();
+                Quat::new(q.w / n, q.x / n, q.y / n, q.z / n)
+            };
+            for j in 0..40 {
+                let shape = match j % 4 {
+                    0 => BShape::Wall {
+                        axis: j % 3,
+                        sense: 0,
+                        p: Default::default(),
+                    },
+                    1 => BShape::Box {
+                        ext: Vec3::new(0.05 + 0.2 * rnd(), 0.05 + 0.2 * rnd(), 0.02 + 0.1 * rnd()),
+                        p: Default::default(),
+                    },
+                    _ => {
+                        let vx: [Vec3; 3] = std::array::from_fn(|_| {
+                            Vec3::new(0.3 * rnd() - 0.15, 0.3 * rnd() - 0.15, 0.02 * rnd())
+                        });
+                        let c = crate::utils::inscribed_circle_center(&vx[0], &vx[1], &vx[2]);
+                        let f = Facet::new([vx[0] - c, vx[1] - c, vx[2] - c]).unwrap();
+                        BShape::Facet {
+                            reach: f.vertices.iter().map(|x| x.norm()).fold(0.0, f64::max),
+                            f: Box::new(f),
+                        }
+                    }
+                };
+                // (walls and every other box unrotated: their boxes are then tight)
+                let ori = if j % 4 == 0 || j % 8 == 1 {
+                    Quat::new(1.0, 0.0, 0.0, 0.0)
+                } else {
+                    unit_quat(&mut rnd)
+                };
+                // positions spread past the cell, half of them at its faces: images matter
+                let mut pos = Vec3::new(1.4 * rnd() - 0.2, 1.2 * rnd() - 0.2, 1.7 * rnd() - 0.2);
+                if j % 2 == 1 {
+                    for a in 0..3 {
+                        pos[a] = [-0.01, 0.01, l[a] - 0.01, l[a] + 0.01][(4.0 * rnd()) as usize];
+                    }
+                }
+                list.push(Boundary {
+                    id: j as u32,
+                    shape,
+                    touch: true,
+                    pos,
+                    vel: Vec3::zeros(),
+                    ori,
+                    mat: 0,
+                    x_ref: pos,
+                    force: Vec3::zeros(),
+                    torque: Vec3::zeros(),
+                });
+            }
+            let n = 20000;
+            let nb = list.len() as u32;
+            let pos: Vec<V3> = (0..n)
+                .map(|_| [1.6 * rnd() - 0.3, 1.4 * rnd() - 0.3, 1.9 * rnd() - 0.3])
+                .collect();
+            let rad: Vec<f64> = (0..n).map(|_| 0.01 + 0.02 * rnd()).collect();
+            let ids: Vec<u32> = (0..n as u32).map(|k| nb + k).collect();
+            let mut bs = Boundaries {
+                list,
+                masks: vec![1; nb as usize + n],
+                cell: periodic.then(|| crate::cell::Cell::new(Mat3::from_diagonal(&l)).unwrap()),
+                ..Boundaries::default()
+            };
+            let skin = 0.006;
+            let want = brute(&bs, &pos, &rad, skin);
+            bs.rebuild(&ids, &pos, &rad, skin);
+            let got: Vec<(u32, u32, u32, [i32; 3])> = bs
+                .contacts
+                .iter()
+                .map(|c| (c.b, c.sphere - nb, c.k, c.cd))
+                .collect();
+            assert!(want.len() > 2000, "a test that lists pairs: {}", want.len());
+            assert_eq!(got, want, "periodic {}", periodic);
+        }
     }
 }

@@ -156,59 +156,73 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
         order[fill[c]] = old as u32;
         fill[c] += 1;
     }
-    let mut new_of = vec![0u32; n];
-    for (new, &old) in order.iter().enumerate() {
-        new_of[old as usize] = new as u32;
-    }
+    // positions and radii in the new order: a cell's bodies side by side
+    let ws: Vec<V3> = order.iter().map(|&o| wrapped[o as usize]).collect();
+    let rs: Vec<f64> = order.iter().map(|&o| radius[o as usize]).collect();
     // the pair search, in blocks of bodies (in parallel when `par`: the blocks are concatenated in
     // order, so the list is the same for any thread count); periodic images are numbered after
     let search = |b: usize| -> Vec<(Pair, [i32; 3])> {
         let mut out = Vec::with_capacity(BLOCK * 8);
+        // the neighbour cells of the current body's cell that hold later bodies (the bodies are
+        // numbered in cell order: cells before its own hold only earlier ones), ascending
         let mut neigh: Vec<usize> = Vec::with_capacity(27);
+        let mut neigh_of = usize::MAX;
         for ni in b * BLOCK..((b + 1) * BLOCK).min(n) {
             let i = order[ni] as usize;
-            let c = grid.cell_of(&wrapped[i]);
-            neigh.clear();
-            let (ax, mx) = grid.around(0, c[0]);
-            let (ay, my) = grid.around(1, c[1]);
-            let (az, mz) = grid.around(2, c[2]);
-            for &x in &ax[..mx] {
-                for &y in &ay[..my] {
-                    for &z in &az[..mz] {
-                        neigh.push(grid.linear([x, y, z]));
+            let own = cells[i];
+            if own != neigh_of {
+                let c = grid.cell_of(&wrapped[i]);
+                neigh.clear();
+                let (ax, mx) = grid.around(0, c[0]);
+                let (ay, my) = grid.around(1, c[1]);
+                let (az, mz) = grid.around(2, c[2]);
+                for &x in &ax[..mx] {
+                    for &y in &ay[..my] {
+                        for &z in &az[..mz] {
+                            let cell = grid.linear([x, y, z]);
+                            if cell >= own {
+                                neigh.push(cell);
+                            }
+                        }
                     }
                 }
+                neigh.sort_unstable();
+                neigh_of = own;
             }
-            neigh.sort_unstable();
             for &cell in &neigh {
-                for &j_old in &order[start[cell]..start[cell + 1]] {
-                    let j = j_old as usize;
-                    let nj = new_of[j];
-                    if nj as usize <= ni {
+                // (in its own cell, the bodies after it)
+                let from = if cell == own { ni + 1 } else { start[cell] };
+                for nj in from..start[cell + 1] {
+                    let (wi, wj) = (&ws[ni], &ws[nj]);
+                    let mut d = [wj[0] - wi[0], wj[1] - wi[1], wj[2] - wi[2]];
+                    if let Some(l) = period {
+                        // minimum image of the wrapped difference (|d| < l). At |d| = l/2 either
+                        // image is beyond reach (refused: 2 rmax + skin < l/2), so the plain
+                        // comparison lists the pairs a rounding of d/l would
+                        for k in 0..3 {
+                            if d[k] > 0.5 * l[k] {
+                                d[k] -= l[k];
+                            } else if d[k] < -0.5 * l[k] {
+                                d[k] += l[k];
+                            }
+                        }
+                    }
+                    let lim = rs[ni] + rs[nj] + skin;
+                    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim {
                         continue;
                     }
-                    let mut d = [
-                        wrapped[j][0] - wrapped[i][0],
-                        wrapped[j][1] - wrapped[i][1],
-                        wrapped[j][2] - wrapped[i][2],
-                    ];
+                    // the period of the unwrapped difference, for the pairs listed
                     let mut cd = [0i32; 3];
                     if let Some(l) = period {
-                        // minimum image of the wrapped difference, then the period of the unwrapped one
+                        let j = order[nj] as usize;
                         for k in 0..3 {
-                            let m = (d[k] / l[k]).round();
-                            d[k] -= m * l[k];
                             let s = d[k] - (pos[j][k] - pos[i][k]);
                             cd[k] = (s / l[k]).round() as i32;
                         }
                     }
-                    let lim = radius[i] + radius[j] + skin;
-                    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim {
-                        continue;
-                    }
                     let pair = Pair {
                         i: ni as u32,
-                        j: nj,
+                        j: nj as u32,
                         img: 0,
                     };
                     out.push((pair, cd));
