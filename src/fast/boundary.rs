@@ -681,7 +681,7 @@ mod tests {
         for periodic in [false, true] {
             let l = Vec3::new(1.0, 0.8, 1.3);
             let mut list = Vec::new();
-            let mut unit_quat = |r: &mut dyn FnMut() -> f64| {
+            let unit_quat = |r: &mut dyn FnMut() -> f64| {
                 let q = Quat::new(r() - 0.5, r() - 0.5, r() - 0.5, r() - 0.5);
                 let n = q.norm2().sqrt();
                 Quat::new(q.w / n, q.x / n, q.y / n, q.z / n)
