@@ -671,13 +671,8 @@ mod tests {
     /// rotated boxes, facets of every orientation, open and periodic), and adds none.
     #[test]
     fn rebuild_lists_what_the_walk_over_all_spheres_lists() {
-        let mut s: u64 = 99;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut mt = rand_mt::Mt64::new(99);
+        let mut rnd = || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         for periodic in [false, true] {
             let l = Vec3::new(1.0, 0.8, 1.3);
             let mut list = Vec::new();
