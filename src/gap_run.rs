@@ -128,6 +128,14 @@ struct Line {
     out: PathBuf,
 }
 
+/// What runs a table: Debian YADE, or ryade on its YADE-order or fast path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum RunEngine {
+    Yade,
+    Ryade,
+    RyadeFast,
+}
+
 /// Run, as one yade-batch table `path`, the lines whose run has no history.csv yet (a sweep resumes
 /// where it stopped): with `compat batch` (ryade), or with Debian YADE as the command (`yade`).
 fn run_missing(
@@ -136,7 +144,7 @@ fn run_missing(
     sc: &Scenario,
     lines: &[Line],
     jobs: usize,
-    yade: bool,
+    engine: RunEngine,
 ) -> Result<()> {
     let todo: Vec<&Line> = lines
         .iter()
@@ -155,12 +163,19 @@ fn run_missing(
         std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?;
     writeln!(
         f,
-        "description ratio case size seed cycles specimen export generate_only effects out"
+        "description ratio case size seed cycles specimen export generate_only effects controller out"
     )?;
+    // the fast path takes the cycles only with the piston law in Rust (byte-identical to the
+    // PyRunner's, which YADE runs)
+    let controller = if engine == RunEngine::RyadeFast {
+        "native"
+    } else {
+        ""
+    };
     for l in &todo {
         writeln!(
             f,
-            "{} {} '{}' '{}' {} {} '{}' '{}' {} '{}' '{}'",
+            "{} {} '{}' '{}' {} {} '{}' '{}' {} '{}' '{}' '{}'",
             l.description,
             sc.ratio as f64 / 10.0,
             sc.case,
@@ -171,6 +186,7 @@ fn run_missing(
             l.export,
             l.generate_only as u8,
             l.effects,
+            controller,
             l.out.display()
         )?;
     }
@@ -178,7 +194,11 @@ fn run_missing(
     eprintln!(
         "[gap] {} runs to do in {} ({})",
         todo.len(),
-        if yade { "Debian YADE" } else { "ryade" },
+        match engine {
+            RunEngine::Yade => "Debian YADE",
+            RunEngine::Ryade => "ryade (YADE-order path)",
+            RunEngine::RyadeFast => "ryade (fast path)",
+        },
         path.display()
     );
     let mut c = Command::new(crate::harness::env::python());
@@ -186,8 +206,16 @@ fn run_missing(
         .arg(path)
         .arg(root.join("yade_ref/gap/run_case.py"))
         .args(["-j", &jobs.to_string()]);
-    if yade {
-        c.args(["--command", "yade -n -x"]);
+    match engine {
+        RunEngine::Yade => {
+            c.args(["--command", "yade -n -x"]);
+        }
+        RunEngine::RyadeFast => {
+            c.env("RYADE_FAST", "on");
+        }
+        RunEngine::Ryade => {
+            c.env_remove("RYADE_FAST");
+        }
     }
     let st = crate::harness::proc::status(&mut c).context("starting python3 -m yade.batch")?;
     if crate::harness::proc::stopping() {
@@ -211,6 +239,14 @@ pub struct LibraryIndex {
     pub baseline_seeds: Vec<u32>,
     pub effect_seeds: Vec<u32>,
     pub effects: Vec<Effect>,
+    /// ryade's engine of the runs: "fast" or "yade-order" (a library from before the choice:
+    /// yade-order).
+    #[serde(default = "yade_order")]
+    pub engine: String,
+}
+
+fn yade_order() -> String {
+    "yade-order".into()
 }
 
 /// Build (or complete) a library: baseline seeds + each effect at its strengths for `effect_seeds`
@@ -226,10 +262,25 @@ pub fn make_library(
     sc: &Scenario,
     baseline_seeds: &[u32],
     effect_seeds: &[u32],
+    fast: bool,
     jobs: usize,
 ) -> Result<()> {
     std::fs::create_dir_all(dir)?;
     let dir = dir.canonicalize()?;
+    let engine = if fast { "fast" } else { "yade-order" };
+    // a library is completed on the engine it was started with
+    if let Ok(old) = std::fs::read_to_string(dir.join("library.json")) {
+        let old: LibraryIndex = serde_json::from_str(&old)
+            .with_context(|| format!("reading {}", dir.join("library.json").display()))?;
+        if old.engine != engine {
+            bail!(
+                "the library in {} was built on ryade's {} engine: complete it with --engine {} (or build a new one in another --library folder)",
+                dir.display(),
+                old.engine,
+                old.engine
+            );
+        }
+    }
     if let Some(s) = effect_seeds.iter().find(|s| !baseline_seeds.contains(s)) {
         bail!(
             "effect seed {} is not a baseline seed (effect runs reuse the baseline specimens)",
@@ -299,6 +350,12 @@ pub fn make_library(
         baseline_seeds: baseline_seeds.to_vec(),
         effect_seeds: effect_seeds.to_vec(),
         effects,
+        engine: engine.into(),
+    };
+    let run_engine = if fast {
+        RunEngine::RyadeFast
+    } else {
+        RunEngine::Ryade
     };
     std::fs::write(
         dir.join("library.json"),
@@ -310,9 +367,16 @@ pub fn make_library(
         sc,
         &base_lines,
         jobs,
-        false,
+        run_engine,
     )?;
-    run_missing(root, &dir.join("library.table"), sc, &lines, jobs, false)
+    run_missing(
+        root,
+        &dir.join("library.table"),
+        sc,
+        &lines,
+        jobs,
+        run_engine,
+    )
 }
 
 /// Load a library directory (library.json + run directories with history.csv).
@@ -588,9 +652,16 @@ pub fn make_observed(
         sc,
         &gen_lines,
         jobs,
-        true,
+        RunEngine::Yade,
     )?;
-    run_missing(root, &dir.join("observed.table"), sc, &lines, jobs, true)?;
+    run_missing(
+        root,
+        &dir.join("observed.table"),
+        sc,
+        &lines,
+        jobs,
+        RunEngine::Yade,
+    )?;
     for l in &lines {
         let h = l.out.join("history.csv");
         let Ok(s) = gap::series_of_history(&h) else {
@@ -991,4 +1062,39 @@ pub fn write_plot_data(out: &Path, lib: &Library, obs: &Series, d: &gap::Diagnos
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A library is completed on the engine it was started with: a library.json from before the
+    /// engine choice (no `engine`: the YADE-order path) refuses `--engine fast` and says which
+    /// engine completes it, before any run starts.
+    #[test]
+    fn a_library_keeps_its_engine() {
+        let dir = std::env::temp_dir().join(format!("ryade_gap_engine_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let old = r#"{"scenario":"r07","case":"G","size":"tiny","cycles":1,"baseline_seeds":[1],"effect_seeds":[1],"effects":[]}"#;
+        std::fs::write(dir.join("library.json"), old).unwrap();
+        let idx: LibraryIndex = serde_json::from_str(old).unwrap();
+        assert_eq!(idx.engine, "yade-order");
+        let sc = Scenario {
+            ratio: 7,
+            case: 'G',
+            size: "tiny".into(),
+            cycles: 1,
+        };
+        let e = make_library(Path::new("."), &dir, &sc, &[1], &[1], true, 1).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("yade-order engine") && msg.contains("--engine yade-order"),
+            "{msg}"
+        );
+        assert!(
+            !dir.join("library_base.table").exists(),
+            "no run was started"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

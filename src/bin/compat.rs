@@ -282,6 +282,11 @@ enum Cmd {
         /// Library building: runs (seeds 1..N) of each effect at each strength
         #[arg(long, default_value_t = 4)]
         effect_seeds: u32,
+        /// Library building: ryade's engine, fast (every O.run the fast path can take, with the
+        /// study's native piston engine: YADE's statistics, not its bits) or yade-order (YADE's bits).
+        /// A library keeps the engine it was started with
+        #[arg(long, default_value = "fast", value_parser = ["yade-order", "fast"])]
+        engine: String,
         /// Blind datasets to make
         #[arg(long, default_value_t = 14)]
         n: usize,
@@ -781,6 +786,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             library,
             baseline_seeds,
             effect_seeds,
+            engine,
             n,
             n_null,
             unfiltered,
@@ -824,7 +830,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         cmd
                     )
                 });
-                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, jobs)?;
+                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, engine == "fast", jobs)?;
             } else if !lib_dir.join("library.json").is_file() {
                 bail!(
                     "no gap library at {} ({} missing): give --library with the folder of an existing one \

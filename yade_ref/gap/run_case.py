@@ -10,12 +10,14 @@
 #   generate_only               : 1 = stop after generation (and the export), no loading
 #   effects                     : comma-separated knob=value pairs, e.g. 'eta_roll=0.3,subgrade_k=2e7'
 #                                 (knob names = study.py options with '-' written '_', without '--')
+#   controller                  : study.py's --controller (ryade's fast library runs: 'native', the
+#                                 piston law in Rust, byte-identical to the PyRunner; '' = the PyRunner)
 #   out                         : output directory
 import os, sys
 
 from yade import utils
 
-utils.readParamsFromTable(ratio=0.7, case='G', size='tiny', seed=1, cycles=5, specimen='', export='', generate_only=0, effects='', out='gap_out/run',
+utils.readParamsFromTable(ratio=0.7, case='G', size='tiny', seed=1, cycles=5, specimen='', export='', generate_only=0, effects='', controller='', out='gap_out/run',
                           noTableOk=True)
 from yade.params import table as T
 
@@ -28,6 +30,8 @@ else:
         argv += ['--export-specimen', T.export]
     if int(T.generate_only):
         argv += ['--generate-only']
+if T.controller:
+    argv += ['--controller', T.controller]
 for pair in [p for p in T.effects.split(',') if p]:
     k, v = pair.split('=', 1)
     argv += ['--' + k.strip().replace('_', '-'), v.strip()]
