@@ -441,14 +441,8 @@ impl Boundaries {
                 // the nearest image's offset from the boundary (the period itself, rounded as
                 // YADE does, only for the spheres the box lets through)
                 let far = (0..3).any(|a| {
-                    let mut d = xw[a] - at[a];
-                    if let Some(l) = size {
-                        if d > 0.5 * l[a] {
-                            d -= l[a];
-                        } else if d < -0.5 * l[a] {
-                            d += l[a];
-                        }
-                    }
+                    let d = xw[a] - at[a];
+                    let d = size.map_or(d, |l| super::contact::nearest_image(d, l[a]));
                     d.abs() > half[a]
                 });
                 if far {

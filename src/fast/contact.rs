@@ -7,6 +7,19 @@
 
 pub type V3 = [f64; 3];
 
+/// The offset `d` (|d| < `l`, wrapped positions) brought to its nearest image in a period of `l`,
+/// by comparison (no libm round).
+#[inline(always)]
+pub fn nearest_image(d: f64, l: f64) -> f64 {
+    if d > 0.5 * l {
+        d - l
+    } else if d < -0.5 * l {
+        d + l
+    } else {
+        d
+    }
+}
+
 #[inline(always)]
 pub fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]

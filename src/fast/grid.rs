@@ -118,6 +118,18 @@ impl HashGrid {
     }
 }
 
+/// Is the nearest image of the point at `xw` within sqrt(`r2`) of `cw` (both wrapped into the
+/// periodic cell of size `size`, when there is one)?
+fn in_ball(xw: &Vec3, cw: &Vec3, size: Option<Vec3>, r2: f64) -> bool {
+    let mut d = xw - cw;
+    if let Some(l) = size {
+        for a in 0..3 {
+            d[a] = super::contact::nearest_image(d[a], l[a]);
+        }
+    }
+    d.norm_squared() <= r2
+}
+
 impl GridPart {
     /// The scene's grid (None without GridNode/GridConnection bodies), or why the fast path cannot
     /// run it. `sphere_ids`: the fast path's spheres; `il`: the scene's loop (setCohesionNow settled).
@@ -330,8 +342,21 @@ impl GridPart {
                 }
             }
         };
-        for &(c, mid, _, _) in &balls {
+        // a cheap first test: the sphere's nearest image within the connection's bounding ball
+        // (a sphere within reach + skin of the segment is within half its length more of its
+        // midpoint), from positions wrapped into the cell once
+        let wrap = |x: &Vec3| -> Vec3 {
+            size.map_or(*x, |l| {
+                Vec3::from_fn(|a, _| x[a] - l[a] * (x[a] / l[a]).floor())
+            })
+        };
+        let wrapped: Vec<Vec3> = pos.iter().map(|p| wrap(&v(p))).collect();
+        for &(c, mid, rho, _) in &balls {
+            let (midw, rho2) = (wrap(&mid), (rho * (1.0 + 1e-9)).powi(2));
             spheres.near(&mid, |k| {
+                if !in_ball(&wrapped[k as usize], &midw, size, rho2) {
+                    return;
+                }
                 let sid = ids[k as usize];
                 if !may_collide(
                     self.masks[sid as usize],
@@ -502,5 +527,41 @@ impl GridPart {
         }
         intrs.dirty = true;
         scene.interactions = intrs;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `in_ball` on wrapped positions agrees with the distance to the nearest image (YADE's rounded
+    /// period) for points anywhere, many periods away included.
+    #[test]
+    fn in_ball_is_the_nearest_image_distance() {
+        let mut mt = rand_mt::Mt64::new(7);
+        let mut rnd = || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let l = Vec3::new(0.3, 0.31, 1.17);
+        let wrap = |x: &Vec3| Vec3::from_fn(|a, _| x[a] - l[a] * (x[a] / l[a]).floor());
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..200_000 {
+            let c = Vec3::from_fn(|a, _| l[a] * (6.0 * rnd() - 3.0));
+            let x = Vec3::from_fn(|a, _| l[a] * (6.0 * rnd() - 3.0));
+            let r = 0.02 + 0.1 * rnd();
+            let cd = Vec3::from_fn(|a, _| ((x[a] - c[a]) / l[a]).round());
+            let d = (x - c) - cd.component_mul(&l);
+            let exact = d.norm() <= r;
+            let r2 = (r * (1.0 + 1e-9)).powi(2);
+            if exact {
+                inside += 1;
+                assert!(in_ball(&wrap(&x), &wrap(&c), Some(l), r2), "{x} {c} {r}");
+            } else if d.norm() > r * (1.0 + 1e-6) {
+                outside += 1;
+                assert!(!in_ball(&wrap(&x), &wrap(&c), Some(l), r2), "{x} {c} {r}");
+            }
+        }
+        assert!(inside > 1000 && outside > 1000, "{inside} {outside}");
+        // without a cell: the plain distance
+        let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.3, 0.0, 0.0));
+        assert!(in_ball(&a, &b, None, 0.0901) && !in_ball(&a, &b, None, 0.0899));
     }
 }

@@ -200,11 +200,7 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
                         // image is beyond reach (refused: 2 rmax + skin < l/2), so the plain
                         // comparison lists the pairs a rounding of d/l would
                         for k in 0..3 {
-                            if d[k] > 0.5 * l[k] {
-                                d[k] -= l[k];
-                            } else if d[k] < -0.5 * l[k] {
-                                d[k] += l[k];
-                            }
+                            d[k] = super::contact::nearest_image(d[k], l[k]);
                         }
                     }
                     let lim = rs[ni] + rs[nj] + skin;
