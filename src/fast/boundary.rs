@@ -348,16 +348,12 @@ impl Boundaries {
     /// The candidate list again (after the spheres were re-sorted): every sphere near a boundary,
     /// real contacts kept with their state. Per boundary in slot order, as a walk over all
     /// spheres would list them; a box around the boundary keeps `near` off the far spheres.
-    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
-        let mut slot = vec![u32::MAX; self.masks.len()];
-        for (k, &id) in ids.iter().enumerate() {
-            slot[id as usize] = k as u32;
-        }
+    pub(super) fn rebuild(&mut self, l: &super::Listing, skin: f64) {
+        let (ids, pos, rad, wrapped) = (l.ids, l.pos, l.rad, l.wrapped);
         // the real contacts of each boundary, by slot (a sphere no longer listed loses its own)
         let mut known: Vec<Vec<BContact>> = vec![Vec::new(); self.list.len()];
         for mut c in self.contacts.drain(..) {
-            let k = slot.get(c.sphere as usize).copied().unwrap_or(u32::MAX);
-            if c.geom.is_some() && k != u32::MAX {
+            if let (true, Some(k)) = (c.geom.is_some(), l.slot_of(c.sphere)) {
                 c.k = k;
                 known[c.b as usize].push(c);
             }
@@ -366,13 +362,9 @@ impl Boundaries {
             bd.x_ref = bd.pos;
         }
         let rmax = rad.iter().copied().fold(0.0, f64::max);
-        // periodic: positions wrapped into the cell once, offsets brought into (-l/2, l/2] below
+        // periodic: offsets of wrapped positions, brought into (-l/2, l/2] below
         let size = self.cell.as_ref().map(|c| c.size());
-        let wrap = |x: f64, a: usize| size.map_or(x, |l| x - l[a] * (x / l[a]).floor());
-        let wrapped: Vec<V3> = pos
-            .iter()
-            .map(|x| std::array::from_fn(|a| wrap(x[a], a)))
-            .collect();
+        let wrap = |x: f64, a: usize| size.map_or(x, |l| super::contact::wrap_into(x, l[a]));
         // the slots by wrapped height: a boundary's candidates are a range (two across the period)
         let mut by_z: Vec<(f64, u32)> = wrapped
             .iter()
@@ -739,7 +731,20 @@ mod tests {
             };
             let skin = 0.006;
             let want = brute(&bs, &pos, &rad, skin);
-            bs.rebuild(&ids, &pos, &rad, skin);
+            let wrapped: Vec<V3> = pos
+                .iter()
+                .map(|x| {
+                    std::array::from_fn(|a| {
+                        bs.cell.as_ref().map_or(x[a], |c| {
+                            super::super::contact::wrap_into(x[a], c.size()[a])
+                        })
+                    })
+                })
+                .collect();
+            bs.rebuild(
+                &super::super::Listing::new(&ids, &pos, &wrapped, &rad),
+                skin,
+            );
             let got: Vec<(u32, u32, u32, [i32; 3])> = bs
                 .contacts
                 .iter()

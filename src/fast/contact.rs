@@ -7,6 +7,12 @@
 
 pub type V3 = [f64; 3];
 
+/// The coordinate `x` wrapped into the period [0, `l`).
+#[inline(always)]
+pub fn wrap_into(x: f64, l: f64) -> f64 {
+    x - l * (x / l).floor()
+}
+
 /// The offset `d` (|d| < `l`, wrapped positions) brought to its nearest image in a period of `l`,
 /// by comparison (no libm round).
 #[inline(always)]

@@ -283,14 +283,10 @@ impl GridPart {
     /// sphere image within `r + R + skin` of a connection gets a potential interaction (the nearest
     /// image: its period is the pair's cellDist), potential pairs no longer near are dropped, real
     /// ones kept with their state.
-    pub(super) fn rebuild(&mut self, ids: &[u32], pos: &[V3], rad: &[f64], skin: f64) {
+    pub(super) fn rebuild(&mut self, listing: &super::Listing, skin: f64) {
+        let (ids, pos, rad) = (listing.ids, listing.pos, listing.rad);
         self.x_ref = self.pos.clone();
         self.sync_nodes();
-        let slot: FxHashMap<u32, u32> = ids
-            .iter()
-            .enumerate()
-            .map(|(k, &id)| (id, k as u32))
-            .collect();
         for (k, &id) in ids.iter().enumerate() {
             self.sub.bodies.pos[id as usize] = v(&pos[k]);
         }
@@ -344,17 +340,17 @@ impl GridPart {
         };
         // a cheap first test: the sphere's nearest image within the connection's bounding ball
         // (a sphere within reach + skin of the segment is within half its length more of its
-        // midpoint), from positions wrapped into the cell once
+        // midpoint), from the positions wrapped into the cell by the list build
         let wrap = |x: &Vec3| -> Vec3 {
             size.map_or(*x, |l| {
-                Vec3::from_fn(|a, _| x[a] - l[a] * (x[a] / l[a]).floor())
+                Vec3::from_fn(|a, _| super::contact::wrap_into(x[a], l[a]))
             })
         };
-        let wrapped: Vec<Vec3> = pos.iter().map(|p| wrap(&v(p))).collect();
+        let wrapped = listing.wrapped;
         for &(c, mid, rho, _) in &balls {
             let (midw, rho2) = (wrap(&mid), (rho * (1.0 + 1e-9)).powi(2));
             spheres.near(&mid, |k| {
-                if !in_ball(&wrapped[k as usize], &midw, size, rho2) {
+                if !in_ball(&v(&wrapped[k as usize]), &midw, size, rho2) {
                     return;
                 }
                 let sid = ids[k as usize];
@@ -437,7 +433,7 @@ impl GridPart {
             .list
             .iter()
             .flat_map(|it| [it.id1, it.id2])
-            .filter_map(|id| slot.get(&id).map(|&k| (k, id)))
+            .filter_map(|id| listing.slot_of(id).map(|k| (k, id)))
             .collect();
         touched.sort_unstable();
         touched.dedup();
@@ -541,7 +537,7 @@ mod tests {
         let mut mt = rand_mt::Mt64::new(7);
         let mut rnd = || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         let l = Vec3::new(0.3, 0.31, 1.17);
-        let wrap = |x: &Vec3| Vec3::from_fn(|a, _| x[a] - l[a] * (x[a] / l[a]).floor());
+        let wrap = |x: &Vec3| Vec3::from_fn(|a, _| super::super::contact::wrap_into(x[a], l[a]));
         let (mut inside, mut outside) = (0, 0);
         for _ in 0..200_000 {
             let c = Vec3::from_fn(|a, _| l[a] * (6.0 * rnd() - 3.0));

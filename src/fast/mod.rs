@@ -134,6 +134,42 @@ pub struct FastSim {
     pub timing: Timing,
 }
 
+/// The spheres as a list build leaves them (the fast path's slots, spatially sorted), for the
+/// boundaries' and the grid's candidate lists.
+pub(super) struct Listing<'a> {
+    pub ids: &'a [u32],
+    /// Scene id -> slot (u32::MAX: no sphere of the fast path).
+    pub slot: Vec<u32>,
+    pub pos: &'a [V3],
+    /// `pos` wrapped into the periodic cell (`neighbors::Built::wrapped`).
+    pub wrapped: &'a [V3],
+    pub rad: &'a [f64],
+}
+
+impl<'a> Listing<'a> {
+    pub fn new(ids: &'a [u32], pos: &'a [V3], wrapped: &'a [V3], rad: &'a [f64]) -> Listing<'a> {
+        let mut slot = vec![u32::MAX; ids.iter().map(|&id| id as usize + 1).max().unwrap_or(0)];
+        for (k, &id) in ids.iter().enumerate() {
+            slot[id as usize] = k as u32;
+        }
+        Listing {
+            ids,
+            slot,
+            pos,
+            wrapped,
+            rad,
+        }
+    }
+
+    /// The slot of scene body `id`, when it is one of the fast path's spheres.
+    pub fn slot_of(&self, id: u32) -> Option<u32> {
+        self.slot
+            .get(id as usize)
+            .copied()
+            .filter(|&k| k != u32::MAX)
+    }
+}
+
 /// Where the fast path's time goes (wall clock, summed over steps).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct Timing {
@@ -900,10 +936,10 @@ impl FastSim {
                 self.pairs.iter().map(state).collect()
             };
         }
-        self.bnd
-            .rebuild(&self.ids, &self.pos, &self.radius, self.skin);
+        let listing = Listing::new(&self.ids, &self.pos, &built.wrapped, &self.radius);
+        self.bnd.rebuild(&listing, self.skin);
         if let Some(g) = &mut self.grid {
-            g.rebuild(&self.ids, &self.pos, &self.radius, self.skin);
+            g.rebuild(&listing, self.skin);
         }
         self.x_ref = self.pos.clone();
         self.max_disp2 = 0.0;

@@ -68,11 +68,7 @@ impl Grid {
     #[inline]
     fn wrap(&self, p: &V3) -> V3 {
         match self.period {
-            Some(l) => [
-                p[0] - l[0] * (p[0] / l[0]).floor(),
-                p[1] - l[1] * (p[1] / l[1]).floor(),
-                p[2] - l[2] * (p[2] / l[2]).floor(),
-            ],
+            Some(l) => std::array::from_fn(|k| super::contact::wrap_into(p[k], l[k])),
             None => *p,
         }
     }
@@ -126,6 +122,8 @@ pub struct Built {
     pub shifts: Vec<V3>,
     /// The integer period of each shift (for exchanging contacts with the YADE-order path).
     pub shift_cells: Vec<[i32; 3]>,
+    /// The positions in the new order, wrapped into the periodic cell (as given without one).
+    pub wrapped: Vec<V3>,
 }
 
 /// Sort the bodies by cell and list every pair closer than `r_i + r_j + skin` (minimum image in a
@@ -258,6 +256,7 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
         pairs,
         shifts,
         shift_cells,
+        wrapped: ws,
     }
 }
 
