@@ -15,12 +15,18 @@
 //! confidence is the BIC weight, and the gap before/after is measured on the later (held-out) cycles.
 
 use anyhow::{bail, Context, Result};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Observables compared, in the observed file's units after conversion to mm / -.
-pub const OBSERVABLES: [&str; 4] = ["rut_mm", "porosity", "rebound_mm", "grid_settlement_mm"];
+pub const OBSERVABLES: [&str; 5] = [
+    "rut_mm",
+    "porosity",
+    "rebound_mm",
+    "grid_settlement_mm",
+    "tracking_kpa",
+];
 
 /// Cumulative observables (rut, grid settlement, porosity under the piston) carry a specimen's
 /// offset from cycle to cycle, so their successive levels are strongly correlated: a residual
@@ -38,6 +44,9 @@ pub struct Series {
     /// Settlement of the geogrid level since the end of seating [mm, positive down] (a settlement
     /// gauge on the grid; case G only).
     pub grid_settlement_mm: Option<Vec<f64>>,
+    /// RMS of (applied - target) plate pressure over each cycle [kPa] (the load trace a plate test
+    /// records; in the study, the PI piston's filtered pressure against its haversine target).
+    pub tracking_kpa: Option<Vec<f64>>,
 }
 
 impl Series {
@@ -47,7 +56,42 @@ impl Series {
             "porosity" => self.porosity.as_ref(),
             "rebound_mm" => self.rebound_mm.as_ref(),
             "grid_settlement_mm" => self.grid_settlement_mm.as_ref(),
+            "tracking_kpa" => self.tracking_kpa.as_ref(),
             _ => None,
+        }
+    }
+    /// Replace observable `obs` by `v` where this series has it (the rut always).
+    pub fn set_where_present(&mut self, obs: &str, v: Vec<f64>) {
+        let slot = match obs {
+            "rut_mm" => {
+                self.rut_mm = v;
+                return;
+            }
+            "porosity" => &mut self.porosity,
+            "rebound_mm" => &mut self.rebound_mm,
+            "grid_settlement_mm" => &mut self.grid_settlement_mm,
+            "tracking_kpa" => &mut self.tracking_kpa,
+            _ => return,
+        };
+        if slot.is_some() {
+            *slot = Some(v);
+        }
+    }
+    /// Drop the observables `like` does not have (the rut stays).
+    pub fn restricted_to(&self, like: &Series) -> Series {
+        let keep = |o: &str, v: &Option<Vec<f64>>| {
+            if like.get(o).is_some() {
+                v.clone()
+            } else {
+                None
+            }
+        };
+        Series {
+            rut_mm: self.rut_mm.clone(),
+            porosity: keep("porosity", &self.porosity),
+            rebound_mm: keep("rebound_mm", &self.rebound_mm),
+            grid_settlement_mm: keep("grid_settlement_mm", &self.grid_settlement_mm),
+            tracking_kpa: keep("tracking_kpa", &self.tracking_kpa),
         }
     }
     pub fn cycles(&self) -> usize {
@@ -90,6 +134,7 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         (None, Some(c)) => (Some(c), 1e3),
         _ => (None, 1.0),
     };
+    let c_track = col(&["tracking_kPa", "tracking_rms_kPa"]);
     for h in &head {
         let known = [
             "cycle",
@@ -101,6 +146,8 @@ pub fn read_observed(path: &Path) -> Result<Series> {
             "rebound_m",
             "grid_settlement_mm",
             "grid_settlement_m",
+            "tracking_kPa",
+            "tracking_rms_kPa",
         ];
         if !known.contains(&h.as_str()) {
             bail!(
@@ -115,6 +162,7 @@ pub fn read_observed(path: &Path) -> Result<Series> {
     let mut por = Vec::new();
     let mut reb = Vec::new();
     let mut grid = Vec::new();
+    let mut track = Vec::new();
     for (i, r) in rd.records().enumerate() {
         let r = r.with_context(|| format!("{}: record {} is malformed", path.display(), i + 1))?;
         let num = |c: usize, what: &str| -> Result<f64> {
@@ -157,6 +205,15 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         if let Some(c) = c_grid {
             grid.push(num(c, "grid settlement")? * grid_scale);
         }
+        if let Some(c) = c_track {
+            // cycle 0 (the end of seating) has no load cycle: its tracking error may be empty
+            let t = r.get(c).unwrap_or("").trim();
+            track.push(if i == 0 && (t.is_empty() || t == "nan") {
+                f64::NAN
+            } else {
+                num(c, "tracking error")?
+            });
+        }
     }
     if s.rut_mm.len() < 3 {
         bail!("{}: at least cycles 0-2 are needed", path.display());
@@ -164,6 +221,7 @@ pub fn read_observed(path: &Path) -> Result<Series> {
     s.porosity = c_por.map(|_| por);
     s.rebound_mm = c_reb.map(|_| reb);
     s.grid_settlement_mm = c_grid.map(|_| grid);
+    s.tracking_kpa = c_track.map(|_| track);
     Ok(s)
 }
 
@@ -189,6 +247,7 @@ pub fn series_of_history(path: &Path) -> Result<Series> {
             .iter()
             .map(|r| Some((h[0].grid_z_m? - r.grid_z_m?) * 1e3))
             .collect(),
+        tracking_kpa: Some(h.iter().map(|r| r.tracking_rms_kpa).collect()),
     })
 }
 
@@ -227,12 +286,36 @@ fn value(s: &Series, obs: &str, c: usize) -> Option<f64> {
         .filter(|v| v.is_finite())
 }
 
+/// The quantity a residual compares at cycle c of observable OBSERVABLES[oi]: the increment of a
+/// cumulative observable, the level of the rebound.
+fn residual_quantity(sr: &Series, oi: usize, c: usize) -> Option<f64> {
+    let o = OBSERVABLES[oi];
+    if cumulative(o) {
+        Some(value(sr, o, c)? - value(sr, o, c.checked_sub(1)?)?)
+    } else {
+        value(sr, o, c)
+    }
+}
+
 fn mean_at(v: &[Series], obs: &str, c: usize) -> Option<f64> {
     let xs: Vec<f64> = v.iter().filter_map(|s| value(s, obs, c)).collect();
     (!xs.is_empty()).then(|| crate::harness::study::mean_sd(&xs).0)
 }
 
 impl Library {
+    /// The library with only the observables `like` has (every run's series restricted).
+    pub fn restricted_to(&self, like: &Series) -> Library {
+        let r = |v: &Vec<Series>| v.iter().map(|s| s.restricted_to(like)).collect();
+        Library {
+            effects: self.effects.clone(),
+            baseline: r(&self.baseline),
+            baseline_seeds: self.baseline_seeds.clone(),
+            runs: self.runs.iter().map(|(k, v)| (k.clone(), r(v))).collect(),
+            run_seeds: self.run_seeds.clone(),
+            unpaired: self.unpaired.clone(),
+        }
+    }
+
     /// Is effect `knob` paired with the baseline (its runs reuse the baseline specimens)?
     fn paired(&self, knob: &str) -> bool {
         !self.unpaired.iter().any(|u| u == knob)
@@ -286,6 +369,7 @@ impl Library {
         let abs_floor = match obs {
             "porosity" => 1e-3,
             "rut_mm" => 0.2,
+            "tracking_kpa" => 0.2,
             _ => 0.05,
         };
         sd.max(0.02 * m.abs()).max(abs_floor)
@@ -310,6 +394,42 @@ impl Library {
             _ => 0.02,
         };
         sd.max(0.05 * m.abs()).max(abs_floor)
+    }
+
+    /// Scatter of the paired differences (run - baseline run of the same specimen) of the residual
+    /// quantity, pooled over every paired group: per observable (OBSERVABLES) and cycle 0..=last,
+    /// (sum of squared deviations, degrees of freedom).
+    pub fn paired_scatter(&self, last: usize) -> Vec<Vec<(f64, f64)>> {
+        let mut pd = vec![vec![(0.0, 0.0); last + 1]; OBSERVABLES.len()];
+        for ((knob, k), runs) in &self.runs {
+            let Some(seeds) = self.run_seeds.get(&(knob.clone(), *k)) else {
+                continue;
+            };
+            if !self.paired(knob) {
+                continue;
+            }
+            for (oi, row) in pd.iter_mut().enumerate() {
+                for (c, acc) in row.iter_mut().enumerate() {
+                    let d: Vec<f64> = seeds
+                        .iter()
+                        .zip(runs)
+                        .filter_map(|(sd, run)| {
+                            let i = self.baseline_seeds.iter().position(|b| b == sd)?;
+                            Some(
+                                residual_quantity(run, oi, c)?
+                                    - residual_quantity(&self.baseline[i], oi, c)?,
+                            )
+                        })
+                        .collect();
+                    if d.len() >= 2 {
+                        let (_, sd) = crate::harness::study::mean_sd(&d);
+                        acc.0 += sd * sd * (d.len() - 1) as f64;
+                        acc.1 += (d.len() - 1) as f64;
+                    }
+                }
+            }
+        }
+        pd
     }
 
     /// Noise of the quantity a residual compares at cycle c (>= 1): the increment of a cumulative
@@ -439,48 +559,7 @@ impl Surrogate {
             })
             .collect();
         let noise_of = |oi: usize, c: usize| noise[oi][c];
-        // the quantity a residual compares: the rut increment, the other observables' levels
-        let q = |sr: &Series, oi: usize, c: usize| -> Option<f64> {
-            if cumulative(OBSERVABLES[oi]) {
-                Some(
-                    value(sr, OBSERVABLES[oi], c)? - value(sr, OBSERVABLES[oi], c.checked_sub(1)?)?,
-                )
-            } else {
-                value(sr, OBSERVABLES[oi], c)
-            }
-        };
-        let paired_knob = |knob: &str| {
-            !lib.unpaired.iter().any(|u| u == knob)
-                && lib.baseline_seeds.len() == lib.baseline.len()
-        };
-        // paired differences (run - baseline run of the same specimen): their scatter, pooled over
-        // every paired group, per observable and cycle
-        let mut pd = vec![vec![(0.0, 0.0); last + 1]; nobs];
-        for ((knob, k), runs) in &lib.runs {
-            let Some(seeds) = lib.run_seeds.get(&(knob.clone(), *k)) else {
-                continue;
-            };
-            if !paired_knob(knob) {
-                continue;
-            }
-            for (oi, row) in pd.iter_mut().enumerate() {
-                for (c, acc) in row.iter_mut().enumerate() {
-                    let d: Vec<f64> = seeds
-                        .iter()
-                        .zip(runs)
-                        .filter_map(|(sd, run)| {
-                            let i = lib.baseline_seeds.iter().position(|b| b == sd)?;
-                            Some(q(run, oi, c)? - q(&lib.baseline[i], oi, c)?)
-                        })
-                        .collect();
-                    if d.len() >= 2 {
-                        let (_, sd) = crate::harness::study::mean_sd(&d);
-                        acc.0 += sd * sd * (d.len() - 1) as f64;
-                        acc.1 += (d.len() - 1) as f64;
-                    }
-                }
-            }
-        }
+        let pd = lib.paired_scatter(last);
         let n_base = lib.baseline.len().max(1);
         let shift_var = lib
             .effects
@@ -499,7 +578,7 @@ impl Surrogate {
                                 .map(|c| {
                                     let sig2 = noise_of(oi, c).powi(2);
                                     let (ss, dof) = pd[oi][c];
-                                    if paired_knob(&e.knob) && dof > 0.0 {
+                                    if lib.paired(&e.knob) && dof > 0.0 {
                                         (ss / dof) / n
                                     } else {
                                         sig2 * (1.0 / n + 1.0 / n_base as f64)
@@ -691,12 +770,7 @@ impl Surrogate {
             let v: Vec<f64> = (0..=self.last)
                 .map(|c| self.predict(&[], oi, c).unwrap_or(f64::NAN))
                 .collect();
-            match *o {
-                "rut_mm" => b.rut_mm = v,
-                "porosity" => b.porosity = b.porosity.as_ref().map(|_| v),
-                "rebound_mm" => b.rebound_mm = b.rebound_mm.as_ref().map(|_| v),
-                _ => b.grid_settlement_mm = b.grid_settlement_mm.as_ref().map(|_| v),
-            }
+            b.set_where_present(o, v);
         }
         self.residuals(&b, effects, cycles)
             .iter()
@@ -872,6 +946,7 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
     for (o, phase) in [
         ("rebound_mm", "resilient rebound within each cycle"),
         ("grid_settlement_mm", "settlement of the geogrid level"),
+        ("tracking_kpa", "pressure tracking error within each cycle"),
     ] {
         if obs.get(o).is_some() {
             push(
@@ -1148,6 +1223,64 @@ pub fn fit_models(
     }
 }
 
+/// Variance an effect's shift estimate may add to a residual, as a fraction of one run's noise
+/// variance, on average over the fitted observables and cycles (issue 20: the number of seeds is
+/// chosen from the measured noise). A shift is the mean of n paired differences (run - baseline
+/// run of the same specimen), so its variance is s_d^2 / n, s_d the pooled scatter of those
+/// differences; the fit's chi2 then grows by mean(s_d^2 / noise^2) / n over its noise-only value.
+pub const SHIFT_VAR: f64 = 0.1;
+
+/// The seed counts chosen from a library's measured noise.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SeedChoice {
+    /// Effect seeds: the smallest n with mean(s_d^2 / noise^2) / n <= `SHIFT_VAR`.
+    pub effect: usize,
+    /// Baseline seeds: the baseline mean enters every residual with variance noise^2 / n_base,
+    /// so n_base >= 1 / `SHIFT_VAR`, and every effect seed needs its baseline run.
+    pub baseline: usize,
+    /// mean(s_d^2 / noise^2) over the fitted observables and cycles.
+    pub mean_ratio2: f64,
+    /// Where s_d / noise is largest: (observable, cycle, ratio).
+    pub worst: (String, usize, f64),
+    /// Degrees of freedom of the pooled paired scatter (smallest over the cells).
+    pub dof: f64,
+}
+
+/// The seeds this library's noise asks for (None without paired runs of 2+ seeds): from the pooled
+/// paired scatter s_d and the noise of one run on cycles 1..=fit_cycles of every observable the
+/// baseline has.
+pub fn seeds_needed(lib: &Library, fit_cycles: usize) -> Option<SeedChoice> {
+    let last = lib.last_cycle().min(fit_cycles);
+    let pd = lib.paired_scatter(last);
+    let (mut sum, mut cells, mut min_dof) = (0.0, 0usize, f64::INFINITY);
+    let mut worst: Option<(String, usize, f64)> = None;
+    for (o, row) in OBSERVABLES.iter().zip(&pd) {
+        for (c, &(ss, dof)) in row.iter().enumerate().skip(1) {
+            if dof <= 0.0 || lib.baseline_mean(o, c).is_none() {
+                continue;
+            }
+            let ratio = (ss / dof).sqrt() / lib.residual_noise(o, c);
+            sum += ratio * ratio;
+            cells += 1;
+            min_dof = min_dof.min(dof);
+            if worst.as_ref().is_none_or(|w| ratio > w.2) {
+                worst = Some((o.to_string(), c, ratio));
+            }
+        }
+    }
+    let worst = worst?;
+    let mean_ratio2 = sum / cells as f64;
+    let effect = ((mean_ratio2 / SHIFT_VAR) * (1.0 - 1e-12)).ceil().max(2.0) as usize;
+    let baseline = effect.max((1.0 / SHIFT_VAR).round() as usize);
+    Some(SeedChoice {
+        effect,
+        baseline,
+        mean_ratio2,
+        worst,
+        dof: min_dof,
+    })
+}
+
 /// Detectability floor of the blind-dataset design: the first hidden effect's noiseless signal on
 /// the fitted cycles (sqrt of the chi2 it adds, after the noise inflation) must be at least this.
 pub const DETECTABILITY_FLOOR: f64 = 5.0;
@@ -1269,6 +1402,9 @@ pub fn calibrated_penalties(lib: &Library, fit_cycles: usize) -> Penalties {
 }
 
 pub fn diagnose(lib: &Library, obs: &Series, fit_cycles: usize) -> Result<Diagnosis> {
+    // the library as the observation sees it: calibration, detectability and fits on the
+    // observables it has
+    let lib = &lib.restricted_to(obs);
     diagnose_with(lib, obs, fit_cycles, &calibrated_penalties(lib, fit_cycles))
 }
 
@@ -1659,6 +1795,7 @@ mod tests {
             porosity: None,
             rebound_mm: None,
             grid_settlement_mm: None,
+            tracking_kpa: None,
         }
     }
 
@@ -1717,6 +1854,96 @@ mod tests {
         assert_eq!(d.winner, "none");
     }
 
+    /// The effect-seed count follows the measured noise: runs whose increments scatter sigma from
+    /// seed to seed and whose effect runs differ from their own baseline run by an independent
+    /// scatter tau give n = ceil((tau / sigma)^2 / SHIFT_VAR) (here 14.4 -> 15, 14 with the
+    /// estimate's few % of error, and 2.5 -> 3), and the baseline's count never falls under
+    /// 1 / SHIFT_VAR. Comparing unpaired runs (ratio^2 = 1 + tau^2 / sigma^2) would ask for 25 and 13.
+    #[test]
+    fn seed_counts_follow_the_paired_scatter() {
+        let mut mt = rand_mt::Mt64::new(11);
+        let mut gauss = move || {
+            let u1 = ((mt.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
+            let u2 = (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+            (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+        };
+        for (tau, want) in [(1.2, 14..=15usize), (0.5, 3..=3)] {
+            let (sigma, cycles, n_base, n_eff) = (1.0, 4, 300, 100);
+            let cum = |inc: &[f64]| -> Vec<f64> {
+                std::iter::once(0.0)
+                    .chain(inc.iter().scan(0.0, |a, x| {
+                        *a += x;
+                        Some(*a)
+                    }))
+                    .collect()
+            };
+            let mut lib = Library {
+                effects: (0..2)
+                    .map(|e| Effect {
+                        knob: format!("e{e}"),
+                        meaning: String::new(),
+                        zero: 0.0,
+                        strengths: vec![0.5, 1.0],
+                    })
+                    .collect(),
+                ..Default::default()
+            };
+            let base_inc: Vec<Vec<f64>> = (0..n_base)
+                .map(|_| (0..cycles).map(|_| 3.0 + sigma * gauss()).collect())
+                .collect();
+            lib.baseline = base_inc.iter().map(|i| ser(&cum(i))).collect();
+            lib.baseline_seeds = (1..=n_base as u32).collect();
+            for e in 0..2 {
+                for (k, st) in [0.5, 1.0].iter().enumerate() {
+                    let runs = (0..n_eff)
+                        .map(|s| {
+                            let inc: Vec<f64> = base_inc[s]
+                                .iter()
+                                .map(|x| x + st * (e + 1) as f64 + tau * gauss())
+                                .collect();
+                            ser(&cum(&inc))
+                        })
+                        .collect();
+                    lib.runs.insert((format!("e{e}"), k), runs);
+                    lib.run_seeds
+                        .insert((format!("e{e}"), k), (1..=n_eff as u32).collect());
+                }
+            }
+            let c = seeds_needed(&lib, cycles).unwrap();
+            assert!(want.contains(&c.effect), "tau {tau}: {c:?}");
+            assert!(
+                (c.mean_ratio2 - tau * tau).abs() < 0.08 * tau * tau,
+                "{c:?}"
+            );
+            assert_eq!(c.baseline, c.effect.max(10), "{c:?}");
+        }
+    }
+
+    /// The tracking error column: kPa per cycle, empty or nan only at cycle 0 (no load cycle yet);
+    /// a library restricted to an observation without it drops it from every run.
+    #[test]
+    fn tracking_error_column() {
+        let dir = std::env::temp_dir().join(format!("ryade_gap_track_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("o.csv");
+        std::fs::write(&f, "cycle,rut_mm,tracking_kPa\n0,0,nan\n1,2,27.5\n2,3,30\n").unwrap();
+        let o = read_observed(&f).unwrap();
+        let t = o.tracking_kpa.as_ref().unwrap();
+        assert!(t[0].is_nan() && t[1] == 27.5 && t[2] == 30.0);
+        assert_eq!(value(&o, "tracking_kpa", 0), None);
+        std::fs::write(&f, "cycle,rut_mm,tracking_kPa\n0,0,\n1,2,nan\n2,3,30\n").unwrap();
+        let e = read_observed(&f).unwrap_err().to_string();
+        assert!(e.contains("record 2: tracking error"), "{e}");
+        let mut lib = one_effect_library("x");
+        let mut run = ser(&[0.0, 1.0, 2.0]);
+        run.tracking_kpa = Some(vec![f64::NAN, 5.0, 6.0]);
+        lib.baseline = vec![run.clone(), run];
+        let r = lib.restricted_to(&ser(&[0.0, 1.0, 2.0]));
+        assert!(r.baseline.iter().all(|s| s.tracking_kpa.is_none()));
+        assert!(lib.restricted_to(&o).baseline[0].tracking_kpa.is_some());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     /// Tabulated chi2(1) upper quantiles: 3.841 at 5 %, 6.635 at 1 %, 10.828 at 0.1 %; the
     /// Bonferroni penalty for 6 candidates is the 0.05/6 quantile, 6.96 (z = 2.638).
     #[test]
@@ -1756,6 +1983,7 @@ mod tests {
             porosity: None,
             rebound_mm: Some((0..8).map(|c| if c == 0 { 0.0 } else { reb }).collect()),
             grid_settlement_mm: None,
+            tracking_kpa: None,
         };
         let e = |k: &str| Effect {
             knob: k.into(),
@@ -1794,6 +2022,7 @@ mod tests {
             porosity: Some((0..10).map(|c| 0.40 - c as f64 * (0.001 + por)).collect()),
             rebound_mm: None,
             grid_settlement_mm: None,
+            tracking_kpa: None,
         };
         let mut lib = one_effect_library("loose");
         lib.baseline = vec![mk(4.9, 0.0, -0.001), mk(5.0, 0.0, 0.0), mk(5.1, 0.0, 0.001)];

@@ -243,10 +243,118 @@ pub struct LibraryIndex {
     /// yade-order).
     #[serde(default = "yade_order")]
     pub engine: String,
+    /// The seed counts chosen from the measured noise (absent when the counts were given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed_choice: Option<gap::SeedChoice>,
 }
 
 fn yade_order() -> String {
     "yade-order".into()
+}
+
+/// Seed counts of a library build: given, or (None) chosen from the measured noise.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SeedCounts {
+    pub baseline: Option<u32>,
+    pub effect: Option<u32>,
+}
+
+/// Effect seeds of the pilot from which the noise is measured (2 degrees of freedom per paired
+/// group: 30+ over the catalogue's paired groups).
+pub const PILOT_EFFECT_SEEDS: u32 = 3;
+/// Most effect seeds the noise may ask for (a scenario whose runs decorrelate completely asks
+/// for 2 / `gap::SHIFT_VAR` = 20; beyond this cap the surrogate carries the larger shift variance).
+pub const MAX_AUTO_SEEDS: u32 = 40;
+
+/// Build (or complete) a library (`run_library`). Seed counts not given are chosen from the
+/// measured noise (issue 20): a pilot runs the baseline (at least 1 / `gap::SHIFT_VAR` seeds) and
+/// every effect at `PILOT_EFFECT_SEEDS` seeds (or the seeds an existing library already has);
+/// `gap::seeds_needed` reads the scatter of the paired differences on the fitted cycles and the
+/// library is completed to the counts it asks for (at most `MAX_AUTO_SEEDS`).
+#[allow(clippy::too_many_arguments)]
+pub fn make_library(
+    root: &Path,
+    dir: &Path,
+    sc: &Scenario,
+    seeds: SeedCounts,
+    fit_cycles: usize,
+    fast: bool,
+    jobs: usize,
+) -> Result<()> {
+    let old: Option<LibraryIndex> = std::fs::read_to_string(dir.join("library.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok());
+    let had = |f: fn(&LibraryIndex) -> usize| old.as_ref().map_or(0, f) as u32;
+    let min_base = (1.0 / gap::SHIFT_VAR).round() as u32;
+    let range = |n: u32| (1..=n).collect::<Vec<u32>>();
+    let e0 = seeds
+        .effect
+        .unwrap_or_else(|| PILOT_EFFECT_SEEDS.max(had(|i| i.effect_seeds.len())));
+    let b0 = seeds
+        .baseline
+        .unwrap_or_else(|| min_base.max(had(|i| i.baseline_seeds.len())).max(e0));
+    if seeds.effect.is_some() {
+        let kept = old.as_ref().and_then(|i| i.seed_choice.clone());
+        return run_library(root, dir, sc, &range(b0), &range(e0), kept, fast, jobs);
+    }
+    eprintln!(
+        "[gap] pilot: {} baseline seeds, {} effect seeds (the noise they measure sets the counts)",
+        b0, e0
+    );
+    run_library(root, dir, sc, &range(b0), &range(e0), None, fast, jobs)?;
+    let (_, lib) = load_library(dir)?;
+    let Some(choice) = gap::seeds_needed(&lib, fit_cycles) else {
+        bail!(
+            "{}: the pilot left no paired effect runs of 2+ seeds to measure the noise from (see the runs' logs)",
+            dir.display()
+        );
+    };
+    let e1 = (choice.effect as u32).clamp(e0, MAX_AUTO_SEEDS.max(e0));
+    let b1 = match seeds.baseline {
+        Some(b) => b.max(e1),
+        None => b0.max(choice.baseline as u32).max(e1),
+    };
+    eprintln!("[gap] {}", format_seed_choice(&choice, fit_cycles));
+    if (choice.effect as u32) > MAX_AUTO_SEEDS {
+        eprintln!(
+            "[gap] warning: capped at {} effect seeds: the fits carry the larger variance of the library's shifts",
+            MAX_AUTO_SEEDS
+        );
+    }
+    if seeds.baseline.is_some_and(|b| b < e1) {
+        eprintln!(
+            "[gap] {} baseline seeds: every effect seed needs its baseline run",
+            b1
+        );
+    }
+    run_library(
+        root,
+        dir,
+        sc,
+        &range(b1),
+        &range(e1),
+        Some(choice),
+        fast,
+        jobs,
+    )
+}
+
+/// One line on the seed counts a library's noise asks for.
+pub fn format_seed_choice(c: &gap::SeedChoice, fit_cycles: usize) -> String {
+    format!(
+        "the paired differences (effect run - baseline run of the same specimen) scatter {:.2} times one run's noise \
+         (RMS over the observables and cycles 1-{}; largest {:.2}, {} at cycle {}; {:.0}+ degrees of freedom): \
+         {} effect seeds keep the variance of the library's shifts under {:.0} % of the noise's, {} baseline seeds that of its mean",
+        c.mean_ratio2.sqrt(),
+        fit_cycles,
+        c.worst.2,
+        c.worst.0,
+        c.worst.1,
+        c.dof,
+        c.effect,
+        100.0 * gap::SHIFT_VAR,
+        c.baseline
+    )
 }
 
 /// Build (or complete) a library: baseline seeds + each effect at its strengths for `effect_seeds`
@@ -256,12 +364,14 @@ fn yade_order() -> String {
 /// the baseline specimen of the same seed (common random numbers: the effect's run differs from its
 /// baseline run by the effect alone, which the paired surrogate of `gap::Library` uses); an effect
 /// that changes the generation (grading) generates its own specimen.
-pub fn make_library(
+#[allow(clippy::too_many_arguments)]
+fn run_library(
     root: &Path,
     dir: &Path,
     sc: &Scenario,
     baseline_seeds: &[u32],
     effect_seeds: &[u32],
+    seed_choice: Option<gap::SeedChoice>,
     fast: bool,
     jobs: usize,
 ) -> Result<()> {
@@ -351,6 +461,7 @@ pub fn make_library(
         effect_seeds: effect_seeds.to_vec(),
         effects,
         engine: engine.into(),
+        seed_choice,
     };
     let run_engine = if fast {
         RunEngine::RyadeFast
@@ -675,9 +786,10 @@ pub fn make_observed(
         std::fs::create_dir_all(&cdir)?;
         let mut f = std::fs::File::create(cdir.join("observed.csv"))?;
         let grid = s.grid_settlement_mm.clone();
+        let track = s.tracking_kpa.clone().unwrap_or_default();
         writeln!(
             f,
-            "cycle,rut_mm,porosity,rebound_mm{}",
+            "cycle,rut_mm,porosity,rebound_mm{},tracking_kPa",
             if grid.is_some() {
                 ",grid_settlement_mm"
             } else {
@@ -696,7 +808,11 @@ pub fn make_observed(
             if let Some(g) = &grid {
                 write!(f, ",{:.17e}", g[c])?;
             }
-            writeln!(f)?;
+            // cycle 0 (end of seating) has no load cycle: nan
+            match track.get(c) {
+                Some(t) if t.is_finite() => writeln!(f, ",{:.17e}", t)?,
+                _ => writeln!(f, ",nan")?,
+            }
         }
     }
     Ok(())
@@ -739,6 +855,23 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
         DETECTABILITY_FLOOR,
         fit_cycles
     );
+    // the library's seeds against those its noise asks for
+    let have = lib.runs.values().map(|v| v.len()).max().unwrap_or(0);
+    if let Some(c) = gap::seeds_needed(lib, fit_cycles) {
+        s = format!(
+            "{}Seeds: {} baseline, {} per effect strength; {}{}\n\n{}",
+            &s[..s.find("noise inflation").unwrap_or(0)],
+            lib.baseline.len(),
+            have,
+            format_seed_choice(&c, fit_cycles),
+            if have < c.effect || lib.baseline.len() < c.baseline {
+                " (complete the library with --make-library to reach them)"
+            } else {
+                ""
+            },
+            &s[s.find("noise inflation").unwrap_or(0)..]
+        );
+    }
     for r in detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR) {
         s += &format!(
             "| {} | {:.1} ({}) | {} |\n",
@@ -818,11 +951,25 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             dir.display()
         );
     }
-    // 1. blind: every diagnosis is made and written before any truth file is opened
-    let pen = gap::calibrated_penalties(lib, fit_cycles);
+    // 1. blind: every diagnosis is made and written before any truth file is opened; the library
+    // as each observation sees it (its observables), penalties calibrated once per set of them
+    let mut pens: Vec<(Vec<bool>, gap::Penalties)> = Vec::new();
     let mut diags = Vec::new();
     for n in &names {
         let obs = gap::read_observed(&dir.join("cases").join(n).join("observed.csv"))?;
+        let lib = &lib.restricted_to(&obs);
+        let has: Vec<bool> = gap::OBSERVABLES
+            .iter()
+            .map(|o| obs.get(o).is_some())
+            .collect();
+        let pen = match pens.iter().find(|(h, _)| *h == has) {
+            Some((_, p)) => p.clone(),
+            None => {
+                let p = gap::calibrated_penalties(lib, fit_cycles);
+                pens.push((has, p.clone()));
+                p
+            }
+        };
         let d = gap::diagnose_with(lib, &obs, fit_cycles, &pen)?;
         std::fs::write(
             dir.join("cases").join(n).join("diagnosis.md"),
@@ -837,6 +984,7 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
     // 2. scoring
     let mut out = Vec::new();
     for (n, (obs, d)) in names.iter().zip(diags) {
+        let lib = &lib.restricted_to(&obs);
         let t: Truth = serde_json::from_str(&std::fs::read_to_string(
             dir.join("truth").join(format!("{}.json", n)),
         )?)?;
@@ -956,6 +1104,18 @@ pub fn format_scores(s: &[CaseScore]) -> String {
                 .collect(),
         ))
     };
+    // the same where there is a gap to close: today's model misses the held-out observable by
+    // more than one run's noise (a gap inside the noise cannot be reduced by a right model either)
+    let per_obs_gap = |o: &str| -> String {
+        let r: Vec<f64> = cat
+            .iter()
+            .filter(|c| c.named != "none")
+            .filter_map(|c| c.heldout_by_observable.iter().find(|h| h.observable == o))
+            .filter(|h| h.before > 1.0)
+            .map(|h| h.reduction)
+            .collect();
+        format!("{} ({})", pct(median(r.clone())), r.len())
+    };
     t += &format!(
         "\nDominant effect named correctly (\"none\" for today's model): {}/{} ({:.0} %)\n\
          Cases with hidden effects: {}; named correctly: {}; answered none: {}; named a wrong effect: {}\n\
@@ -988,7 +1148,8 @@ pub fn format_scores(s: &[CaseScore]) -> String {
          Detectable dominant effects named: {}/{} ({})\n\
          Dominant effects under the floor: {} (answered none {}, named it {}, named another {})\n\
          Wrong effect named: {} of {} cases with catalogue effects\n\
-         Median held-out gap reduction per observable, named cases: rut {}, porosity {}, rebound {}, grid settlement {}\n",
+         Median held-out gap reduction per observable, named cases: rut {}, porosity {}, rebound {}, grid settlement {}, tracking error {}\n\
+         The same where today's model misses the observable by more than one run's noise (held-out normalised RMS > 1; cases): rut {}, porosity {}, rebound {}, grid settlement {}, tracking error {}\n",
         DETECTABILITY_FLOOR,
         det.iter().filter(|c| c.named == c.dominant_truth).count(),
         det.len(),
@@ -1013,6 +1174,12 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         per_obs("porosity"),
         per_obs("rebound_mm"),
         per_obs("grid_settlement_mm"),
+        per_obs("tracking_kpa"),
+        per_obs_gap("rut_mm"),
+        per_obs_gap("porosity"),
+        per_obs_gap("rebound_mm"),
+        per_obs_gap("grid_settlement_mm"),
+        per_obs_gap("tracking_kpa"),
     );
     for c in s.iter().filter(|c| c.outside.is_some()) {
         t += &format!(
@@ -1085,7 +1252,11 @@ mod tests {
             size: "tiny".into(),
             cycles: 1,
         };
-        let e = make_library(Path::new("."), &dir, &sc, &[1], &[1], true, 1).unwrap_err();
+        let counts = SeedCounts {
+            baseline: Some(1),
+            effect: Some(1),
+        };
+        let e = make_library(Path::new("."), &dir, &sc, counts, 4, true, 1).unwrap_err();
         let msg = e.to_string();
         assert!(
             msg.contains("yade-order engine") && msg.contains("--engine yade-order"),

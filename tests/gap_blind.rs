@@ -42,6 +42,13 @@ fn medium_library_design_is_fixed_from_the_library() {
     let (idx, lib) = gap_run::load_library(&root.join("library_r07_G_medium_c6")).unwrap();
     assert_eq!(idx.baseline_seeds.len(), 12);
     assert_eq!(lib.baseline.len(), 12);
+    // the design served observations of rut, porosity, rebound and grid settlement
+    let full = lib;
+    let four =
+        gap::read_observed(&root.join("blind2028_r07_G_medium_c6/cases/case01/observed.csv"))
+            .unwrap();
+    assert!(four.tracking_kpa.is_none());
+    let lib = full.restricted_to(&four);
     let r = gap_run::detectable_ranges(&lib, 4, gap_run::DETECTABILITY_FLOOR);
     let get = |k: &str| r.iter().find(|x| x.knob == k).unwrap();
     for k in ["grading", "grid_soft", "friction"] {
@@ -70,6 +77,16 @@ fn medium_library_design_is_fixed_from_the_library() {
     assert_eq!(pen.null_drops1.len(), 12);
     assert!((pen.p1 - 7.165).abs() < 0.01, "{:?}", pen);
     assert!((pen.p2 - pen.bonferroni.1).abs() < 1e-12, "{:?}", pen);
+    // with the pressure tracking error as well (session 16), friction lowered by 9.8-10 degrees
+    // reaches the floor too (signal 5.2), and rolling from 0.0825
+    let r = gap_run::detectable_ranges(&full, 4, gap_run::DETECTABILITY_FLOOR);
+    let get = |k: &str| r.iter().find(|x| x.knob == k).unwrap();
+    let fr = &get("friction").intervals;
+    assert!(
+        fr.len() == 1 && (fr[0].0 + 9.8).abs() < 1e-9 && (fr[0].1 + 10.0).abs() < 1e-9,
+        "{fr:?}"
+    );
+    assert!((get("rolling").intervals[0].0 - 0.0825).abs() < 1e-9);
 }
 
 /// The final blind set (results/gap/blind2028_r07_G_medium_c6: Debian YADE, seed 2028, made after the
@@ -217,23 +234,26 @@ fn unfiltered_blind_set_2030() {
 }
 
 /// Issue 20's second scenario, r05 G medium (959 spheres): its library built by `compat gap
-/// --make-library --scenario r05` on the fast engine (results/gap/library_r05_G_medium_c6, 6.2 min on
-/// 2 cores), then an unfiltered blind set in Debian YADE (results/gap/blind2031u: seed 2031, 14 cases,
-/// 2 of today's model, 2 clump cases, two-effect cases; the method unchanged since blind2030u):
-/// all 5 detectable dominant effects named, no wrong effect, no false positive on YADE's own model
-/// (the fast engine's library carries no bias that reads as an effect), the effects under the floor
-/// answered "none"; held-out gap reductions rut 93 %, porosity 54 %, rebound 74 %, grid settlement 94 %.
+/// --make-library --scenario r05` on the fast engine (results/gap/library_r05_G_medium_c6), then an
+/// unfiltered blind set in Debian YADE (results/gap/blind2031u: seed 2031, 14 cases, 2 of today's
+/// model, 2 clump cases, two-effect cases). Scored once blind with the 4-seed library (session 15:
+/// 5/5, 0 wrong, 0 false positives; rut 93 %, porosity 54 %, rebound 74 %, grid settlement 94 %); since
+/// session 16 it is the dev set of two changes: the library completed to the 15 seeds its noise asks
+/// for (`gap::seeds_needed`) and the pressure tracking error as a fifth observable (its observed.csv
+/// files gained the column from the same YADE runs' history.csv). With both: the 5 detectable
+/// dominant effects named, no false positive on YADE's own model, but one grading case under the
+/// floor (signal 2.1) named damping -0.075 (its evidence 5.0 at the floor of 5; 4.9 with 14 seeds).
 #[test]
 fn second_scenario_r05_unfiltered_blind_set_2031() {
     let t = score_set_with("blind2031u_r05_G_medium_c6", "library_r05_G_medium_c6");
     for line in [
         "Detectable dominant effects named: 5/5 (100 %)",
-        "Dominant effects under the floor: 5 (answered none 5, named it 0, named another 0)",
-        "Wrong effect named: 0 of 10 cases with catalogue effects",
+        "Dominant effects under the floor: 5 (answered none 4, named it 0, named another 1)",
+        "Wrong effect named: 1 of 10 cases with catalogue effects",
         "Cases of today's model: 2; false positives (an effect named): 0",
         "Named cases whose held-out rut gets worse: 0",
-        "Outside the catalogue: case03 (clump 2): named rolling",
-        "Median held-out gap reduction per observable, named cases: rut 93 %, porosity 54 %, rebound 74 %, grid settlement 94 %",
+        "Median held-out gap reduction per observable, named cases: rut 89 %, porosity 28 %, rebound 62 %, grid settlement 74 %, tracking error 29 %",
+        "(held-out normalised RMS > 1; cases): rut 89 % (6), porosity 83 % (1), rebound 89 % (4), grid settlement 86 % (5), tracking error 23 % (1)",
     ] {
         assert!(t.contains(line), "{}\n{}", line, t);
     }

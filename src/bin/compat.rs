@@ -240,7 +240,7 @@ enum Cmd {
     /// effect explains it, how far adding it closes the gap on held-out cycles (yade_ref/gap/README.md).
     Gap {
         /// Observed history CSV (cycle, rut_mm|rut_m [, porosity, rebound_mm|rebound_m,
-        /// grid_settlement_mm|grid_settlement_m])
+        /// grid_settlement_mm|grid_settlement_m, tracking_kPa])
         #[arg(long)]
         observed: Option<PathBuf>,
         /// Diagnose every case of a blind dataset DIR (cases/ and, read only after diagnosing, truth/)
@@ -276,12 +276,15 @@ enum Cmd {
         /// library (library.json) unless --make-library builds it there
         #[arg(long)]
         library: Option<PathBuf>,
-        /// Library building: baseline runs (seeds 1..N) of today's model
-        #[arg(long, default_value_t = 12)]
-        baseline_seeds: u32,
-        /// Library building: runs (seeds 1..N) of each effect at each strength
-        #[arg(long, default_value_t = 4)]
-        effect_seeds: u32,
+        /// Library building: baseline runs (seeds 1..N) of today's model (default: chosen from the
+        /// measured noise, at least 10)
+        #[arg(long)]
+        baseline_seeds: Option<u32>,
+        /// Library building: runs (seeds 1..N) of each effect at each strength (default: chosen
+        /// from the noise a pilot of 3 seeds measures, so that the library's shifts add under 10 %
+        /// to the variance of a fit)
+        #[arg(long)]
+        effect_seeds: Option<u32>,
         /// Library building: ryade's engine, fast (every O.run the fast path can take, with the
         /// study's native piston engine: YADE's statistics, not its bits) or yade-order (YADE's bits).
         /// A library keeps the engine it was started with
@@ -817,8 +820,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
             });
             if make_library {
-                let b: Vec<u32> = (1..=baseline_seeds).collect();
-                let e: Vec<u32> = (1..=effect_seeds).collect();
+                if baseline_seeds.is_some_and(|b| b < 2) {
+                    bail!("--baseline-seeds must be at least 2 (the noise is their scatter)");
+                }
+                if effect_seeds == Some(0) {
+                    bail!("--effect-seeds must be at least 1");
+                }
+                let counts = gap_run::SeedCounts {
+                    baseline: baseline_seeds,
+                    effect: effect_seeds,
+                };
                 let (dir, cmd) = (
                     lib_dir.clone(),
                     std::env::args().collect::<Vec<_>>().join(" "),
@@ -830,7 +841,15 @@ fn run(cli: Cli) -> Result<ExitCode> {
                         cmd
                     )
                 });
-                gap_run::make_library(&root, &lib_dir, &sc, &b, &e, engine == "fast", jobs)?;
+                gap_run::make_library(
+                    &root,
+                    &lib_dir,
+                    &sc,
+                    counts,
+                    fit_cycles,
+                    engine == "fast",
+                    jobs,
+                )?;
             } else if !lib_dir.join("library.json").is_file() {
                 bail!(
                     "no gap library at {} ({} missing): give --library with the folder of an existing one \
@@ -873,6 +892,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             if let Some(f) = observed {
                 let obs = gap::read_observed(&f)?;
+                // the library as the observation sees it (its observables)
+                let lib = lib.restricted_to(&obs);
                 let d = gap::diagnose(&lib, &obs, fit_cycles)?;
                 std::fs::create_dir_all(&out)?;
                 let name = f.display().to_string();
