@@ -393,8 +393,9 @@ fn run_library(
     }
     if let Some(s) = effect_seeds.iter().find(|s| !baseline_seeds.contains(s)) {
         bail!(
-            "effect seed {} is not a baseline seed (effect runs reuse the baseline specimens)",
-            s
+            "effect seed {} is not a baseline seed (effect runs reuse the baseline specimens): give --baseline-seeds {} or more",
+            s,
+            effect_seeds.iter().max().copied().unwrap_or(0)
         );
     }
     // a checkout's committed YADE specimen saves the generation (without a checkout it is made)
