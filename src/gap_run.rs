@@ -112,6 +112,90 @@ pub struct Scenario {
     pub case: char,
     pub size: String,
     pub cycles: u32,
+    /// The user's test conditions where they are not the study's.
+    pub test: TestConditions,
+}
+
+/// A plate test's own conditions where they differ from the study's (issue 20: a user names the
+/// plate, the load and the layer of their test): study.py's `--piston-d`, `--seat-kpa`, `--peak-kpa`,
+/// `--layer`, `--freq`; None keeps the study's value (yade_ref/study/README.md).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TestConditions {
+    /// Plate (piston) diameter [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub piston_d: Option<f64>,
+    /// Seating pressure [kPa].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seat_kpa: Option<f64>,
+    /// Peak pressure [kPa].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_kpa: Option<f64>,
+    /// Base layer thickness [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layer: Option<f64>,
+    /// Load frequency [Hz].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub freq: Option<f64>,
+}
+
+impl TestConditions {
+    fn pairs(&self) -> Vec<(&'static str, f64)> {
+        [
+            ("piston_d", self.piston_d),
+            ("seat_kpa", self.seat_kpa),
+            ("peak_kpa", self.peak_kpa),
+            ("layer", self.layer),
+            ("freq", self.freq),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| Some((k, v?)))
+        .collect()
+    }
+
+    /// The study.py knob pairs (`piston_d=0.2,peak_kpa=550`; '' for the study's conditions).
+    pub fn knobs(&self) -> String {
+        self.pairs()
+            .iter()
+            .map(|(k, v)| format!("{}={}", k, v))
+            .collect::<Vec<_>>()
+            .join(",")
+    }
+
+    /// Whether they change the specimen itself (the layer and the frequency are specimen
+    /// parameters: study.py's SPECIMEN_PARAMS), so the study's committed specimens do not serve.
+    pub fn change_generation(&self) -> bool {
+        self.layer.is_some() || self.freq.is_some()
+    }
+
+    /// Folder-name suffix ('' for the study's conditions), e.g. `_piston_d0.2_peak_kpa550`.
+    pub fn tag(&self) -> String {
+        self.pairs()
+            .iter()
+            .map(|(k, v)| format!("_{}{}", k, v))
+            .collect()
+    }
+
+    /// Refuse values study.py cannot load (before any run starts).
+    pub fn check(&self) -> Result<()> {
+        for (k, v) in self.pairs() {
+            if !(v.is_finite() && v > 0.0) {
+                bail!("--{} {}: must be a positive number", k.replace('_', "-"), v);
+            }
+        }
+        // study.py's defaults (yade_ref/study/study.py: --seat-kpa 27.6, --peak-kpa 275.8)
+        let (seat, peak) = (
+            self.seat_kpa.unwrap_or(27.6),
+            self.peak_kpa.unwrap_or(275.8),
+        );
+        if peak <= seat {
+            bail!(
+                "the peak pressure ({} kPa) must exceed the seating pressure ({} kPa)",
+                peak,
+                seat
+            );
+        }
+        Ok(())
+    }
 }
 
 /// One table line.
@@ -172,7 +256,15 @@ fn run_missing(
     } else {
         ""
     };
+    // the test's conditions go to study.py with the effects, as its options
+    let test = sc.test.knobs();
     for l in &todo {
+        let knobs = [test.as_str(), l.effects.as_str()]
+            .iter()
+            .filter(|k| !k.is_empty())
+            .copied()
+            .collect::<Vec<_>>()
+            .join(",");
         writeln!(
             f,
             "{} {} '{}' '{}' {} {} '{}' '{}' {} '{}' '{}' '{}'",
@@ -185,7 +277,7 @@ fn run_missing(
             l.specimen,
             l.export,
             l.generate_only as u8,
-            l.effects,
+            knobs,
             controller,
             l.out.display()
         )?;
@@ -246,6 +338,52 @@ pub struct LibraryIndex {
     /// The seed counts chosen from the measured noise (absent when the counts were given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed_choice: Option<gap::SeedChoice>,
+    /// The test's conditions where they are not the study's (absent: the study's).
+    #[serde(default)]
+    pub test: TestConditions,
+}
+
+impl LibraryIndex {
+    /// The library's runs are of scenario `sc` (its study case, cycles and test conditions), or
+    /// which of them differs and what to give instead.
+    pub fn check_scenario(&self, sc: &Scenario) -> Result<()> {
+        let here = |ratio: &str, case: char, size: &str, cycles: u32, t: &TestConditions| {
+            let mut v = vec![
+                format!("--scenario {}", ratio),
+                format!("--case {}", case),
+                format!("--size {}", size),
+                format!("--cycles {}", cycles),
+            ];
+            v.extend(
+                t.pairs()
+                    .iter()
+                    .map(|(k, x)| format!("--{} {}", k.replace('_', "-"), x)),
+            );
+            v
+        };
+        let lib = here(
+            &self.scenario,
+            self.case,
+            &self.size,
+            self.cycles,
+            &self.test,
+        );
+        let asked = here(
+            &format!("r{:02}", sc.ratio),
+            sc.case,
+            &sc.size,
+            sc.cycles,
+            &sc.test,
+        );
+        if lib != asked {
+            bail!(
+                "the library was built for `{}`, not `{}`: give its options (or use another --library folder)",
+                lib.join(" "),
+                asked.join(" ")
+            );
+        }
+        Ok(())
+    }
 }
 
 fn yade_order() -> String {
@@ -390,6 +528,8 @@ fn run_library(
                 old.engine
             );
         }
+        old.check_scenario(sc)
+            .with_context(|| format!("completing the library in {}", dir.display()))?;
     }
     if let Some(s) = effect_seeds.iter().find(|s| !baseline_seeds.contains(s)) {
         bail!(
@@ -401,6 +541,9 @@ fn run_library(
     // a checkout's committed YADE specimen saves the generation (without a checkout it is made)
     let checkout = crate::harness::env::checkout_root();
     let golden = |s: u32| {
+        if sc.test.change_generation() {
+            return None;
+        }
         let p = checkout.as_ref()?.join(format!(
             "golden/study/r{:02}_{}_{}_s{}/specimen.json",
             sc.ratio, sc.case, sc.size, s
@@ -463,6 +606,7 @@ fn run_library(
         effects,
         engine: engine.into(),
         seed_choice,
+        test: sc.test.clone(),
     };
     let run_engine = if fast {
         RunEngine::RyadeFast
@@ -1252,6 +1396,7 @@ mod tests {
             case: 'G',
             size: "tiny".into(),
             cycles: 1,
+            test: TestConditions::default(),
         };
         let counts = SeedCounts {
             baseline: Some(1),

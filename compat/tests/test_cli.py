@@ -64,3 +64,30 @@ def test_gap_prints_what_its_library_can_detect_first_and_warns_on_a_worse_held_
     assert '| rut_mm | 0.24 | 0.47 | -93 % |' in out
     md = (tmp_path / 'out' / 'report.md').read_text()
     assert '## What this library can detect' in md and '**Warning**: the chosen model predicts the held-out rut' in md
+
+
+def test_gap_library_for_the_users_test_conditions(tmp_path):
+    """Issue 20: a user names their test's plate, load and layer; the library's runs carry them to
+    study.py (seen in each run's summary.json, the specimen generated at that layer), library.json
+    records them, and completing the library or making blind sets with other conditions is refused
+    before any run starts. r07 tiny, 2 cycles, 2 baseline seeds and 1 per effect strength (~15 s)."""
+    lib = tmp_path / 'lib'
+    p = run('gap', '--make-library', '--scenario', 'r07', '--size', 'tiny', '--cycles', '2', '--baseline-seeds', '2',
+            '--effect-seeds', '1', '--plate-d', '0.08', '--peak-kpa', '400', '--layer', '0.2', '--library', str(lib))
+    assert p.returncode == 0, p.stderr[-2000:]
+    import json
+    for run_dir in ('base_s1', 'rolling_0_s1', 'subgrade_2_s1'):
+        par = json.load(open(lib / run_dir / 'summary.json'))['params']
+        assert (par['piston_d'], par['peak_kpa'], par['layer']) == (0.08, 400, 0.2), (run_dir, par)
+    spec = json.load(open(lib / 'base_s1' / 'specimen.json'))['params']
+    assert spec['layer'] == 0.2
+    assert json.load(open(lib / 'library.json'))['test'] == {'piston_d': 0.08, 'peak_kpa': 400.0, 'layer': 0.2}
+    p = run('gap', '--make-library', '--scenario', 'r07', '--size', 'tiny', '--cycles', '2', '--baseline-seeds', '3',
+            '--effect-seeds', '1', '--plate-d', '0.08', '--peak-kpa', '300', '--layer', '0.2', '--library', str(lib))
+    assert p.returncode != 0 and '--peak-kpa 400' in p.stderr, p.stderr
+    assert not (lib / 'base_s3').exists()
+    p = run('gap', '--make-observed', str(tmp_path / 'blind'), '--size', 'tiny', '--cycles', '2', '--library', str(lib))
+    assert p.returncode != 0 and 'the library was built for' in p.stderr, p.stderr
+    assert not (tmp_path / 'blind' / 'cases').exists()
+    p = run('gap', '--make-library', '--peak-kpa', '20', '--library', str(tmp_path / 'x'))
+    assert p.returncode != 0 and 'must exceed the seating pressure' in p.stderr, p.stderr

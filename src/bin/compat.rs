@@ -269,6 +269,21 @@ enum Cmd {
         /// Load cycles of every library / dataset run
         #[arg(long, default_value_t = 6)]
         cycles: u32,
+        /// The test's plate diameter [m] (default: the study's piston for --size)
+        #[arg(long)]
+        plate_d: Option<f64>,
+        /// The test's seating pressure [kPa] (default: the study's, 27.6)
+        #[arg(long)]
+        seat_kpa: Option<f64>,
+        /// The test's peak plate pressure [kPa] (default: the study's, 275.8)
+        #[arg(long)]
+        peak_kpa: Option<f64>,
+        /// The test's base layer thickness [m] (default: the study's, 0.25)
+        #[arg(long)]
+        layer: Option<f64>,
+        /// The test's load frequency [Hz] (default: the study's, 50)
+        #[arg(long)]
+        freq: Option<f64>,
         /// Cycles 1..K are fitted, the later ones held out
         #[arg(long, default_value_t = 4)]
         fit_cycles: usize,
@@ -785,6 +800,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
             case,
             size,
             cycles,
+            plate_d,
+            seat_kpa,
+            peak_kpa,
+            layer,
+            freq,
             fit_cycles,
             library,
             baseline_seeds,
@@ -809,15 +829,30 @@ fn run(cli: Cli) -> Result<ExitCode> {
             check_cycles(Some(cycles))?;
             let root = study_run::repo_root()?;
             let jobs = jobs.unwrap_or_else(cores);
+            let test = gap_run::TestConditions {
+                piston_d: plate_d,
+                seat_kpa,
+                peak_kpa,
+                layer,
+                freq,
+            };
+            test.check()?;
             let sc = gap_run::Scenario {
                 ratio,
                 case: cases[0],
                 size: size.clone(),
                 cycles,
+                test: test.clone(),
             };
             let lib_dir = library.unwrap_or_else(|| {
-                PathBuf::from("gap_lib")
-                    .join(format!("{}_{}_{}_c{}", scenario, cases[0], size, cycles))
+                PathBuf::from("gap_lib").join(format!(
+                    "{}_{}_{}_c{}{}",
+                    scenario,
+                    cases[0],
+                    size,
+                    cycles,
+                    test.tag()
+                ))
             });
             if make_library {
                 if baseline_seeds.is_some_and(|b| b < 2) {
@@ -859,12 +894,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     lib_dir.join("library.json").display()
                 );
             }
-            let (_, lib) = gap_run::load_library(&lib_dir)?;
+            let (idx, lib) = gap_run::load_library(&lib_dir)?;
+            // a diagnosis with test conditions given: they must be the library's
+            if test != gap_run::TestConditions::default() && test != idx.test {
+                idx.check_scenario(&sc)?;
+            }
             if detectability {
                 print!("{}", gap_run::format_detectability(&lib, fit_cycles));
                 return Ok(ExitCode::SUCCESS);
             }
             if let Some(d) = make_observed {
+                // the blind runs are of the library's scenario
+                idx.check_scenario(&sc)?;
                 let design = gap_run::Design {
                     unfiltered,
                     n_clump,
