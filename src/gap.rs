@@ -30,9 +30,10 @@ pub const OBSERVABLES: [&str; 5] = [
 
 /// Cumulative observables (rut, grid settlement, porosity under the piston) carry a specimen's
 /// offset from cycle to cycle, so their successive levels are strongly correlated: a residual
-/// compares their increment per cycle (nearly independent). The rebound is a per-cycle quantity.
+/// compares their increment per cycle (nearly independent). The rebound and the tracking error are
+/// measured afresh in each cycle: their levels are compared.
 pub fn cumulative(obs: &str) -> bool {
-    obs != "rebound_mm"
+    matches!(obs, "rut_mm" | "porosity" | "grid_settlement_mm")
 }
 
 /// Per-cycle observed (or simulated) series; index = cycle (0 = end of seating).
@@ -208,11 +209,13 @@ pub fn read_observed(path: &Path) -> Result<Series> {
         if let Some(c) = c_track {
             // cycle 0 (the end of seating) has no load cycle: its tracking error may be empty
             let t = r.get(c).unwrap_or("").trim();
-            track.push(if i == 0 && (t.is_empty() || t == "nan") {
-                f64::NAN
-            } else {
-                num(c, "tracking error")?
-            });
+            track.push(
+                if i == 0 && (t.is_empty() || t.eq_ignore_ascii_case("nan")) {
+                    f64::NAN
+                } else {
+                    num(c, "tracking error")?
+                },
+            );
         }
     }
     if s.rut_mm.len() < 3 {
@@ -1697,7 +1700,7 @@ pub fn report_markdown(name: &str, d: &Diagnosis, lib: &Library) -> String {
     }
     s += &format!("\nDominant part: **{}**.\n\n", d.dominant_part);
     s += &format!(
-        "## Which unmodelled effect explains it\n\nEvery model's strengths are fitted on cycles 1-{} (increments of the rut, grid settlement and porosity; rebound levels; chi2 = -2 ln L over the noise of one run plus the surrogate's own uncertainty). IC = chi2 + {:.2} for the first strength + {:.2} for a second: the Bonferroni chance drops (family-wise {} over the {} candidates: {:.2}, {:.2}) scaled by the median chance drop of today's model's own seeds against the library without them over its Gaussian value (medians {:.2}, {:.2}). A model must have a lower IC than today's model (IC = its chi2).\n\n| rank | model | fitted strengths (knob change) | chi2 (fit) | IC | weight | held-out rut RMS [mm] | held-out normalised RMS |\n|---|---|---|---|---|---|---|---|\n",
+        "## Which unmodelled effect explains it\n\nEvery model's strengths are fitted on cycles 1-{} (increments of the rut, grid settlement and porosity; levels of the rebound and the tracking error; chi2 = -2 ln L over the noise of one run plus the surrogate's own uncertainty). IC = chi2 + {:.2} for the first strength + {:.2} for a second: the Bonferroni chance drops (family-wise {} over the {} candidates: {:.2}, {:.2}) scaled by the median chance drop of today's model's own seeds against the library without them over its Gaussian value (medians {:.2}, {:.2}). A model must have a lower IC than today's model (IC = its chi2).\n\n| rank | model | fitted strengths (knob change) | chi2 (fit) | IC | weight | held-out rut RMS [mm] | held-out normalised RMS |\n|---|---|---|---|---|---|---|---|\n",
         d.split.fit_cycles,
         d.penalties.0,
         d.penalties.1,
@@ -1942,6 +1945,52 @@ mod tests {
         assert!(r.baseline.iter().all(|s| s.tracking_kpa.is_none()));
         assert!(lib.restricted_to(&o).baseline[0].tracking_kpa.is_some());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The tracking error is compared as a level (it is measured afresh in each cycle): an effect
+    /// that raises it by the same 5 kPa in every cycle, and changes nothing else, is named and its
+    /// strength recovered. Compared as increments (cycle to cycle), the same shift is invisible.
+    #[test]
+    fn tracking_error_is_a_level() {
+        let mut mt = rand_mt::Mt64::new(5);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let mut run = |dt: f64| {
+            let mut s = ser(&(0..7)
+                .map(|c| c as f64 * 5.0 + 0.2 * u())
+                .collect::<Vec<_>>());
+            s.tracking_kpa = Some(
+                (0..7)
+                    .map(|c| {
+                        if c == 0 {
+                            f64::NAN
+                        } else {
+                            20.0 + dt + 2.0 * u()
+                        }
+                    })
+                    .collect(),
+            );
+            s
+        };
+        let mut lib = one_effect_library("servo");
+        lib.effects[0].strengths = vec![0.5, 1.0];
+        lib.baseline = (0..8).map(|_| run(0.0)).collect();
+        lib.runs
+            .insert(("servo".into(), 0), (0..8).map(|_| run(2.5)).collect());
+        lib.runs
+            .insert(("servo".into(), 1), (0..8).map(|_| run(5.0)).collect());
+        let mut obs = ser(&(0..7).map(|c| c as f64 * 5.0).collect::<Vec<_>>());
+        obs.tracking_kpa = Some(
+            (0..7)
+                .map(|c| if c == 0 { f64::NAN } else { 24.0 })
+                .collect(),
+        );
+        let d = diagnose(&lib, &obs, 4).unwrap();
+        assert_eq!(d.winner, "servo", "{:?}", d.candidates.first());
+        assert!(
+            (d.candidates[0].strength - 0.8).abs() < 0.1,
+            "{}",
+            d.candidates[0].strength
+        );
     }
 
     /// Tabulated chi2(1) upper quantiles: 3.841 at 5 %, 6.635 at 1 %, 10.828 at 0.1 %; the

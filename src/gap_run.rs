@@ -105,6 +105,29 @@ fn draw_over_range(sur: &gap::Surrogate, i: usize, u: &mut dyn FnMut() -> f64) -
     (x * 1e4).round() / 1e4
 }
 
+/// study.py's cell width for `size` (SIZES' nx times the 0.06 m rib length) [m].
+fn study_cell_width(size: &str) -> Option<f64> {
+    let nx = match size {
+        "tiny" => 3.0,
+        "small" => 4.0,
+        "medium" => 5.0,
+        "full" => 10.0,
+        _ => return None,
+    };
+    Some(nx * 0.06)
+}
+
+/// study.py's piston diameter for `size` (SIZES) [m].
+fn study_piston_d(size: &str) -> Option<f64> {
+    match size {
+        "tiny" => Some(0.09),
+        "small" => Some(0.10),
+        "medium" => Some(0.15),
+        "full" => Some(0.30),
+        _ => None,
+    }
+}
+
 /// The study case every run of a library or dataset shares.
 #[derive(Clone, Debug)]
 pub struct Scenario {
@@ -175,8 +198,47 @@ impl TestConditions {
             .collect()
     }
 
-    /// Refuse values study.py cannot load (before any run starts).
-    pub fn check(&self) -> Result<()> {
+    /// The study's own values (yade_ref/study/study.py: `--seat-kpa 27.6 --peak-kpa 275.8 --layer
+    /// 0.25 --freq 50`, the piston of SIZES for `size`) written as None, so that a library built with
+    /// them given explicitly is the study's.
+    pub fn normalised(&self, size: &str) -> TestConditions {
+        let d = study_piston_d(size);
+        let off = |v: Option<f64>, default: Option<f64>| v.filter(|x| Some(*x) != default);
+        TestConditions {
+            piston_d: off(self.piston_d, d),
+            seat_kpa: off(self.seat_kpa, Some(27.6)),
+            peak_kpa: off(self.peak_kpa, Some(275.8)),
+            layer: off(self.layer, Some(0.25)),
+            freq: off(self.freq, Some(50.0)),
+        }
+    }
+
+    /// Refuse values study.py cannot load, or a plate the periodic cell of `size` cannot hold
+    /// (before any run starts).
+    pub fn check(&self, size: &str) -> Result<()> {
+        // study.py: the cell is nx rib lengths wide (rib 0.06 m; SIZES' nx), its default plate half
+        // of that (D/Lx = 0.5): a wider plate meets its own periodic image's influence zone
+        if let (Some(d), Some(lx)) = (self.piston_d, study_cell_width(size)) {
+            if d > 0.5 * lx {
+                let fits: Vec<String> = ["tiny", "small", "medium", "full"]
+                    .iter()
+                    .filter(|s| study_cell_width(s).is_some_and(|w| d <= 0.5 * w))
+                    .map(|s| s.to_string())
+                    .collect();
+                bail!(
+                    "--plate-d {} needs a cell at least {} m wide (2 plate diameters); --size {}'s cell is {} m{}",
+                    d,
+                    2.0 * d,
+                    size,
+                    lx,
+                    if fits.is_empty() {
+                        ": no study size holds it".to_string()
+                    } else {
+                        format!(": use --size {}", fits.join(" or "))
+                    }
+                );
+            }
+        }
         for (k, v) in self.pairs() {
             if !(v.is_finite() && v > 0.0) {
                 bail!("--{} {}: must be a positive number", k.replace('_', "-"), v);
@@ -344,6 +406,30 @@ pub struct LibraryIndex {
 }
 
 impl LibraryIndex {
+    /// A diagnosis given test conditions: they must be the library's.
+    pub fn check_test(&self, t: &TestConditions) -> Result<()> {
+        if *t != self.test {
+            let show = |t: &TestConditions| {
+                let v: Vec<String> = t
+                    .pairs()
+                    .iter()
+                    .map(|(k, x)| format!("--{} {}", k.replace('_', "-"), x))
+                    .collect();
+                if v.is_empty() {
+                    "the study's".to_string()
+                } else {
+                    v.join(" ")
+                }
+            };
+            bail!(
+                "the library was built for the test conditions `{}`, not `{}`: diagnose with a library of your test's conditions (build it with --make-library and them)",
+                show(&self.test).replace("piston-d", "plate-d"),
+                show(t).replace("piston-d", "plate-d")
+            );
+        }
+        Ok(())
+    }
+
     /// The library's runs are of scenario `sc` (its study case, cycles and test conditions), or
     /// which of them differs and what to give instead.
     pub fn check_scenario(&self, sc: &Scenario) -> Result<()> {
@@ -354,11 +440,13 @@ impl LibraryIndex {
                 format!("--size {}", size),
                 format!("--cycles {}", cycles),
             ];
-            v.extend(
-                t.pairs()
-                    .iter()
-                    .map(|(k, x)| format!("--{} {}", k.replace('_', "-"), x)),
-            );
+            v.extend(t.pairs().iter().map(|(k, x)| {
+                format!(
+                    "--{} {}",
+                    k.replace('_', "-").replace("piston-d", "plate-d"),
+                    x
+                )
+            }));
             v
         };
         let lib = here(
@@ -431,9 +519,27 @@ pub fn make_library(
     let b0 = seeds
         .baseline
         .unwrap_or_else(|| min_base.max(had(|i| i.baseline_seeds.len())).max(e0));
+    // a library is completed, never cut: explicit counts under its own would drop runs
+    for (given, have, what) in [
+        (seeds.baseline, had(|i| i.baseline_seeds.len()), "baseline"),
+        (seeds.effect, had(|i| i.effect_seeds.len()), "effect"),
+    ] {
+        if let Some(g) = given.filter(|g| *g < have) {
+            bail!(
+                "the library in {} has {} {} seeds: give --{}-seeds {} or more, or leave it out (--{}-seeds {} would leave runs out of it)",
+                dir.display(),
+                have,
+                what,
+                what,
+                have,
+                what,
+                g
+            );
+        }
+    }
     if seeds.effect.is_some() {
-        let kept = old.as_ref().and_then(|i| i.seed_choice.clone());
-        return run_library(root, dir, sc, &range(b0), &range(e0), kept, fast, jobs);
+        // counts given: no choice from the noise to record
+        return run_library(root, dir, sc, &range(b0), &range(e0), None, fast, jobs);
     }
     eprintln!(
         "[gap] pilot: {} baseline seeds, {} effect seeds (the noise they measure sets the counts)",
@@ -1009,7 +1115,12 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
             lib.baseline.len(),
             have,
             format_seed_choice(&c, fit_cycles),
-            if have < c.effect || lib.baseline.len() < c.baseline {
+            // (--make-library chooses on every observable: the hint only for the whole library)
+            if (have < c.effect || lib.baseline.len() < c.baseline)
+                && gap::OBSERVABLES
+                    .iter()
+                    .all(|o| lib.baseline.iter().all(|s| s.get(o).is_some()))
+            {
                 " (complete the library with --make-library to reach them)"
             } else {
                 ""
@@ -1412,6 +1523,57 @@ mod tests {
             !dir.join("library_base.table").exists(),
             "no run was started"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    /// A library is completed, never cut: explicit counts under its own are refused before any
+    /// run, with the count that completes it; so is a completion for other test conditions.
+    #[test]
+    fn a_library_is_never_cut_and_keeps_its_conditions() {
+        let dir = std::env::temp_dir().join(format!("ryade_gap_cut_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let old = r#"{"scenario":"r07","case":"G","size":"tiny","cycles":1,"baseline_seeds":[1,2,3],"effect_seeds":[1,2,3],"effects":[],"engine":"fast","test":{"peak_kpa":400.0}}"#;
+        std::fs::write(dir.join("library.json"), old).unwrap();
+        let mut sc = Scenario {
+            ratio: 7,
+            case: 'G',
+            size: "tiny".into(),
+            cycles: 1,
+            test: TestConditions {
+                peak_kpa: Some(400.0),
+                ..Default::default()
+            },
+        };
+        let counts = SeedCounts {
+            baseline: Some(3),
+            effect: Some(2),
+        };
+        let e = make_library(Path::new("."), &dir, &sc, counts, 1, true, 1).unwrap_err();
+        assert!(e.to_string().contains("--effect-seeds 3 or more"), "{e}");
+        sc.test.peak_kpa = Some(300.0);
+        let counts = SeedCounts {
+            baseline: Some(3),
+            effect: Some(3),
+        };
+        let e = make_library(Path::new("."), &dir, &sc, counts, 1, true, 1).unwrap_err();
+        assert!(format!("{e:#}").contains("--peak-kpa 400"), "{e:#}");
+        assert!(
+            !dir.join("library_base.table").exists(),
+            "no run was started"
+        );
+        // the study's own values are the study's conditions; a plate the cell cannot hold is refused
+        let t = TestConditions {
+            peak_kpa: Some(275.8),
+            piston_d: Some(0.15),
+            ..Default::default()
+        };
+        assert_eq!(t.normalised("medium"), TestConditions::default());
+        let wide = TestConditions {
+            piston_d: Some(0.2),
+            ..Default::default()
+        };
+        let e = wide.check("medium").unwrap_err().to_string();
+        assert!(e.contains("use --size full"), "{e}");
+        assert!(wide.check("full").is_ok());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

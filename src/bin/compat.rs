@@ -836,7 +836,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 layer,
                 freq,
             };
-            test.check()?;
+            test.check(&size)?;
+            let test = test.normalised(&size);
             let sc = gap_run::Scenario {
                 ratio,
                 case: cases[0],
@@ -896,8 +897,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             let (idx, lib) = gap_run::load_library(&lib_dir)?;
             // a diagnosis with test conditions given: they must be the library's
-            if test != gap_run::TestConditions::default() && test != idx.test {
-                idx.check_scenario(&sc)?;
+            if test != gap_run::TestConditions::default() {
+                idx.check_test(&test)?;
             }
             if detectability {
                 print!("{}", gap_run::format_detectability(&lib, fit_cycles));

@@ -225,7 +225,7 @@ def profiles(index_csv, png):
 
 
 GAP_NAMES = {'rut_mm': 'rut [mm]', 'porosity': 'porosity under the piston', 'rebound_mm': 'resilient rebound [mm]',
-             'grid_settlement_mm': 'grid settlement [mm]'}
+             'grid_settlement_mm': 'grid settlement [mm]', 'tracking_kpa': 'pressure tracking error [kPa]'}
 
 
 def gap(plot_csv, png):
