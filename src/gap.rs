@@ -61,39 +61,33 @@ impl Series {
             _ => None,
         }
     }
+    /// The optional observable `obs` (None for the rut, which every series has, or an unknown name).
+    fn optional_mut(&mut self, obs: &str) -> Option<&mut Option<Vec<f64>>> {
+        match obs {
+            "porosity" => Some(&mut self.porosity),
+            "rebound_mm" => Some(&mut self.rebound_mm),
+            "grid_settlement_mm" => Some(&mut self.grid_settlement_mm),
+            "tracking_kpa" => Some(&mut self.tracking_kpa),
+            _ => None,
+        }
+    }
     /// Replace observable `obs` by `v` where this series has it (the rut always).
     pub fn set_where_present(&mut self, obs: &str, v: Vec<f64>) {
-        let slot = match obs {
-            "rut_mm" => {
-                self.rut_mm = v;
-                return;
-            }
-            "porosity" => &mut self.porosity,
-            "rebound_mm" => &mut self.rebound_mm,
-            "grid_settlement_mm" => &mut self.grid_settlement_mm,
-            "tracking_kpa" => &mut self.tracking_kpa,
-            _ => return,
-        };
-        if slot.is_some() {
+        if obs == "rut_mm" {
+            self.rut_mm = v;
+        } else if let Some(slot) = self.optional_mut(obs).filter(|x| x.is_some()) {
             *slot = Some(v);
         }
     }
     /// Drop the observables `like` does not have (the rut stays).
     pub fn restricted_to(&self, like: &Series) -> Series {
-        let keep = |o: &str, v: &Option<Vec<f64>>| {
-            if like.get(o).is_some() {
-                v.clone()
-            } else {
-                None
+        let mut s = self.clone();
+        for o in OBSERVABLES.iter().filter(|o| like.get(o).is_none()) {
+            if let Some(slot) = s.optional_mut(o) {
+                *slot = None;
             }
-        };
-        Series {
-            rut_mm: self.rut_mm.clone(),
-            porosity: keep("porosity", &self.porosity),
-            rebound_mm: keep("rebound_mm", &self.rebound_mm),
-            grid_settlement_mm: keep("grid_settlement_mm", &self.grid_settlement_mm),
-            tracking_kpa: keep("tracking_kpa", &self.tracking_kpa),
         }
+        s
     }
     pub fn cycles(&self) -> usize {
         self.rut_mm.len()
@@ -290,7 +284,7 @@ fn value(s: &Series, obs: &str, c: usize) -> Option<f64> {
 }
 
 /// The quantity a residual compares at cycle c of observable OBSERVABLES[oi]: the increment of a
-/// cumulative observable, the level of the rebound.
+/// cumulative observable, the level of the others (rebound, tracking error).
 fn residual_quantity(sr: &Series, oi: usize, c: usize) -> Option<f64> {
     let o = OBSERVABLES[oi];
     if cumulative(o) {
@@ -411,17 +405,21 @@ impl Library {
             if !self.paired(knob) {
                 continue;
             }
+            // each run with the baseline run of its specimen
+            let pairs: Vec<(&Series, &Series)> = seeds
+                .iter()
+                .zip(runs)
+                .filter_map(|(sd, run)| {
+                    let i = self.baseline_seeds.iter().position(|b| b == sd)?;
+                    Some((run, &self.baseline[i]))
+                })
+                .collect();
             for (oi, row) in pd.iter_mut().enumerate() {
                 for (c, acc) in row.iter_mut().enumerate() {
-                    let d: Vec<f64> = seeds
+                    let d: Vec<f64> = pairs
                         .iter()
-                        .zip(runs)
-                        .filter_map(|(sd, run)| {
-                            let i = self.baseline_seeds.iter().position(|b| b == sd)?;
-                            Some(
-                                residual_quantity(run, oi, c)?
-                                    - residual_quantity(&self.baseline[i], oi, c)?,
-                            )
+                        .filter_map(|(run, base)| {
+                            Some(residual_quantity(run, oi, c)? - residual_quantity(base, oi, c)?)
                         })
                         .collect();
                     if d.len() >= 2 {
@@ -802,16 +800,16 @@ fn chi2<F: Fn(&str, usize) -> Option<f64> + ?Sized>(
             let r = if cumulative(o) {
                 match (pred(o, c), pred(o, c - 1)) {
                     (Some(p1), Some(p0)) if ov[c - 1].is_finite() => {
-                        ((ov[c] - ov[c - 1]) - (p1 - p0)) / lib.increment_noise_of(o, c)
+                        (ov[c] - ov[c - 1]) - (p1 - p0)
                     }
                     _ => continue,
                 }
             } else {
                 match pred(o, c) {
-                    Some(p) => (ov[c] - p) / lib.noise(o, c),
+                    Some(p) => ov[c] - p,
                     None => continue,
                 }
-            };
+            } / lib.residual_noise(o, c);
             x2 += r * r;
             n += 1;
         }

@@ -105,28 +105,25 @@ fn draw_over_range(sur: &gap::Surrogate, i: usize, u: &mut dyn FnMut() -> f64) -
     (x * 1e4).round() / 1e4
 }
 
-/// study.py's cell width for `size` (SIZES' nx times the 0.06 m rib length) [m].
-fn study_cell_width(size: &str) -> Option<f64> {
-    let nx = match size {
-        "tiny" => 3.0,
-        "small" => 4.0,
-        "medium" => 5.0,
-        "full" => 10.0,
+/// study.py's cell for `size`: (width, the SIZES nx times the 0.06 m rib length; default piston
+/// diameter, SIZES' D) [m].
+fn study_cell(size: &str) -> Option<(f64, f64)> {
+    let (nx, d) = match size {
+        "tiny" => (3.0, 0.09),
+        "small" => (4.0, 0.10),
+        "medium" => (5.0, 0.15),
+        "full" => (10.0, 0.30),
         _ => return None,
     };
-    Some(nx * 0.06)
+    Some((nx * 0.06, d))
 }
 
-/// study.py's piston diameter for `size` (SIZES) [m].
-fn study_piston_d(size: &str) -> Option<f64> {
-    match size {
-        "tiny" => Some(0.09),
-        "small" => Some(0.10),
-        "medium" => Some(0.15),
-        "full" => Some(0.30),
-        _ => None,
-    }
-}
+/// study.py's default seating and peak pressures (`--seat-kpa`, `--peak-kpa`) [kPa], layer
+/// (`--layer`) [m] and frequency (`--freq`) [Hz].
+const STUDY_SEAT_KPA: f64 = 27.6;
+const STUDY_PEAK_KPA: f64 = 275.8;
+const STUDY_LAYER: f64 = 0.25;
+const STUDY_FREQ: f64 = 50.0;
 
 /// The study case every run of a library or dataset shares.
 #[derive(Clone, Debug)]
@@ -175,6 +172,22 @@ impl TestConditions {
         .collect()
     }
 
+    /// The `compat gap` option of knob `k` (the plate diameter is study.py's piston diameter).
+    fn flag(k: &str) -> String {
+        match k {
+            "piston_d" => "--plate-d".into(),
+            _ => format!("--{}", k.replace('_', "-")),
+        }
+    }
+
+    /// The conditions as `compat gap` options (`--plate-d 0.2`, ...).
+    fn flags(&self) -> Vec<String> {
+        self.pairs()
+            .iter()
+            .map(|(k, v)| format!("{} {}", Self::flag(k), v))
+            .collect()
+    }
+
     /// The study.py knob pairs (`piston_d=0.2,peak_kpa=550`; '' for the study's conditions).
     pub fn knobs(&self) -> String {
         self.pairs()
@@ -198,18 +211,17 @@ impl TestConditions {
             .collect()
     }
 
-    /// The study's own values (yade_ref/study/study.py: `--seat-kpa 27.6 --peak-kpa 275.8 --layer
-    /// 0.25 --freq 50`, the piston of SIZES for `size`) written as None, so that a library built with
-    /// them given explicitly is the study's.
+    /// The study's own values (the STUDY_ constants, the piston of SIZES for `size`) written as
+    /// None, so that a library built with them given explicitly is the study's.
     pub fn normalised(&self, size: &str) -> TestConditions {
-        let d = study_piston_d(size);
+        let d = study_cell(size).map(|c| c.1);
         let off = |v: Option<f64>, default: Option<f64>| v.filter(|x| Some(*x) != default);
         TestConditions {
             piston_d: off(self.piston_d, d),
-            seat_kpa: off(self.seat_kpa, Some(27.6)),
-            peak_kpa: off(self.peak_kpa, Some(275.8)),
-            layer: off(self.layer, Some(0.25)),
-            freq: off(self.freq, Some(50.0)),
+            seat_kpa: off(self.seat_kpa, Some(STUDY_SEAT_KPA)),
+            peak_kpa: off(self.peak_kpa, Some(STUDY_PEAK_KPA)),
+            layer: off(self.layer, Some(STUDY_LAYER)),
+            freq: off(self.freq, Some(STUDY_FREQ)),
         }
     }
 
@@ -218,12 +230,11 @@ impl TestConditions {
     pub fn check(&self, size: &str) -> Result<()> {
         // study.py: the cell is nx rib lengths wide (rib 0.06 m; SIZES' nx), its default plate half
         // of that (D/Lx = 0.5): a wider plate meets its own periodic image's influence zone
-        if let (Some(d), Some(lx)) = (self.piston_d, study_cell_width(size)) {
+        if let (Some(d), Some((lx, _))) = (self.piston_d, study_cell(size)) {
             if d > 0.5 * lx {
-                let fits: Vec<String> = ["tiny", "small", "medium", "full"]
-                    .iter()
-                    .filter(|s| study_cell_width(s).is_some_and(|w| d <= 0.5 * w))
-                    .map(|s| s.to_string())
+                let fits: Vec<&str> = crate::harness::study::SIZES
+                    .into_iter()
+                    .filter(|s| study_cell(s).is_some_and(|(w, _)| d <= 0.5 * w))
                     .collect();
                 bail!(
                     "--plate-d {} needs a cell at least {} m wide (2 plate diameters); --size {}'s cell is {} m{}",
@@ -241,13 +252,12 @@ impl TestConditions {
         }
         for (k, v) in self.pairs() {
             if !(v.is_finite() && v > 0.0) {
-                bail!("--{} {}: must be a positive number", k.replace('_', "-"), v);
+                bail!("{} {}: must be a positive number", Self::flag(k), v);
             }
         }
-        // study.py's defaults (yade_ref/study/study.py: --seat-kpa 27.6, --peak-kpa 275.8)
         let (seat, peak) = (
-            self.seat_kpa.unwrap_or(27.6),
-            self.peak_kpa.unwrap_or(275.8),
+            self.seat_kpa.unwrap_or(STUDY_SEAT_KPA),
+            self.peak_kpa.unwrap_or(STUDY_PEAK_KPA),
         );
         if peak <= seat {
             bail!(
@@ -410,11 +420,7 @@ impl LibraryIndex {
     pub fn check_test(&self, t: &TestConditions) -> Result<()> {
         if *t != self.test {
             let show = |t: &TestConditions| {
-                let v: Vec<String> = t
-                    .pairs()
-                    .iter()
-                    .map(|(k, x)| format!("--{} {}", k.replace('_', "-"), x))
-                    .collect();
+                let v = t.flags();
                 if v.is_empty() {
                     "the study's".to_string()
                 } else {
@@ -423,8 +429,8 @@ impl LibraryIndex {
             };
             bail!(
                 "the library was built for the test conditions `{}`, not `{}`: diagnose with a library of your test's conditions (build it with --make-library and them)",
-                show(&self.test).replace("piston-d", "plate-d"),
-                show(t).replace("piston-d", "plate-d")
+                show(&self.test),
+                show(t)
             );
         }
         Ok(())
@@ -440,13 +446,7 @@ impl LibraryIndex {
                 format!("--size {}", size),
                 format!("--cycles {}", cycles),
             ];
-            v.extend(t.pairs().iter().map(|(k, x)| {
-                format!(
-                    "--{} {}",
-                    k.replace('_', "-").replace("piston-d", "plate-d"),
-                    x
-                )
-            }));
+            v.extend(t.flags());
             v
         };
         let lib = here(
@@ -1100,18 +1100,11 @@ pub fn dominant_truth(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize
 /// strengths and the strengths whose signal on the fitted cycles reaches `DETECTABILITY_FLOOR`
 /// (a markdown section; printed before any diagnosis and by `compat gap --detectability`).
 pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
-    let mut s = format!(
-        "## What this library can detect\n\nnoise inflation {:.2}; detectability floor {} (signal over one run's noise on cycles 1-{}); an effect weaker than its range below is answered \"none\"\n\n| effect | largest signal (at strength) | strengths reaching the floor |\n|---|---|---|\n",
-        gap::noise_inflation(lib, fit_cycles),
-        DETECTABILITY_FLOOR,
-        fit_cycles
-    );
     // the library's seeds against those its noise asks for
     let have = lib.runs.values().map(|v| v.len()).max().unwrap_or(0);
-    if let Some(c) = gap::seeds_needed(lib, fit_cycles) {
-        s = format!(
-            "{}Seeds: {} baseline, {} per effect strength; {}{}\n\n{}",
-            &s[..s.find("noise inflation").unwrap_or(0)],
+    let seeds = gap::seeds_needed(lib, fit_cycles).map_or(String::new(), |c| {
+        format!(
+            "Seeds: {} baseline, {} per effect strength; {}{}\n\n",
             lib.baseline.len(),
             have,
             format_seed_choice(&c, fit_cycles),
@@ -1124,10 +1117,16 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
                 " (complete the library with --make-library to reach them)"
             } else {
                 ""
-            },
-            &s[s.find("noise inflation").unwrap_or(0)..]
-        );
-    }
+            }
+        )
+    });
+    let mut s = format!(
+        "## What this library can detect\n\n{}noise inflation {:.2}; detectability floor {} (signal over one run's noise on cycles 1-{}); an effect weaker than its range below is answered \"none\"\n\n| effect | largest signal (at strength) | strengths reaching the floor |\n|---|---|---|\n",
+        seeds,
+        gap::noise_inflation(lib, fit_cycles),
+        DETECTABILITY_FLOOR,
+        fit_cycles
+    );
     for r in detectable_ranges(lib, fit_cycles, DETECTABILITY_FLOOR) {
         s += &format!(
             "| {} | {:.1} ({}) | {} |\n",
@@ -1213,7 +1212,8 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
     let mut diags = Vec::new();
     for n in &names {
         let obs = gap::read_observed(&dir.join("cases").join(n).join("observed.csv"))?;
-        let lib = &lib.restricted_to(&obs);
+        let lib_o = lib.restricted_to(&obs);
+        let lib = &lib_o;
         let has: Vec<bool> = gap::OBSERVABLES
             .iter()
             .map(|o| obs.get(o).is_some())
@@ -1235,12 +1235,12 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
             dir.join("cases").join(n).join("diagnosis.json"),
             serde_json::to_string_pretty(&d)?,
         )?;
-        diags.push((obs, d));
+        diags.push((obs, d, lib_o));
     }
     // 2. scoring
     let mut out = Vec::new();
-    for (n, (obs, d)) in names.iter().zip(diags) {
-        let lib = &lib.restricted_to(&obs);
+    for (n, (obs, d, lib_o)) in names.iter().zip(diags) {
+        let lib = &lib_o;
         let t: Truth = serde_json::from_str(&std::fs::read_to_string(
             dir.join("truth").join(format!("{}.json", n)),
         )?)?;
