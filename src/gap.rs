@@ -1050,6 +1050,10 @@ pub struct Diagnosis {
     /// The best model when it beat today's model but its evidence (the dominant effect's signal
     /// at the fitted strength) stayed under the floor, so the answer is "none": (model, signal).
     pub below_floor: Option<(String, f64)>,
+    /// The evidence of the best model that beat today's model (its dominant effect's noiseless
+    /// signal at the fitted strength, fitted cycles, noise units); 0 when none beat it. The answer
+    /// names an effect only where it reaches `DETECTABILITY_FLOOR`.
+    pub evidence: f64,
     /// What the verdict says besides the effect: the rut when the chosen model predicts its
     /// held-out cycles worse than today's model, and each other observable it predicts worse
     /// beyond one run's noise (normalised RMS over 1).
@@ -1532,9 +1536,11 @@ pub fn diagnose_with(
             })
     };
     let mut below_floor = None;
+    let mut best_evidence = 0.0;
     let best = match best {
         Some(c) if c.ic < none_chi2 => {
             let e = evidence(&c);
+            best_evidence = e;
             if e < DETECTABILITY_FLOOR {
                 below_floor = Some((format_effects(&c.effects, " + ", Some(4)), e));
                 None
@@ -1642,6 +1648,7 @@ pub fn diagnose_with(
         norm_gap_reduction: red(norm_before, norm_after),
         heldout_by_observable: by_obs,
         below_floor,
+        evidence: best_evidence,
         not_fitted: lib
             .effects
             .iter()

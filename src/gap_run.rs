@@ -6,6 +6,7 @@ use crate::gap::{self, Effect, Library, Series};
 pub use crate::gap::{detectable_ranges, DetectableRange, DETECTABILITY_FLOOR};
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -1179,6 +1180,9 @@ pub struct CaseScore {
     pub outside: Option<String>,
     /// The held-out gap of each observed observable (empty when the answer is "none").
     pub heldout_by_observable: Vec<gap::HeldOut>,
+    /// The diagnosis' evidence for its best model (`gap::Diagnosis::evidence`).
+    #[serde(default)]
+    pub evidence: f64,
 }
 
 /// Issue 20's scoring of one answer: the dominant hidden effect named is right; "none" is right
@@ -1186,6 +1190,50 @@ pub struct CaseScore {
 /// other effect is wrong. A case of an effect outside the catalogue is scored apart (never right).
 pub fn answer_is_right(named: &str, dominant: &str, detectable: bool, outside: bool) -> bool {
     !outside && (named == dominant || (named == "none" && !detectable))
+}
+
+/// Score one diagnosis `d` of observation `obs` against its truth `t` (issue 20's rule, see
+/// `answer_is_right`), with the library `lib` the diagnosis used.
+fn score_case(
+    name: &str,
+    lib: &Library,
+    obs: &Series,
+    d: &gap::Diagnosis,
+    t: &Truth,
+    fit_cycles: usize,
+) -> CaseScore {
+    let outside = t
+        .effects
+        .iter()
+        .find(|(k, _)| !lib.effects.iter().any(|e| &e.knob == k))
+        .map(|(k, s)| format!("{} {}", k, s));
+    let (dom, det) = dominant_signal(lib, t, obs, fit_cycles);
+    let detectable = !t.effects.is_empty() && outside.is_none() && det >= DETECTABILITY_FLOOR;
+    let correct = answer_is_right(&d.winner, &dom, detectable, outside.is_some());
+    let fitted = d.model.iter().find(|c| c.0 == dom).map(|c| c.1);
+    let true_s = t.effects.iter().find(|e| e.0 == dom).map(|e| e.1);
+    CaseScore {
+        case: name.to_string(),
+        truth: t.effects.clone(),
+        dominant_truth: outside.clone().unwrap_or_else(|| dom.clone()),
+        detectability: det,
+        named: d.winner.clone(),
+        model: d.model.clone(),
+        confidence: d.confidence,
+        correct,
+        fitted_strength: if correct { fitted } else { None },
+        strength_error: match (fitted, true_s) {
+            (Some(f), Some(t)) if correct && t != 0.0 => Some((f - t).abs() / t.abs()),
+            _ => None,
+        },
+        gap_reduction: d.gap_reduction,
+        norm_gap_reduction: d.norm_gap_reduction,
+        rut_warned: d.warnings.iter().any(|w| w.contains("held-out rut")),
+        detectable,
+        outside,
+        heldout_by_observable: d.heldout_by_observable.clone(),
+        evidence: d.evidence,
+    }
 }
 
 /// Diagnose every case blind, then score against the truth files.
@@ -1240,44 +1288,196 @@ pub fn validate(dir: &Path, lib: &Library, fit_cycles: usize) -> Result<Vec<Case
     // 2. scoring
     let mut out = Vec::new();
     for (n, (obs, d, lib_o)) in names.iter().zip(diags) {
-        let lib = &lib_o;
         let t: Truth = serde_json::from_str(&std::fs::read_to_string(
             dir.join("truth").join(format!("{}.json", n)),
         )?)?;
-        let outside = t
-            .effects
-            .iter()
-            .find(|(k, _)| !lib.effects.iter().any(|e| &e.knob == k))
-            .map(|(k, s)| format!("{} {}", k, s));
-        let dom = dominant_truth(lib, &t, &obs, fit_cycles);
-        let det = detectability(lib, &t, &obs, fit_cycles);
-        let detectable = !t.effects.is_empty() && outside.is_none() && det >= DETECTABILITY_FLOOR;
-        let correct = answer_is_right(&d.winner, &dom, detectable, outside.is_some());
-        let fitted = d.model.iter().find(|c| c.0 == dom).map(|c| c.1);
-        let true_s = t.effects.iter().find(|e| e.0 == dom).map(|e| e.1);
-        out.push(CaseScore {
-            case: n.clone(),
-            truth: t.effects.clone(),
-            dominant_truth: outside.clone().unwrap_or_else(|| dom.clone()),
-            detectability: det,
-            named: d.winner.clone(),
-            model: d.model.clone(),
-            confidence: d.confidence,
-            correct,
-            fitted_strength: if correct { fitted } else { None },
-            strength_error: match (fitted, true_s) {
-                (Some(f), Some(t)) if correct && t != 0.0 => Some((f - t).abs() / t.abs()),
-                _ => None,
-            },
-            gap_reduction: d.gap_reduction,
-            norm_gap_reduction: d.norm_gap_reduction,
-            rut_warned: d.warnings.iter().any(|w| w.contains("held-out rut")),
-            detectable,
-            outside,
-            heldout_by_observable: d.heldout_by_observable.clone(),
-        });
+        out.push(score_case(n, &lib_o, &obs, &d, &t, fit_cycles));
     }
     Ok(out)
+}
+
+/// The library without every run of specimen `seed` (its baseline run and its run of each effect
+/// strength), and those runs as cases with their truth: (name, run, truth).
+fn leave_seed_out(lib: &Library, seed: u32) -> (Library, Vec<(String, Series, Truth)>) {
+    let mut rest = lib.clone();
+    let mut cases = Vec::new();
+    if let Some(i) = lib.baseline_seeds.iter().position(|s| *s == seed) {
+        rest.baseline.remove(i);
+        rest.baseline_seeds.remove(i);
+        cases.push((
+            format!("base_s{}", seed),
+            lib.baseline[i].clone(),
+            Truth {
+                seed,
+                effects: vec![],
+            },
+        ));
+    }
+    for ((knob, k), seeds) in &lib.run_seeds {
+        let Some(i) = seeds.iter().position(|s| *s == seed) else {
+            continue;
+        };
+        let key = (knob.clone(), *k);
+        let strength = lib
+            .effects
+            .iter()
+            .find(|e| &e.knob == knob)
+            .map_or(f64::NAN, |e| e.strengths[*k]);
+        cases.push((
+            format!("{}_{}_s{}", knob, k, seed),
+            lib.runs[&key][i].clone(),
+            Truth {
+                seed,
+                effects: vec![(knob.clone(), strength)],
+            },
+        ));
+        if let (Some(r), Some(rs)) = (rest.runs.get_mut(&key), rest.run_seeds.get_mut(&key)) {
+            r.remove(i);
+            rs.remove(i);
+        }
+    }
+    rest.runs.retain(|_, v| !v.is_empty());
+    rest.run_seeds.retain(|_, v| !v.is_empty());
+    (rest, cases)
+}
+
+/// Leave-one-specimen-out self-test of a library (issue 20, "how far, honestly", on hundreds of
+/// cases where a blind set has 14): for each seed, the library without every run of that specimen
+/// diagnoses each of them (today's model and each effect strength), scored by the blind sets' rule.
+/// The cases share the library's engine and specimen generator, so this bounds from above what a
+/// blind set of Debian YADE runs can show; it costs no simulation.
+pub fn self_test(lib: &Library, fit_cycles: usize, jobs: usize) -> Result<Vec<CaseScore>> {
+    if lib.baseline_seeds.len() != lib.baseline.len() || lib.baseline.len() < 4 {
+        bail!("the self-test needs a library with 4 or more baseline seeds of known number");
+    }
+    let seeds = lib.baseline_seeds.clone();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let per_seed = |seed: u32| -> Result<Vec<CaseScore>> {
+        let (rest, cases) = leave_seed_out(lib, seed);
+        let pen = gap::calibrated_penalties(&rest, fit_cycles);
+        cases
+            .iter()
+            .map(|(name, obs, t)| {
+                let d = gap::diagnose_with(&rest, obs, fit_cycles, &pen)?;
+                Ok(score_case(name, &rest, obs, &d, t, fit_cycles))
+            })
+            .collect()
+    };
+    let results: Vec<Result<Vec<CaseScore>>> = std::thread::scope(|sc| {
+        let workers: Vec<_> = (0..jobs.clamp(1, seeds.len()))
+            .map(|_| {
+                sc.spawn(|| {
+                    let mut mine = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(&s) = seeds.get(i) else { break };
+                        eprintln!("[gap self-test] specimen {} ({}/{})", s, i + 1, seeds.len());
+                        mine.push((i, per_seed(s)));
+                    }
+                    mine
+                })
+            })
+            .collect();
+        let mut all: Vec<(usize, Result<Vec<CaseScore>>)> = workers
+            .into_iter()
+            .flat_map(|w| w.join().expect("a self-test worker panicked"))
+            .collect();
+        all.sort_by_key(|(i, _)| *i);
+        all.into_iter().map(|(_, r)| r).collect()
+    });
+    let mut out = Vec::new();
+    for r in results {
+        out.extend(r?);
+    }
+    Ok(out)
+}
+
+/// The self-test by library group (today's model, each effect strength): its signal (median over
+/// the specimens) and what was named, then the blind sets' summary.
+pub fn format_self_test(s: &[CaseScore]) -> String {
+    let mut groups: Vec<(String, Vec<&CaseScore>)> = Vec::new();
+    for c in s {
+        let g = if c.truth.is_empty() {
+            "none (today's model)".to_string()
+        } else {
+            gap::format_effects(&c.truth, ", ", None)
+        };
+        match groups.iter_mut().find(|(k, _)| *k == g) {
+            Some((_, v)) => v.push(c),
+            None => groups.push((g, vec![c])),
+        }
+    }
+    let mut t = String::from(
+        "| library group | specimens | signal (median) | named right | none | named another (which) |\n|---|---|---|---|---|---|\n",
+    );
+    for (g, v) in &groups {
+        let mut others: BTreeMap<&str, usize> = BTreeMap::new();
+        for c in v
+            .iter()
+            .filter(|c| c.named != "none" && c.named != c.dominant_truth)
+        {
+            *others.entry(c.named.as_str()).or_default() += 1;
+        }
+        t += &format!(
+            "| {} | {} | {:.1} | {} | {} | {} |\n",
+            g,
+            v.len(),
+            median(v.iter().map(|c| c.detectability).collect()).unwrap_or(0.0),
+            v.iter()
+                .filter(|c| !c.truth.is_empty() && c.named == c.dominant_truth)
+                .count(),
+            v.iter().filter(|c| c.named == "none").count(),
+            others
+                .iter()
+                .map(|(k, n)| format!("{} {}", k, n))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    t + &format_floor_sweep(s) + &format_score_summary(s)
+}
+
+/// What the same diagnoses would answer if an effect were named only from a higher evidence
+/// (`gap::Diagnosis::evidence`; the method names from `DETECTABILITY_FLOOR`), still scored by issue
+/// 20's rule at the floor: the trade between detectable effects named and wrong effects named.
+pub fn format_floor_sweep(s: &[CaseScore]) -> String {
+    let cat: Vec<&CaseScore> = s
+        .iter()
+        .filter(|c| !c.truth.is_empty() && c.outside.is_none())
+        .collect();
+    let det = cat.iter().filter(|c| c.detectable).count();
+    let mut t = String::from(
+        "\n| naming from evidence | detectable dominant effects named | wrong effect named | effect named for today's model |\n|---|---|---|---|\n",
+    );
+    for f in [DETECTABILITY_FLOOR, 5.5, 6.0, 7.0, 8.0] {
+        let named = |c: &CaseScore| c.named != "none" && c.evidence >= f;
+        let right = cat
+            .iter()
+            .filter(|c| c.detectable && named(c) && c.named == c.dominant_truth)
+            .count();
+        let wrong = cat
+            .iter()
+            .filter(|c| named(c) && c.named != c.dominant_truth)
+            .count();
+        let fp = s.iter().filter(|c| c.truth.is_empty() && named(c)).count();
+        t += &format!(
+            "| {:.1}{} | {}/{} ({:.0} %) | {} of {} ({:.1} %) | {} |\n",
+            f,
+            if f == DETECTABILITY_FLOOR {
+                " (the method)"
+            } else {
+                ""
+            },
+            right,
+            det,
+            100.0 * right as f64 / det.max(1) as f64,
+            wrong,
+            cat.len(),
+            100.0 * wrong as f64 / cat.len().max(1) as f64,
+            fp
+        );
+    }
+    t
 }
 
 fn median(mut v: Vec<f64>) -> Option<f64> {
@@ -1320,6 +1520,12 @@ pub fn format_scores(s: &[CaseScore]) -> String {
             100.0 * c.norm_gap_reduction
         );
     }
+    t + &format_score_summary(s)
+}
+
+/// The summary lines of a scored set (counts, issue 20's rule, held-out reductions).
+pub fn format_score_summary(s: &[CaseScore]) -> String {
+    let mut t = String::new();
     let pct = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{:.0} %", 100.0 * v));
     let correct = s.iter().filter(|c| c.correct).count();
     let eff: Vec<&CaseScore> = s.iter().filter(|c| !c.truth.is_empty()).collect();

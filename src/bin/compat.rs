@@ -257,6 +257,11 @@ enum Cmd {
         /// detectability floor of the blind-dataset design
         #[arg(long)]
         detectability: bool,
+        /// Diagnose each library run with the library left without its specimen (every seed in
+        /// turn) and score the answers as a blind set is scored: the method's error rates on
+        /// hundreds of cases, from the library alone (written to --out/self_test.{md,json})
+        #[arg(long)]
+        self_test: bool,
         /// The study scenario of the library runs (r03 | r05 | r07)
         #[arg(long, default_value = "r07")]
         scenario: String,
@@ -796,6 +801,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             make_library,
             make_observed,
             detectability,
+            self_test,
             scenario,
             case,
             size,
@@ -904,6 +910,23 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 print!("{}", gap_run::format_detectability(&lib, fit_cycles));
                 return Ok(ExitCode::SUCCESS);
             }
+            if self_test {
+                let scores = gap_run::self_test(&lib, fit_cycles, jobs)?;
+                let md = format!(
+                    "# Self-test of the library {}\n\nEach run diagnosed by the library without its specimen; scored as a blind set (\"none\" right only under the floor).\n\n{}",
+                    lib_dir.display(),
+                    gap_run::format_self_test(&scores)
+                );
+                print!("{}", md);
+                std::fs::create_dir_all(&out)?;
+                std::fs::write(out.join("self_test.md"), &md)?;
+                std::fs::write(
+                    out.join("self_test.json"),
+                    serde_json::to_string_pretty(&scores)?,
+                )?;
+                println!("self-test: {}/self_test.{{md,json}}", out.display());
+                return Ok(ExitCode::SUCCESS);
+            }
             if let Some(d) = make_observed {
                 // the blind runs are of the library's scenario
                 idx.check_scenario(&sc)?;
@@ -959,7 +982,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             }
             if !make_library {
                 bail!(
-                    "give --observed FILE, --validate DIR, --make-library or --make-observed DIR"
+                    "give --observed FILE, --validate DIR, --self-test, --make-library or --make-observed DIR"
                 );
             }
             print!("{}", gap_run::format_detectability(&lib, fit_cycles));
