@@ -1091,12 +1091,6 @@ fn dominant_signal(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -
         .unwrap_or_else(|| ("none".into(), 0.0))
 }
 
-/// Dominant hidden effect: the one whose surrogate alone gives the largest signal ("none" for a
-/// case of today's model).
-pub fn dominant_truth(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> String {
-    dominant_signal(lib, t, like, fit_cycles).0
-}
-
 /// What a library can detect: its noise inflation and, per effect, the largest signal over its
 /// strengths and the strengths whose signal on the fitted cycles reaches `DETECTABILITY_FLOOR`
 /// (a markdown section; printed before any diagnosis and by `compat gap --detectability`).
@@ -1146,12 +1140,6 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
         );
     }
     s
-}
-
-/// Signal-to-noise of the dominant hidden effect on the fitted cycles (sqrt of the chi2 its
-/// surrogate adds, after the noise inflation).
-pub fn detectability(lib: &Library, t: &Truth, like: &Series, fit_cycles: usize) -> f64 {
-    dominant_signal(lib, t, like, fit_cycles).1
 }
 
 #[derive(Serialize)]
@@ -1696,6 +1684,75 @@ pub fn write_plot_data(out: &Path, lib: &Library, obs: &Series, d: &gap::Diagnos
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The self-test's case of specimen s is diagnosed by a library with no run of s: neither its
+    /// baseline run nor its run of any effect strength (the pairing would otherwise see it), and its
+    /// truth is the run's group.
+    #[test]
+    fn leaving_a_seed_out_removes_every_run_of_that_specimen() {
+        let ser = |x: f64| Series {
+            rut_mm: vec![0.0, x, 2.0 * x],
+            ..Default::default()
+        };
+        let effect = Effect {
+            knob: "rolling".into(),
+            meaning: String::new(),
+            zero: 0.0,
+            strengths: vec![0.1, 0.5],
+        };
+        let mut lib = Library {
+            effects: vec![effect],
+            baseline: vec![ser(1.0), ser(2.0), ser(3.0)],
+            baseline_seeds: vec![1, 2, 3],
+            ..Default::default()
+        };
+        for k in 0..2 {
+            let key = ("rolling".to_string(), k);
+            lib.runs.insert(
+                key.clone(),
+                vec![ser(10.0 + k as f64), ser(20.0 + k as f64)],
+            );
+            lib.run_seeds.insert(key, vec![2, 3]);
+        }
+        let (rest, cases) = leave_seed_out(&lib, 2);
+        assert_eq!(rest.baseline_seeds, vec![1, 3]);
+        assert_eq!(
+            rest.baseline
+                .iter()
+                .map(|s| s.rut_mm[1])
+                .collect::<Vec<_>>(),
+            vec![1.0, 3.0]
+        );
+        for k in 0..2 {
+            let key = ("rolling".to_string(), k);
+            assert_eq!(rest.run_seeds[&key], vec![3]);
+            assert_eq!(rest.runs[&key][0].rut_mm[1], 20.0 + k as f64);
+        }
+        let got: Vec<(String, f64, Vec<(String, f64)>)> = cases
+            .iter()
+            .map(|(n, s, t)| (n.clone(), s.rut_mm[1], t.effects.clone()))
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                ("base_s2".to_string(), 2.0, vec![]),
+                (
+                    "rolling_0_s2".to_string(),
+                    10.0,
+                    vec![("rolling".to_string(), 0.1)]
+                ),
+                (
+                    "rolling_1_s2".to_string(),
+                    11.0,
+                    vec![("rolling".to_string(), 0.5)]
+                ),
+            ]
+        );
+        // a seed with no effect runs leaves the groups whole
+        let (rest1, cases1) = leave_seed_out(&lib, 1);
+        assert_eq!(cases1.len(), 1);
+        assert_eq!(rest1.run_seeds, lib.run_seeds);
+    }
 
     /// A library is completed on the engine it was started with: a library.json from before the
     /// engine choice (no `engine`: the YADE-order path) refuses `--engine fast` and says which
