@@ -1728,7 +1728,8 @@ mod tests {
             assert_eq!(rest.run_seeds[&key], vec![3]);
             assert_eq!(rest.runs[&key][0].rut_mm[1], 20.0 + k as f64);
         }
-        let got: Vec<(String, f64, Vec<(String, f64)>)> = cases
+        type Case = (String, f64, Vec<(String, f64)>);
+        let got: Vec<Case> = cases
             .iter()
             .map(|(n, s, t)| (n.clone(), s.rut_mm[1], t.effects.clone()))
             .collect();
