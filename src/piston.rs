@@ -262,6 +262,17 @@ pub struct PistonController {
     pub p: f64,
     pub target: f64,
     pub v: f64,
+    /// The study's spring-bed subgrade under the bottom plate (knob `--subgrade-k`; study.py
+    /// `start_subgrade`/`tick_subgrade`): the plate body (`subId`, -1: none), its mass, spring K A,
+    /// dashpot c and the layer's weight P0 (`subM`, `subKA`, `subC`, `subP0`), its state u, v
+    /// (`subU`, `subV`). Stepped every time the engine runs, in every phase, before the piston law.
+    pub sub_id: i64,
+    pub sub_m: f64,
+    pub sub_ka: f64,
+    pub sub_c: f64,
+    pub sub_p0: f64,
+    pub sub_u: f64,
+    pub sub_v: f64,
 }
 
 impl Default for PistonController {
@@ -296,6 +307,13 @@ impl Default for PistonController {
             p: 0.0,
             target: 0.0,
             v: 0.0,
+            sub_id: -1,
+            sub_m: 1.0,
+            sub_ka: 0.0,
+            sub_c: 0.0,
+            sub_p0: 0.0,
+            sub_u: 0.0,
+            sub_v: 0.0,
         }
     }
 }
@@ -418,11 +436,29 @@ impl PistonController {
         io.pos_z(self.ids[0]) + self.piston_off
     }
 
+    /// study.py `tick_subgrade()`: the bottom plate's equation of motion
+    /// m dv/dt = F_c + P0 - K A u - c v, explicit, its velocity used by the next step's integration.
+    fn tick_subgrade(&mut self, io: &mut impl PistonIo) -> Result<(), String> {
+        let id = self.sub_id as usize;
+        if id >= io.bodies() {
+            return Err(format!("RyadePistonController: no subgrade plate #{}", id));
+        }
+        // f = O.forces.f(id)[2] + P0 - KA * u - c * v, Python's left-to-right order
+        let f = io.force_z(id) + self.sub_p0 - self.sub_ka * self.sub_u - self.sub_c * self.sub_v;
+        self.sub_u += self.dt * self.sub_v; // s['u'] += dt * s['v']
+        self.sub_v += self.dt * f / self.sub_m; // s['v'] += dt * f / s['m']
+        io.set_vel(id, Vec3::new(0.0, 0.0, self.sub_v));
+        Ok(())
+    }
+
     /// One step of study.py `tick()` in the phases `approach`, `seat`, `cycle` (nothing when idle),
     /// with the step's synced forces (the engine follows `NewtonIntegrator`). Returns true when the
     /// run must end after this step (study.py `stop_after_this_step()`). The caller checks
     /// `periodic.is_activated` first (`Scene::run_engine`).
     pub fn action(&mut self, io: &mut impl PistonIo, iter: i64) -> Result<bool, String> {
+        if self.sub_id >= 0 {
+            self.tick_subgrade(io)?; // tick(): the subgrade first, in every phase
+        }
         if self.phase == Phase::Idle {
             return Ok(false);
         }
@@ -496,7 +532,7 @@ impl PistonController {
 }
 
 /// Attribute names of the Python class, in the order `to_json` writes them.
-pub const ATTRS: [&str; 36] = [
+pub const ATTRS: [&str; 43] = [
     "iterPeriod",
     "nDo",
     "initRun",
@@ -533,6 +569,13 @@ pub const ATTRS: [&str; 36] = [
     "maxRut",
     "stopped",
     "p",
+    "subId",
+    "subM",
+    "subKA",
+    "subC",
+    "subP0",
+    "subU",
+    "subV",
 ];
 
 /// A float as JSON: a number, or the string "inf", "-inf" or "nan" (JSON has no such numbers).
@@ -583,11 +626,12 @@ attr_table!(float_attr, float_attr_mut, f64;
     "pPeak" => p_peak, "freq" => freq, "vApproach" => v_approach, "stopRut" => stop_rut, "zRef" => z_ref,
     "pistonOff" => piston_off, "Z0" => z0, "pf" => pf, "I" => i_term, "peak" => stats.peak,
     "peakRaw" => stats.peak_raw, "se" => stats.se, "seRaw" => stats.se_raw, "maxRut" => stats.max_rut, "p" => p,
-    "target" => target, "v" => v);
+    "target" => target, "v" => v, "subM" => sub_m, "subKA" => sub_ka, "subC" => sub_c, "subP0" => sub_p0,
+    "subU" => sub_u, "subV" => sub_v);
 attr_table!(int_attr, int_attr_mut, i64;
     "iterPeriod" => periodic.iter_period, "nDo" => periodic.n_do, "firstIterRun" => periodic.first_iter_run,
     "nDone" => periodic.n_done, "iterLast" => periodic.iter_last, "iterSeatEnd" => iter_seat_end,
-    "stepsEvery" => steps_every, "n" => stats.n);
+    "stepsEvery" => steps_every, "n" => stats.n, "subId" => sub_id);
 attr_table!(bool_attr, bool_attr_mut, bool;
     "initRun" => periodic.init_run, "neumaierSum" => neumaier_sum, "stopped" => stopped);
 

@@ -44,10 +44,27 @@ def test_native_controller_writes_the_pi_bytes(tmp_path):
 
 
 @needs_compat
-def test_native_controller_falls_back_with_the_subgrade_knob(tmp_path):
-    out = compat_run(STUDY, '--import-specimen', SPECIMEN_G, '--cycles', '1', '--controller', 'native',
-                     '--subgrade-k', '1e8', '--out', str(tmp_path / 'o'))
-    assert '--subgrade-k needs the PyRunner every step' in out
+def test_native_controller_runs_the_subgrade_with_the_pi_bytes(tmp_path):
+    """--subgrade-k (the spring bed under the bottom plate, study.py tick_subgrade): the engine steps it
+    too, so no PyRunner is left; history.csv (with its subgrade_mm column), steps.csv and profile.csv
+    are byte-identical to the PyRunner law's on the YADE-order path, and the fast path takes the run."""
+    logs = {}
+    for c in ('pi', 'native'):
+        logs[c] = compat_run(STUDY, '--import-specimen', SPECIMEN_G, '--cycles', '2', '--controller', c,
+                             '--subgrade-k', '1e7', '--out', str(tmp_path / c))
+    assert 'RyadePistonController (ryade engine) runs the law' in logs['native']
+    for f in ('history.csv', 'steps.csv', 'profile.csv'):
+        a, b = (tmp_path / 'pi' / f).read_bytes(), (tmp_path / 'native' / f).read_bytes()
+        assert a == b, f
+    head = (tmp_path / 'native' / 'history.csv').read_text().splitlines()
+    assert head[0].endswith(',subgrade_mm')
+    # the plate moved: its settlement under the layer's weight and the load
+    assert float(head[-1].split(',')[-1]) != 0.0
+    fast = compat_run('--fast', STUDY, '--import-specimen', SPECIMEN_G, '--cycles', '2', '--controller', 'native',
+                      '--subgrade-k', '1e7', '--out', str(tmp_path / 'fast'))
+    assert 'YADE-order path for this run' not in fast, fast
+    rows = (tmp_path / 'fast' / 'history.csv').read_text().splitlines()
+    assert len(rows) == len(head) and rows[0] == head[0]
 
 
 @needs_compat

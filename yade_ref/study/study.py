@@ -868,8 +868,8 @@ class Study:
     def native_piston(self):
         """--controller native: the PyRunner of the loading is replaced by ryade's RyadePistonController
         engine at its place in O.engines, which does what tick() does in the phases approach, seat and
-        cycle (src/piston.rs), without a Python call per step. None where the PyRunner law runs instead:
-        under YADE (no such class), or with --subgrade-k (tick_subgrade needs the PyRunner every step)."""
+        cycle (src/piston.rs), and tick_subgrade() with --subgrade-k, without a Python call per step. None
+        where the PyRunner law runs instead: under YADE (no such class)."""
         a, P = self.a, self.P
         if a.controller != 'native':
             return None
@@ -878,13 +878,13 @@ class Study:
         if Native is None:
             print('[study] --controller native: YADE has no RyadePistonController (a ryade extension); the PyRunner runs the law, as --controller pi', flush=True)
             return None
-        if self.sub is not None:
-            print('[study] --controller native: --subgrade-k needs the PyRunner every step; the PyRunner runs the law, as --controller pi', flush=True)
-            return None
         # it runs when the PyRunner would have (PeriodicEngine's rule: a fresh one skips its first step)
         pc = Native(iterPeriod=ctl.iterPeriod, nDone=ctl.nDone, iterLast=ctl.iterLast, ids=self.piston, area=P.A, alpha=P.alpha, Kp=P.Kp, Ki=P.Ki, vmax=a.vmax, dt=P.dt, pSeat=a.seat_kpa * 1e3,
                     pPeak=a.peak_kpa * 1e3, freq=a.freq, wave=a.wave, vApproach=-0.1, stopRut=a.stop_rut, pistonOff=self.pistonOff,
                     Z0=P.Z0, stepsEvery=a.steps_every, label='piston')
+        if self.sub is not None:  # the spring bed's state so far (tick_subgrade's, none yet at load())
+            s = self.sub
+            pc.subId, pc.subM, pc.subKA, pc.subC, pc.subP0, pc.subU, pc.subV = s['id'], s['m'], s['KA'], s['c'], s['P0'], s['u'], s['v']
         O.engines = [pc if e is ctl else e for e in O.engines]
         print('[study] --controller native: RyadePistonController (ryade engine) runs the law in place of the PyRunner', flush=True)
         return pc
@@ -894,6 +894,8 @@ class Study:
         statistics (self.cyc) as tick() leaves them."""
         self.steps += pc.takeSteps()
         self.phase, self.stopped, self.pf, self.I = pc.phase, pc.stopped, pc.pf, pc.I
+        if self.sub is not None:
+            self.sub['u'], self.sub['v'] = pc.subU, pc.subV
         return {'n': pc.n, 'peak': pc.peak, 'peakRaw': pc.peakRaw, 'se': pc.se, 'seRaw': pc.seRaw, 'maxRut': pc.maxRut}
 
     def load(self):

@@ -1190,7 +1190,9 @@ class RyadePistonController(PartialEngine):
     'cycle'), `stopRut`, `zRef`, `pistonOff`, `Z0`, `stepsEvery`, `neumaierSum` (sum the forces as this
     Python's builtin `sum` does; set from the interpreter). State: `pf`, `I`; per-cycle statistics
     `n`, `peak`, `peakRaw`, `se`, `seRaw`, `maxRut` (`resetCycle()`), `stopped`; the last step's `p`,
-    `target`, `v`. The approach stops the run at p >= pSeat, a cycle once the rut passes `stopRut`
+    `target`, `v`. The study's spring-bed subgrade (its `--subgrade-k`, `tick_subgrade`): `subId` (the
+    bottom plate, -1: none), `subM`, `subKA`, `subC`, `subP0`, state `subU`, `subV`; stepped every time the
+    engine runs, in every phase, before the piston law. The approach stops the run at p >= pSeat, a cycle once the rut passes `stopRut`
     (as `O.stopAtIter = O.iter + 1` from a PyRunner). `takeSteps()` returns and clears the steps.csv
     samples `[iter, phase, p_kPa, pf_kPa, target_kPa, pistonBottom - Z0, v]`."""
     _attrs = {'iterPeriod': 1, 'nDo': -1, 'initRun': False, 'firstIterRun': 0, 'nDone': 0, 'iterLast': 0,
@@ -1199,9 +1201,10 @@ class RyadePistonController(PartialEngine):
               'stopRut': float('inf'), 'zRef': 0.0, 'pistonOff': 0.0, 'Z0': 0.0, 'stepsEvery': 0,
               'neumaierSum': sys.version_info >= (3, 12), 'pf': 0.0, 'I': 0.0, 'n': 0, 'peak': -1e300,
               'peakRaw': -1e300, 'se': 0.0, 'seRaw': 0.0, 'maxRut': -1e300, 'stopped': False, 'p': 0.0,
-              'target': 0.0, 'v': 0.0}
+              'target': 0.0, 'v': 0.0, 'subId': -1, 'subM': 1.0, 'subKA': 0.0, 'subC': 0.0, 'subP0': 0.0,
+              'subU': 0.0, 'subV': 0.0}
     _live = ('ids',) + tuple(_attrs)
-    _ints = ('iterPeriod', 'nDo', 'firstIterRun', 'nDone', 'iterLast', 'iterSeatEnd', 'stepsEvery', 'n')
+    _ints = ('iterPeriod', 'nDo', 'firstIterRun', 'nDone', 'iterLast', 'iterSeatEnd', 'stepsEvery', 'n', 'subId')
     _bools = ('initRun', 'neumaierSum', 'stopped')
     _choices = {'wave': ('haversine', 'triangle'), 'phase': ('idle', 'approach', 'seat', 'cycle')}
     #: study.py load()'s per-cycle accumulators at the start of a cycle
