@@ -1169,7 +1169,6 @@ pub struct CaseScore {
     /// The held-out gap of each observed observable (empty when the answer is "none").
     pub heldout_by_observable: Vec<gap::HeldOut>,
     /// The diagnosis' evidence for its best model (`gap::Diagnosis::evidence`).
-    #[serde(default)]
     pub evidence: f64,
 }
 
@@ -1337,6 +1336,23 @@ fn leave_seed_out(lib: &Library, seed: u32) -> (Library, Vec<(String, Series, Tr
 pub fn self_test(lib: &Library, fit_cycles: usize, jobs: usize) -> Result<Vec<CaseScore>> {
     if lib.baseline_seeds.len() != lib.baseline.len() || lib.baseline.len() < 4 {
         bail!("the self-test needs a library with 4 or more baseline seeds of known number");
+    }
+    // every effect run must be known by its seed, and its specimen be a baseline one (so that
+    // leaving a seed out leaves every run of that specimen out)
+    for (key, runs) in &lib.runs {
+        let ok = lib.run_seeds.get(key).is_some_and(|s| {
+            s.len() == runs.len() && s.iter().all(|x| lib.baseline_seeds.contains(x))
+        }) && lib
+            .effects
+            .iter()
+            .any(|e| e.knob == key.0 && key.1 < e.strengths.len());
+        if !ok {
+            bail!(
+                "the self-test needs every library run paired with a baseline seed: {} strength {} is not",
+                key.0,
+                key.1
+            );
+        }
     }
     let seeds = lib.baseline_seeds.clone();
     let next = std::sync::atomic::AtomicUsize::new(0);

@@ -52,7 +52,8 @@ impl PistonIo for SceneIo<'_> {
     }
 }
 
-/// The controller's phase (`Study.phase` in study.py, loading phases only; `idle` does nothing).
+/// The controller's phase (`Study.phase` in study.py, loading phases only; `idle` leaves the piston
+/// alone, while a subgrade plate is still stepped).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Phase {
     #[default]
@@ -443,6 +444,10 @@ impl PistonController {
         if id >= io.bodies() {
             return Err(format!("RyadePistonController: no subgrade plate #{}", id));
         }
+        if self.sub_m == 0.0 {
+            // Python: ZeroDivisionError
+            return Err("RyadePistonController: subM is 0 (the subgrade plate's mass)".into());
+        }
         // f = O.forces.f(id)[2] + P0 - KA * u - c * v, Python's left-to-right order
         let f = io.force_z(id) + self.sub_p0 - self.sub_ka * self.sub_u - self.sub_c * self.sub_v;
         self.sub_u += self.dt * self.sub_v; // s['u'] += dt * s['v']
@@ -451,7 +456,8 @@ impl PistonController {
         Ok(())
     }
 
-    /// One step of study.py `tick()` in the phases `approach`, `seat`, `cycle` (nothing when idle),
+    /// One step of study.py `tick()`: the subgrade plate first (in every phase), then the piston in the
+    /// phases `approach`, `seat`, `cycle` (nothing more when idle),
     /// with the step's synced forces (the engine follows `NewtonIntegrator`). Returns true when the
     /// run must end after this step (study.py `stop_after_this_step()`). The caller checks
     /// `periodic.is_activated` first (`Scene::run_engine`).
@@ -762,6 +768,71 @@ mod tests {
         assert_eq!(c.p_target(0.01), 275.8e3);
         assert_eq!(c.p_target(0.005), 27.6e3 + 248.2e3 * 0.5);
         assert_eq!(c.p_target(0.015), 27.6e3 + 248.2e3 * 0.5);
+    }
+
+    /// Bodies as the controller sees them, for the tests.
+    struct MockIo {
+        vel: Vec<Vec3>,
+        fz: Vec<f64>,
+    }
+    impl PistonIo for MockIo {
+        fn bodies(&self) -> usize {
+            self.fz.len()
+        }
+        fn pos_z(&self, _: usize) -> f64 {
+            0.0
+        }
+        fn vel_z(&self, id: usize) -> f64 {
+            self.vel[id][2]
+        }
+        fn set_vel(&mut self, id: usize, v: Vec3) {
+            self.vel[id] = v;
+        }
+        fn force_z(&self, id: usize) -> f64 {
+            self.fz[id]
+        }
+    }
+
+    /// study.py `tick_subgrade` by hand: f = F + P0 - K A u - c v = -7.5 + 5 - 1000 (0.001)
+    /// - 10 (-0.01) = -3.4 N; u += dt v = 0.00099 m; v += dt f / m = -0.0117 m/s, set on the plate.
+    /// It steps in the idle phase too (study.py `tick()` steps it before its idle check), leaving the
+    /// piston alone there; a plate of mass 0 is an error, as Python's ZeroDivisionError.
+    #[test]
+    fn subgrade_plate_steps_in_every_phase() {
+        let mut c = PistonController {
+            ids: vec![0],
+            dt: 1e-3,
+            sub_id: 1,
+            sub_m: 2.0,
+            sub_ka: 1000.0,
+            sub_c: 10.0,
+            sub_p0: 5.0,
+            sub_u: 0.001,
+            sub_v: -0.01,
+            ..controller()
+        };
+        let piston_v = Vec3::new(0.0, 0.0, 0.5);
+        let mut io = MockIo {
+            vel: vec![piston_v, Vec3::zeros()],
+            fz: vec![0.0, -7.5],
+        };
+        assert_eq!(c.phase, Phase::Idle);
+        assert_eq!(c.action(&mut io, 0), Ok(false));
+        assert!((c.sub_u - 0.00099).abs() < 1e-15, "{}", c.sub_u);
+        assert!((c.sub_v + 0.0117).abs() < 1e-15, "{}", c.sub_v);
+        assert_eq!(io.vel[1], Vec3::new(0.0, 0.0, c.sub_v));
+        assert_eq!(io.vel[0], piston_v);
+        // a second step from the new state: f = -7.5 + 5 - 0.99 + 0.117
+        c.action(&mut io, 1).unwrap();
+        assert!((c.sub_u - (0.00099 - 0.0117e-3)).abs() < 1e-15);
+        assert!((c.sub_v - (-0.0117 + 1e-3 * (-7.5 + 5.0 - 0.99 + 0.117) / 2.0)).abs() < 1e-15);
+        c.sub_m = 0.0;
+        assert!(c.action(&mut io, 2).unwrap_err().contains("subM is 0"));
+        c.sub_id = 2;
+        assert!(c
+            .action(&mut io, 3)
+            .unwrap_err()
+            .contains("no subgrade plate #2"));
     }
 
     /// Python's float `%`, `min`/`max` and `**2` by hand.

@@ -260,7 +260,7 @@ enum Cmd {
         /// Diagnose each library run with the library left without its specimen (every seed in
         /// turn) and score the answers as a blind set is scored: the method's error rates on
         /// hundreds of cases, from the library alone (written to --out/self_test.{md,json})
-        #[arg(long)]
+        #[arg(long, conflicts_with_all = ["observed", "validate", "make_observed", "make_library"])]
         self_test: bool,
         /// The study scenario of the library runs (r03 | r05 | r07)
         #[arg(long, default_value = "r07")]

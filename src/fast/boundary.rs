@@ -606,7 +606,8 @@ impl Boundaries {
 }
 
 /// The study's piston (`RyadePistonController`) drives boundaries: it reads their z forces of this
-/// step and sets their velocities (`FastSim::from_scene` checks that its ids are boundaries).
+/// step and sets their velocities (`FastSim::from_scene` checks that its ids and its subgrade plate
+/// are boundaries).
 impl crate::piston::PistonIo for Boundaries {
     fn bodies(&self) -> usize {
         self.masks.len()

@@ -638,6 +638,16 @@ impl FastSim {
                     id
                 ));
             }
+            // the spring-bed subgrade's plate (`subId`) is moved the same way
+            if pc.sub_id >= 0 && !bnd.has(pc.sub_id as usize) {
+                return unsupported(format!(
+                    "a RyadePistonController subgrade plate #{}, which is not a fixed wall, box or facet",
+                    pc.sub_id
+                ));
+            }
+            if pc.sub_id >= 0 && pc.sub_m == 0.0 {
+                return unsupported("a RyadePistonController subgrade plate of mass 0".into());
+            }
         }
         let mut sphere_ids = Vec::new();
         let mut radius = Vec::new();
@@ -1031,7 +1041,7 @@ impl FastSim {
         if let Some((_, pc)) = &mut self.piston {
             // the engine after NewtonIntegrator (`Scene::run_engine`, Engine::Piston)
             if pc.periodic.is_activated(self.iter) {
-                // (its errors are bad ids, refused by `from_scene`)
+                // (its errors are bad ids and a plate of mass 0, refused by `from_scene`)
                 self.stop |= pc.action(&mut self.bnd, self.iter).unwrap_or(true);
             }
         }

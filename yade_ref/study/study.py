@@ -841,8 +841,9 @@ class Study:
         F_c the contact force on it (O.forces.f after NewtonIntegrator, this step's forces), K A u a
         Winkler spring bed (A = Lx Ly), P0 = the weight of the layer (spheres and grid) so that u = 0 is
         the equilibrium under self weight, c = 2 zeta sqrt(K A m_p) a dashpot. The velocity set here
-        is used by the next step's NewtonIntegrator (one-step lag, explicit). The same Python arithmetic
-        runs in both engines, so nothing depends on how an engine applies forces to a blocked body."""
+        is used by the next step's NewtonIntegrator (one-step lag, explicit). The same arithmetic runs in
+        both engines (here, or in ryade's RyadePistonController with --controller native, in this
+        order), so nothing depends on how an engine applies forces to a blocked body."""
         a, P = self.a, self.P
         plate = [b.id for b in O.bodies if b.shape.__class__.__name__ == 'Box' and b.id != self.top]
         if len(plate) != 1:
