@@ -793,8 +793,9 @@ mod tests {
         }
     }
 
-    /// study.py `tick_subgrade` by hand: f = F + P0 - K A u - c v = -7.5 + 5 - 1000 (0.001)
-    /// - 10 (-0.01) = -3.4 N; u += dt v = 0.00099 m; v += dt f / m = -0.0117 m/s, set on the plate.
+    /// study.py `tick_subgrade` by hand: f = F + P0 - K A u - c v with F = -7.5, P0 = 5,
+    /// K A u = 1000 x 0.001 and c v = 10 x (-0.01), so f = -3.4 N; u += dt v gives 0.00099 m and
+    /// v += dt f / m gives -0.0117 m/s, set on the plate.
     /// It steps in the idle phase too (study.py `tick()` steps it before its idle check), leaving the
     /// piston alone there; a plate of mass 0 is an error, as Python's ZeroDivisionError.
     #[test]
