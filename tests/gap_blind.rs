@@ -167,11 +167,11 @@ fn score_set(set: &str) -> String {
     score_set_with(set, "library_r07_G_medium_c6")
 }
 
-/// `score_set` against the committed library `library`.
-fn score_set_with(set: &str, library: &str) -> String {
-    let root = || PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let src = root().join(format!("results/gap/{}", set));
-    let tmp = std::env::temp_dir().join(format!("ryade_gap_{}_{}", set, std::process::id()));
+/// A temporary copy of the committed blind set `set` (its observed files and truth only), so that
+/// validating it writes no committed file.
+fn copy_set(set: &str, tag: &str) -> PathBuf {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("results/gap/{}", set));
+    let tmp = std::env::temp_dir().join(format!("ryade_{}_{}_{}", tag, set, std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     for sub in ["cases", "truth"] {
         for e in std::fs::read_dir(src.join(sub)).unwrap() {
@@ -186,7 +186,14 @@ fn score_set_with(set: &str, library: &str) -> String {
             }
         }
     }
-    let (_, lib) = gap_run::load_library(&root().join("results/gap").join(library)).unwrap();
+    tmp
+}
+
+/// `score_set` against the committed library `library`.
+fn score_set_with(set: &str, library: &str) -> String {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let tmp = copy_set(set, "gap");
+    let (_, lib) = gap_run::load_library(&root.join("results/gap").join(library)).unwrap();
     let scores = gap_run::validate(&tmp, &lib, 4).unwrap();
     let t = gap_run::format_scores(&scores);
     let _ = std::fs::remove_dir_all(&tmp);
@@ -442,22 +449,7 @@ fn self_test_predicts_the_yade_blind_rates_r05() {
         "blind2033u_r05_G_medium_c6",
         "blind2034u_r05_G_medium_c6",
     ] {
-        let src = root.join(set);
-        let tmp = std::env::temp_dir().join(format!("ryade_st_{}_{}", set, std::process::id()));
-        let _ = std::fs::remove_dir_all(&tmp);
-        for sub in ["cases", "truth"] {
-            for e in std::fs::read_dir(src.join(sub)).unwrap() {
-                let e = e.unwrap();
-                let to = tmp.join(sub).join(e.file_name());
-                if e.path().is_dir() {
-                    std::fs::create_dir_all(&to).unwrap();
-                    std::fs::copy(e.path().join("observed.csv"), to.join("observed.csv")).unwrap();
-                } else {
-                    std::fs::create_dir_all(to.parent().unwrap()).unwrap();
-                    std::fs::copy(e.path(), &to).unwrap();
-                }
-            }
-        }
+        let tmp = copy_set(set, "st");
         let s = gap_run::validate(&tmp, &lib, 4).unwrap();
         let _ = std::fs::remove_dir_all(&tmp);
         let (a, b, c, d, e) = rates(&s);
