@@ -1396,6 +1396,174 @@ pub fn self_test(lib: &Library, fit_cycles: usize, jobs: usize) -> Result<Vec<Ca
     Ok(out)
 }
 
+/// One answer of a library's self-test, as a library keeps it: the run's group ("none" for today's
+/// model, else "knob strength"), its dominant effect, whether that reaches the floor, and the answer.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SelfTestAnswer {
+    pub group: String,
+    pub dominant: String,
+    pub detectable: bool,
+    pub named: String,
+}
+
+/// The self-test a library keeps next to its library.json (`compat gap --self-test` writes it), so
+/// that every later diagnosis can say how often its answer was right on the library's own runs.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct StoredSelfTest {
+    /// Library runs when it was made (a library completed since then needs a new one).
+    pub runs: usize,
+    pub fit_cycles: usize,
+    /// The observables it was made with.
+    pub observables: Vec<String>,
+    pub answers: Vec<SelfTestAnswer>,
+}
+
+pub const SELF_TEST_FILE: &str = "self_test.json";
+
+/// The self-tests kept with the library in `dir` (one per observables and fit cycles; none when the
+/// file is missing).
+pub fn read_self_tests(dir: &Path) -> Result<Vec<StoredSelfTest>> {
+    let p = dir.join(SELF_TEST_FILE);
+    match std::fs::read_to_string(&p) {
+        Ok(t) => serde_json::from_str(&t).with_context(|| format!("{} is unreadable", p.display())),
+        Err(_) => Ok(Vec::new()),
+    }
+}
+
+/// Keep `st` with the library in `dir`, replacing a kept one of the same observables and fit cycles.
+pub fn keep_self_test(dir: &Path, st: StoredSelfTest) -> Result<()> {
+    let mut v = read_self_tests(dir).unwrap_or_default();
+    v.retain(|t| !(t.observables == st.observables && t.fit_cycles == st.fit_cycles));
+    v.push(st);
+    std::fs::write(dir.join(SELF_TEST_FILE), serde_json::to_string(&v)?)
+        .with_context(|| format!("writing {}", dir.join(SELF_TEST_FILE).display()))
+}
+
+fn library_runs(lib: &Library) -> usize {
+    lib.baseline.len() + lib.runs.values().map(|v| v.len()).sum::<usize>()
+}
+
+fn observables_of(lib: &Library) -> Vec<String> {
+    gap::OBSERVABLES
+        .iter()
+        .filter(|o| lib.baseline.iter().all(|s| s.get(o).is_some()))
+        .map(|o| o.to_string())
+        .collect()
+}
+
+impl StoredSelfTest {
+    pub fn new(lib: &Library, fit_cycles: usize, scores: &[CaseScore]) -> StoredSelfTest {
+        StoredSelfTest {
+            runs: library_runs(lib),
+            fit_cycles,
+            observables: observables_of(lib),
+            answers: scores
+                .iter()
+                .map(|c| SelfTestAnswer {
+                    group: if c.truth.is_empty() {
+                        "none".into()
+                    } else {
+                        gap::format_effects(&c.truth, ", ", None)
+                    },
+                    dominant: c.dominant_truth.clone(),
+                    detectable: c.detectable,
+                    named: c.named.clone(),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// How often the answer `winner` was right in the library's own self-test (the library folder's
+/// `SELF_TEST_FILE`), for a diagnosis made with `lib` (restricted to the observation's observables)
+/// on `fit_cycles`: a markdown section for the report.
+pub fn format_reliability(dir: &Path, lib: &Library, fit_cycles: usize, winner: &str) -> String {
+    let mut s = String::from("## How often this answer is right (the library's self-test)\n\n");
+    let how = format!(
+        "`compat gap --self-test --library {}` (every library run diagnosed by the library without its specimen; seconds)",
+        dir.display()
+    );
+    let kept = match read_self_tests(dir) {
+        Ok(v) if v.is_empty() => {
+            return s + &format!("No self-test kept with this library: {} adds it.\n", how)
+        }
+        Ok(v) => v,
+        Err(e) => return s + &format!("{:#}: {} remakes it.\n", e, how),
+    };
+    let obs = observables_of(lib);
+    let Some(st) = kept.iter().find(|t| {
+        t.runs == library_runs(lib) && t.fit_cycles == fit_cycles && t.observables == obs
+    }) else {
+        return s + &format!(
+            "No kept self-test matches this diagnosis ({} runs, fit cycles 1-{}, observables {}): {}, given your observed file with `--observed` (for its observables), makes one.\n",
+            library_runs(lib),
+            fit_cycles,
+            obs.join(", "),
+            how
+        );
+    };
+    let count = |v: Vec<&SelfTestAnswer>| -> String {
+        let mut m: BTreeMap<&str, usize> = BTreeMap::new();
+        for a in v {
+            *m.entry(a.group.as_str()).or_default() += 1;
+        }
+        let mut l: Vec<(&str, usize)> = m.into_iter().collect();
+        l.sort_by_key(|x| std::cmp::Reverse(x.1));
+        l.iter()
+            .map(|(g, n)| format!("{} ({})", g, n))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let same: Vec<&SelfTestAnswer> = st.answers.iter().filter(|a| a.named == winner).collect();
+    let nulls = st.answers.iter().filter(|a| a.dominant == "none").count();
+    if winner == "none" {
+        let missed: Vec<&SelfTestAnswer> = same.iter().copied().filter(|a| a.detectable).collect();
+        s += &format!(
+            "The self-test answered \"none\" for {} of the library's {} runs: {} of today's model (of {}), {} of effects under the detectability floor, and {} of effects above it (missed{}).\n",
+            same.len(),
+            st.answers.len(),
+            same.iter().filter(|a| a.dominant == "none").count(),
+            nulls,
+            same.iter().filter(|a| a.dominant != "none" && !a.detectable).count(),
+            missed.len(),
+            if missed.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", count(missed.clone()))
+            }
+        );
+    } else {
+        let right = same.iter().filter(|a| a.dominant == winner).count();
+        let other: Vec<&SelfTestAnswer> = same
+            .iter()
+            .copied()
+            .filter(|a| a.dominant != winner)
+            .collect();
+        s += &format!(
+            "The self-test named **{}** for {} of the library's {} runs; {} of them had it as their dominant effect ({}){}.\n",
+            winner,
+            same.len(),
+            st.answers.len(),
+            right,
+            if same.is_empty() {
+                "-".to_string()
+            } else {
+                format!("{:.0} %", 100.0 * right as f64 / same.len() as f64)
+            },
+            if other.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; the others were runs of {}, read as {}",
+                    count(other.clone()),
+                    winner
+                )
+            }
+        );
+    }
+    s
+}
+
 /// The self-test by library group (today's model, each effect strength): its signal (median over
 /// the specimens) and what was named, then the blind sets' summary.
 pub fn format_self_test(s: &[CaseScore]) -> String {
@@ -1700,6 +1868,66 @@ pub fn write_plot_data(out: &Path, lib: &Library, obs: &Series, d: &gap::Diagnos
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The report's reliability section reads the kept self-test: for a named effect, how many of
+    /// the runs it was named for had it as their dominant effect and what the others were; for
+    /// "none", which runs got it; and a self-test of another library (other run count) is not used.
+    #[test]
+    fn reliability_comes_from_the_kept_self_test() {
+        let dir = std::env::temp_dir().join(format!("ryade_gap_rel_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let lib = Library {
+            baseline: vec![
+                Series {
+                    rut_mm: vec![0.0, 1.0, 2.0],
+                    ..Default::default()
+                };
+                19
+            ],
+            ..Default::default()
+        };
+        let a = |group: &str, dominant: &str, detectable: bool, named: &str| SelfTestAnswer {
+            group: group.into(),
+            dominant: dominant.into(),
+            detectable,
+            named: named.into(),
+        };
+        let mut answers = vec![a("rolling 0.2", "rolling", true, "rolling"); 7];
+        answers.extend(vec![a("friction 10", "friction", false, "rolling"); 2]);
+        answers.push(a("grading 0.3", "grading", false, "rolling"));
+        answers.extend(vec![a("none", "none", false, "none"); 3]);
+        answers.extend(vec![a("friction -5", "friction", false, "none"); 4]);
+        answers.push(a("damping -0.15", "damping", true, "none"));
+        answers.push(a("none", "none", false, "damping"));
+        let st = StoredSelfTest {
+            runs: 19,
+            fit_cycles: 4,
+            observables: vec!["rut_mm".into()],
+            answers,
+        };
+        keep_self_test(&dir, st).unwrap();
+        let r = format_reliability(&dir, &lib, 4, "rolling");
+        assert!(
+            r.contains("named **rolling** for 10 of the library's 19 runs; 7 of them had it as their dominant effect (70 %); the others were runs of friction 10 (2), grading 0.3 (1), read as rolling"),
+            "{r}"
+        );
+        let n = format_reliability(&dir, &lib, 4, "none");
+        assert!(
+            n.contains("\"none\" for 8 of the library's 19 runs: 3 of today's model (of 4), 4 of effects under the detectability floor, and 1 of effects above it (missed: damping -0.15 (1))"),
+            "{n}"
+        );
+        let other = format_reliability(&dir, &lib, 3, "rolling");
+        assert!(
+            other.contains("No kept self-test matches this diagnosis (19 runs, fit cycles 1-3"),
+            "{other}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+        let none = format_reliability(&dir, &lib, 4, "rolling");
+        assert!(
+            none.contains("No self-test kept with this library"),
+            "{none}"
+        );
+    }
 
     /// The self-test's case of specimen s is diagnosed by a library with no run of s: neither its
     /// baseline run nor its run of any effect strength (the pairing would otherwise see it), and its

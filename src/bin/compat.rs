@@ -259,8 +259,10 @@ enum Cmd {
         detectability: bool,
         /// Diagnose each library run with the library left without its specimen (every seed in
         /// turn) and score the answers as a blind set is scored: the method's error rates on
-        /// hundreds of cases, from the library alone (written to --out/self_test.{md,json})
-        #[arg(long, conflicts_with_all = ["observed", "validate", "make_observed", "make_library"])]
+        /// hundreds of cases, from the library alone (written to --out/self_test.{md,json}, and kept
+        /// with the library so that each diagnosis says how often its answer was right; with
+        /// --observed FILE, on the observables that file has)
+        #[arg(long, conflicts_with_all = ["validate", "make_observed", "make_library"])]
         self_test: bool,
         /// The study scenario of the library runs (r03 | r05 | r07)
         #[arg(long, default_value = "r07")]
@@ -911,6 +913,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 return Ok(ExitCode::SUCCESS);
             }
             if self_test {
+                // with --observed: the library as that observation sees it (its observables)
+                let lib = match &observed {
+                    Some(f) => lib.restricted_to(&gap::read_observed(f)?),
+                    None => lib,
+                };
                 let scores = gap_run::self_test(&lib, fit_cycles, jobs)?;
                 let md = format!(
                     "# Self-test of the library {}\n\nEach run diagnosed by the library without its specimen; scored as a blind set (\"none\" right only under the floor).\n\n{}",
@@ -918,13 +925,22 @@ fn run(cli: Cli) -> Result<ExitCode> {
                     gap_run::format_self_test(&scores)
                 );
                 print!("{}", md);
+                // kept with the library: every later diagnosis says how often its answer was right
+                gap_run::keep_self_test(
+                    &lib_dir,
+                    gap_run::StoredSelfTest::new(&lib, fit_cycles, &scores),
+                )?;
                 std::fs::create_dir_all(&out)?;
                 std::fs::write(out.join("self_test.md"), &md)?;
                 std::fs::write(
                     out.join("self_test.json"),
                     serde_json::to_string_pretty(&scores)?,
                 )?;
-                println!("self-test: {}/self_test.{{md,json}}", out.display());
+                println!(
+                    "self-test: {}/self_test.{{md,json}}; kept with the library as {} (every diagnosis with it says how often its answer was right)",
+                    out.display(),
+                    lib_dir.join(gap_run::SELF_TEST_FILE).display()
+                );
                 return Ok(ExitCode::SUCCESS);
             }
             if let Some(d) = make_observed {
@@ -963,7 +979,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 std::fs::create_dir_all(&out)?;
                 let name = f.display().to_string();
                 // what this library can see comes before the diagnosis (issue 20)
-                let report = gap::report_markdown(&name, &d, &lib);
+                let report = format!(
+                    "{}\n{}",
+                    gap::report_markdown(&name, &d, &lib),
+                    gap_run::format_reliability(&lib_dir, &lib, fit_cycles, &d.winner)
+                );
                 let detect = gap_run::format_detectability(&lib, fit_cycles);
                 let md = format!("{}\n{}", report, detect);
                 println!("{}", detect);
