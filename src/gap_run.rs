@@ -1105,9 +1105,7 @@ pub fn format_detectability(lib: &Library, fit_cycles: usize) -> String {
             format_seed_choice(&c, fit_cycles),
             // (--make-library chooses on every observable: the hint only for the whole library)
             if (have < c.effect || lib.baseline.len() < c.baseline)
-                && gap::OBSERVABLES
-                    .iter()
-                    .all(|o| lib.baseline.iter().all(|s| s.get(o).is_some()))
+                && observables_of(lib).len() == gap::OBSERVABLES.len()
             {
                 " (complete the library with --make-library to reach them)"
             } else {
@@ -1170,6 +1168,52 @@ pub struct CaseScore {
     pub heldout_by_observable: Vec<gap::HeldOut>,
     /// The diagnosis' evidence for its best model (`gap::Diagnosis::evidence`).
     pub evidence: f64,
+}
+
+impl CaseScore {
+    /// The hidden effects as the tables print them ("none (today's model)" for none).
+    fn truth_label(&self) -> String {
+        if self.truth.is_empty() {
+            "none (today's model)".to_string()
+        } else {
+            gap::format_effects(&self.truth, ", ", None)
+        }
+    }
+}
+
+/// Issue 20's counts of a scored set when an effect is named only from evidence `floor` (the
+/// method's own answers at `DETECTABILITY_FLOOR`; catalogue effects only, outside ones apart).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RuleCounts {
+    /// Detectable dominant effects named, of `detectable`.
+    pub named: usize,
+    pub detectable: usize,
+    /// Cases named an effect other than their dominant one, of `catalogue`.
+    pub wrong: usize,
+    pub catalogue: usize,
+    /// Cases of today's model named an effect.
+    pub false_pos: usize,
+}
+
+pub fn rule_counts(s: &[CaseScore], floor: f64) -> RuleCounts {
+    let named = |c: &CaseScore| c.named != "none" && c.evidence >= floor;
+    let cat: Vec<&CaseScore> = s
+        .iter()
+        .filter(|c| !c.truth.is_empty() && c.outside.is_none())
+        .collect();
+    RuleCounts {
+        named: cat
+            .iter()
+            .filter(|c| c.detectable && named(c) && c.named == c.dominant_truth)
+            .count(),
+        detectable: cat.iter().filter(|c| c.detectable).count(),
+        wrong: cat
+            .iter()
+            .filter(|c| named(c) && c.named != c.dominant_truth)
+            .count(),
+        catalogue: cat.len(),
+        false_pos: s.iter().filter(|c| c.truth.is_empty() && named(c)).count(),
+    }
 }
 
 /// Issue 20's scoring of one answer: the dominant hidden effect named is right; "none" is right
@@ -1569,11 +1613,7 @@ pub fn format_reliability(dir: &Path, lib: &Library, fit_cycles: usize, winner: 
 pub fn format_self_test(s: &[CaseScore]) -> String {
     let mut groups: Vec<(String, Vec<&CaseScore>)> = Vec::new();
     for c in s {
-        let g = if c.truth.is_empty() {
-            "none (today's model)".to_string()
-        } else {
-            gap::format_effects(&c.truth, ", ", None)
-        };
+        let g = c.truth_label();
         match groups.iter_mut().find(|(k, _)| *k == g) {
             Some((_, v)) => v.push(c),
             None => groups.push((g, vec![c])),
@@ -1613,25 +1653,11 @@ pub fn format_self_test(s: &[CaseScore]) -> String {
 /// (`gap::Diagnosis::evidence`; the method names from `DETECTABILITY_FLOOR`), still scored by issue
 /// 20's rule at the floor: the trade between detectable effects named and wrong effects named.
 pub fn format_floor_sweep(s: &[CaseScore]) -> String {
-    let cat: Vec<&CaseScore> = s
-        .iter()
-        .filter(|c| !c.truth.is_empty() && c.outside.is_none())
-        .collect();
-    let det = cat.iter().filter(|c| c.detectable).count();
     let mut t = String::from(
         "\n| naming from evidence | detectable dominant effects named | wrong effect named | effect named for today's model |\n|---|---|---|---|\n",
     );
     for f in [DETECTABILITY_FLOOR, 5.5, 6.0, 7.0, 8.0] {
-        let named = |c: &CaseScore| c.named != "none" && c.evidence >= f;
-        let right = cat
-            .iter()
-            .filter(|c| c.detectable && named(c) && c.named == c.dominant_truth)
-            .count();
-        let wrong = cat
-            .iter()
-            .filter(|c| named(c) && c.named != c.dominant_truth)
-            .count();
-        let fp = s.iter().filter(|c| c.truth.is_empty() && named(c)).count();
+        let k = rule_counts(s, f);
         t += &format!(
             "| {:.1}{} | {}/{} ({:.0} %) | {} of {} ({:.1} %) | {} |\n",
             f,
@@ -1640,13 +1666,13 @@ pub fn format_floor_sweep(s: &[CaseScore]) -> String {
             } else {
                 ""
             },
-            right,
-            det,
-            100.0 * right as f64 / det.max(1) as f64,
-            wrong,
-            cat.len(),
-            100.0 * wrong as f64 / cat.len().max(1) as f64,
-            fp
+            k.named,
+            k.detectable,
+            100.0 * k.named as f64 / k.detectable.max(1) as f64,
+            k.wrong,
+            k.catalogue,
+            100.0 * k.wrong as f64 / k.catalogue.max(1) as f64,
+            k.false_pos
         );
     }
     t
@@ -1669,11 +1695,7 @@ pub fn format_scores(s: &[CaseScore]) -> String {
         t += &format!(
             "| {} | {} | {} | {:.1} | {} {} ({:.2}) | {} | {} | {:.0} % | {:.0} % |\n",
             c.case,
-            if c.truth.is_empty() {
-                "none (today's model)".to_string()
-            } else {
-                gap::format_effects(&c.truth, ", ", None)
-            },
+            c.truth_label(),
             c.dominant_truth,
             c.detectability,
             if c.correct { "yes:" } else { "NO:" },
@@ -1719,12 +1741,8 @@ pub fn format_score_summary(s: &[CaseScore]) -> String {
         .filter(|c| c.outside.is_none())
         .copied()
         .collect();
-    let det: Vec<&CaseScore> = cat.iter().filter(|c| c.detectable).copied().collect();
     let undet: Vec<&CaseScore> = cat.iter().filter(|c| !c.detectable).copied().collect();
-    let wrong_cat = cat
-        .iter()
-        .filter(|c| c.named != "none" && c.named != c.dominant_truth)
-        .count();
+    let rule = rule_counts(s, DETECTABILITY_FLOOR);
     let per_obs = |o: &str| -> String {
         pct(median(
             cat.iter()
@@ -1785,15 +1803,12 @@ pub fn format_score_summary(s: &[CaseScore]) -> String {
          Median held-out gap reduction per observable, named cases: rut {}, porosity {}, rebound {}, grid settlement {}, tracking error {}\n\
          The same where today's model misses the observable by more than one run's noise (held-out normalised RMS > 1; cases): rut {}, porosity {}, rebound {}, grid settlement {}, tracking error {}\n",
         DETECTABILITY_FLOOR,
-        det.iter().filter(|c| c.named == c.dominant_truth).count(),
-        det.len(),
-        pct(if det.is_empty() {
+        rule.named,
+        rule.detectable,
+        pct(if rule.detectable == 0 {
             None
         } else {
-            Some(
-                det.iter().filter(|c| c.named == c.dominant_truth).count() as f64
-                    / det.len() as f64,
-            )
+            Some(rule.named as f64 / rule.detectable as f64)
         }),
         undet.len(),
         undet.iter().filter(|c| c.named == "none").count(),
@@ -1802,8 +1817,8 @@ pub fn format_score_summary(s: &[CaseScore]) -> String {
             .iter()
             .filter(|c| c.named != "none" && c.named != c.dominant_truth)
             .count(),
-        wrong_cat,
-        cat.len(),
+        rule.wrong,
+        rule.catalogue,
         per_obs("rut_mm"),
         per_obs("porosity"),
         per_obs("rebound_mm"),

@@ -424,21 +424,8 @@ fn self_test_predicts_the_yade_blind_rates_r05() {
     let st = gap_run::self_test(&lib, 4, 2).unwrap();
     assert_eq!(st.len(), 300);
     let rates = |s: &[gap_run::CaseScore]| {
-        let cat: Vec<&gap_run::CaseScore> = s
-            .iter()
-            .filter(|c| !c.truth.is_empty() && c.outside.is_none())
-            .collect();
-        let det: Vec<_> = cat.iter().filter(|c| c.detectable).collect();
-        let named = det.iter().filter(|c| c.named == c.dominant_truth).count();
-        let wrong = cat
-            .iter()
-            .filter(|c| c.named != "none" && c.named != c.dominant_truth)
-            .count();
-        let fp = s
-            .iter()
-            .filter(|c| c.truth.is_empty() && c.named != "none")
-            .count();
-        (named, det.len(), wrong, cat.len(), fp)
+        let k = gap_run::rule_counts(s, gap_run::DETECTABILITY_FLOOR);
+        (k.named, k.detectable, k.wrong, k.catalogue, k.false_pos)
     };
     let (sn, sd, sw, sc, sfp) = rates(&st);
     eprintln!("self-test: named {sn}/{sd}, wrong {sw}/{sc}, false positives {sfp}");
