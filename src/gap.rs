@@ -977,6 +977,54 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
     parts
 }
 
+/// The held-out gap of each observed observable with today's model and with today's model plus
+/// `effects` (knob, strength) as the library predicts them: for the self-test's oracle, the true
+/// effects at their true strengths, what no identification can beat on average. Cycles after the
+/// first `fit_cycles` are held out, as in `diagnose`.
+pub fn heldout_of(
+    lib: &Library,
+    obs: &Series,
+    fit_cycles: usize,
+    effects: &[(String, f64)],
+) -> Vec<HeldOut> {
+    let last = obs.cycles().min(lib.last_cycle() + 1) - 1;
+    if fit_cycles >= last {
+        return vec![];
+    }
+    let held = fit_cycles + 1..=last;
+    let sur = Surrogate::new(lib);
+    let eff: Vec<(usize, f64)> = effects
+        .iter()
+        .filter_map(|(k, s)| {
+            lib.effects
+                .iter()
+                .position(|e| &e.knob == k)
+                .map(|i| (i, *s))
+        })
+        .collect();
+    let pred = |eff: Vec<(usize, f64)>| {
+        let sur = &sur;
+        move |o: &str, c: usize| -> Option<f64> {
+            let oi = OBSERVABLES.iter().position(|x| *x == o)?;
+            sur.predict(&eff, oi, c)
+        }
+    };
+    let (base, with) = (pred(vec![]), pred(eff));
+    OBSERVABLES
+        .iter()
+        .filter_map(|o| {
+            let b = norm_rms_of(lib, obs, &base, held.clone(), Some(o));
+            let a = norm_rms_of(lib, obs, &with, held.clone(), Some(o));
+            (a.is_finite() && b.is_finite()).then(|| HeldOut {
+                observable: o.to_string(),
+                before: b,
+                after: a,
+                reduction: if b > 0.0 { 1.0 - a / b } else { 0.0 },
+            })
+        })
+        .collect()
+}
+
 /// One model of the gap: today's model plus one or two effects at fitted strengths.
 #[derive(Clone, Debug, Serialize)]
 pub struct Candidate {

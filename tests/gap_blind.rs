@@ -460,3 +460,63 @@ fn self_test_predicts_the_yade_blind_rates_r05() {
     );
     assert_eq!((sfp, yfp), (0, 0));
 }
+
+/// Issue 20's "median held-out gap reduction >= 70 % on every observable" against the oracle: the
+/// true effect at its true strength, predicted by the library (`gap::heldout_of`), on the same
+/// cases. On the r05 library's self-test and on Debian YADE's four unfiltered r05 blind sets the
+/// oracle closes most of the held-out rut gap (a model that knows the truth must: this fails,
+/// checked, when the oracle is given today's model instead) but well under 70 % of the porosity
+/// gap: one observed run's own noise, which no model removes, is most of what is left there, so the
+/// target cannot be met by any identification with these observables. And the method's own
+/// reductions on the cases it names right are the oracle's to within 15 points on the rut.
+#[test]
+fn oracle_bounds_the_heldout_target_r05() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/gap");
+    let (_, lib) = gap_run::load_library(&root.join("library_r05_G_medium_c6")).unwrap();
+    let med = |s: &[&gap_run::CaseScore], o: &str, oracle: bool| -> f64 {
+        let mut v: Vec<f64> = s
+            .iter()
+            .filter_map(|c| {
+                let h = if oracle {
+                    &c.oracle
+                } else {
+                    &c.heldout_by_observable
+                };
+                h.iter().find(|h| h.observable == o).map(|h| h.reduction)
+            })
+            .collect();
+        assert!(!v.is_empty(), "no held-out {o}");
+        v.sort_by(|a, b| a.total_cmp(b));
+        v[v.len() / 2]
+    };
+    let st = gap_run::self_test(&lib, 4, 2).unwrap();
+    let mut yade = Vec::new();
+    for set in [
+        "blind2031u_r05_G_medium_c6",
+        "blind2032u_r05_G_medium_c6",
+        "blind2033u_r05_G_medium_c6",
+        "blind2034u_r05_G_medium_c6",
+    ] {
+        let tmp = copy_set(set, "oracle");
+        yade.extend(gap_run::validate(&tmp, &lib, 4).unwrap());
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    for (what, s) in [("self-test", &st), ("YADE blind sets", &yade)] {
+        let det: Vec<&gap_run::CaseScore> = s.iter().filter(|c| c.detectable).collect();
+        let right: Vec<&gap_run::CaseScore> = det.iter().filter(|c| c.correct).copied().collect();
+        let (rut, por) = (med(&det, "rut_mm", true), med(&det, "porosity", true));
+        eprintln!(
+            "{what}: oracle on {} detectable cases: rut {rut:.2}, porosity {por:.2}; method on {} named right: rut {:.2} (oracle {:.2})",
+            det.len(),
+            right.len(),
+            med(&right, "rut_mm", false),
+            med(&right, "rut_mm", true)
+        );
+        assert!(rut > 0.6, "{what}: the oracle closes the rut gap: {rut}");
+        assert!(por < 0.6, "{what}: the oracle's porosity reduction {por}");
+        assert!(
+            (med(&right, "rut_mm", false) - med(&right, "rut_mm", true)).abs() < 0.15,
+            "{what}: method and oracle on the rut"
+        );
+    }
+}
