@@ -1459,6 +1459,12 @@ pub struct SelfTestAnswer {
     pub dominant: String,
     pub detectable: bool,
     pub named: String,
+    /// The held-out gap reduction per observable with the diagnosed model (empty for "none").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub heldout: Vec<(String, f64)>,
+    /// The same with the true effect at its true strength (`CaseScore::oracle`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub oracle: Vec<(String, f64)>,
 }
 
 /// The self-test a library keeps next to its library.json (`compat gap --self-test` writes it), so
@@ -1523,6 +1529,16 @@ impl StoredSelfTest {
                     dominant: c.dominant_truth.clone(),
                     detectable: c.detectable,
                     named: c.named.clone(),
+                    heldout: c
+                        .heldout_by_observable
+                        .iter()
+                        .map(|h| (h.observable.clone(), h.reduction))
+                        .collect(),
+                    oracle: c
+                        .oracle
+                        .iter()
+                        .map(|h| (h.observable.clone(), h.reduction))
+                        .collect(),
                 })
                 .collect(),
         }
@@ -1615,8 +1631,50 @@ pub fn format_reliability(dir: &Path, lib: &Library, fit_cycles: usize, winner: 
                 )
             }
         );
+        s += &format_expected_heldout(st, winner);
     }
     s
+}
+
+/// What a right answer `winner` closes of the held-out gap on the self-test's runs (its runs named
+/// right: the diagnosed model, and the oracle, the true strength), median per observable: the yardstick
+/// for the report's own held-out reductions, most of whose shortfall on some observables is one
+/// run's noise.
+fn format_expected_heldout(st: &StoredSelfTest, winner: &str) -> String {
+    let right: Vec<&SelfTestAnswer> = st
+        .answers
+        .iter()
+        .filter(|a| a.named == winner && a.dominant == winner)
+        .collect();
+    let med = |o: &str, oracle: bool| -> Option<f64> {
+        median(
+            right
+                .iter()
+                .filter_map(|a| {
+                    let v = if oracle { &a.oracle } else { &a.heldout };
+                    v.iter().find(|(k, _)| k == o).map(|(_, r)| *r)
+                })
+                .collect(),
+        )
+    };
+    let line = |oracle: bool| -> Option<String> {
+        let parts: Vec<String> = st
+            .observables
+            .iter()
+            .filter_map(|o| med(o, oracle).map(|r| format!("{} {:.0} %", o, 100.0 * r)))
+            .collect();
+        (!parts.is_empty()).then(|| parts.join(", "))
+    };
+    match (line(false), line(true)) {
+        (Some(m), Some(o)) => format!(
+            "\nWhere the self-test named {} right ({} runs), the held-out gap reduction per observable was, median: {}; with the true strength instead of the fitted one: {}. A reduction in this report well under these is a reason to doubt the answer; one near them is what a right answer gives (the rest is one run's noise, which no model removes).\n",
+            winner,
+            right.len(),
+            m,
+            o
+        ),
+        _ => String::new(),
+    }
 }
 
 /// The self-test by library group (today's model, each effect strength): its signal (median over
@@ -1984,9 +2042,25 @@ mod tests {
             dominant: dominant.into(),
             detectable,
             named: named.into(),
+            heldout: vec![],
+            oracle: vec![],
         };
-        let mut answers = vec![a("rolling 0.2", "rolling", true, "rolling"); 7];
-        answers.extend(vec![a("friction 10", "friction", false, "rolling"); 2]);
+        // the runs named right: held-out rut reductions 0.1 .. 0.7 (median 0.4), the oracle 0.5;
+        // the runs of another effect read as rolling do not count (0.99)
+        let mut answers: Vec<SelfTestAnswer> = (1..=7)
+            .map(|k| SelfTestAnswer {
+                heldout: vec![("rut_mm".into(), 0.1 * k as f64)],
+                oracle: vec![("rut_mm".into(), 0.5)],
+                ..a("rolling 0.2", "rolling", true, "rolling")
+            })
+            .collect();
+        answers.extend(vec![
+            SelfTestAnswer {
+                heldout: vec![("rut_mm".into(), 0.99)],
+                ..a("friction 10", "friction", false, "rolling")
+            };
+            2
+        ]);
         answers.push(a("grading 0.3", "grading", false, "rolling"));
         answers.extend(vec![a("none", "none", false, "none"); 3]);
         answers.extend(vec![a("friction -5", "friction", false, "none"); 4]);
@@ -2004,7 +2078,12 @@ mod tests {
             r.contains("named **rolling** for 10 of the library's 19 runs; 7 of them had it as their dominant effect (70 %); the others were runs of friction 10 (2), grading 0.3 (1), read as rolling"),
             "{r}"
         );
+        assert!(
+            r.contains("named rolling right (7 runs), the held-out gap reduction per observable was, median: rut_mm 40 %; with the true strength instead of the fitted one: rut_mm 50 %"),
+            "{r}"
+        );
         let n = format_reliability(&dir, &lib, 4, "none");
+        assert!(!n.contains("held-out gap reduction"), "{n}");
         assert!(
             n.contains("\"none\" for 8 of the library's 19 runs: 3 of today's model (of 4), 4 of effects under the detectability floor, and 1 of effects above it (missed: damping -0.15 (1))"),
             "{n}"
