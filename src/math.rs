@@ -109,8 +109,10 @@ pub fn sign(x: f64) -> f64 {
     ((0.0 < x) as i32 - (x < 0.0) as i32) as f64
 }
 
-/// A unit quaternion stored as Eigen does (x, y, z, w), with Eigen's conventions.
+/// A unit quaternion stored as Eigen does (x, y, z, w), with Eigen's conventions. Laid out w, x, y,
+/// z (`repr(C)`: the fast integrator loads four at a time).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct Quat {
     pub w: f64,
     pub x: f64,

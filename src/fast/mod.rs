@@ -24,6 +24,8 @@ pub mod contact;
 mod grid;
 pub mod neighbors;
 pub mod newton;
+#[cfg(target_arch = "x86_64")]
+pub mod newton_simd;
 mod six;
 
 use crate::body::DOF_ALL;
@@ -205,24 +207,31 @@ avx2_dispatch! {
     )
 }
 
-avx2_dispatch! {
-    /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
-    fn integrate / integrate_avx2 => integrate_impl(
-        cfg: &newton::Cfg,
-        inert: &[newton::Inert],
-        f: &[V3],
-        t: &[V3],
-        x: &mut [V3],
-        v: &mut [V3],
-        w: &mut [V3],
-        q: &mut [Quat],
-        x_ref: &[V3],
-    ) -> f64
+/// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
+/// With AVX2: four bodies at a time (`newton_simd`, the same bits).
+#[allow(clippy::too_many_arguments)]
+fn integrate(
+    cfg: &newton::Cfg,
+    inert: &[newton::Inert],
+    f: &[V3],
+    t: &[V3],
+    x: &mut [V3],
+    v: &mut [V3],
+    w: &mut [V3],
+    q: &mut [Quat],
+    x_ref: &[V3],
+) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { newton_simd::integrate(cfg, inert, f, t, x, v, w, q, x_ref) };
+    }
+    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
 }
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn integrate_impl(
+pub(crate) fn integrate_impl(
     cfg: &newton::Cfg,
     inert: &[newton::Inert],
     f: &[V3],
