@@ -209,39 +209,27 @@ avx2_dispatch! {
 
 /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
 /// With AVX2: four bodies at a time (`newton_simd`, the same bits).
-#[allow(clippy::too_many_arguments)]
-fn integrate(
-    cfg: &newton::Cfg,
-    inert: &[newton::Inert],
-    f: &[V3],
-    t: &[V3],
-    x: &mut [V3],
-    v: &mut [V3],
-    w: &mut [V3],
-    q: &mut [Quat],
-    x_ref: &[V3],
-) -> f64 {
+fn integrate(cfg: &newton::Cfg, r: newton::Run) -> f64 {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { newton_simd::integrate(cfg, inert, f, t, x, v, w, q, x_ref) };
+        return unsafe { newton_simd::integrate(cfg, r) };
     }
-    integrate_impl(cfg, inert, f, t, x, v, w, q, x_ref)
+    integrate_impl(cfg, r)
 }
 
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate_impl(
-    cfg: &newton::Cfg,
-    inert: &[newton::Inert],
-    f: &[V3],
-    t: &[V3],
-    x: &mut [V3],
-    v: &mut [V3],
-    w: &mut [V3],
-    q: &mut [Quat],
-    x_ref: &[V3],
-) -> f64 {
+pub(crate) fn integrate_impl(cfg: &newton::Cfg, r: newton::Run) -> f64 {
+    let newton::Run {
+        inert,
+        f,
+        t,
+        x,
+        v,
+        w,
+        q,
+        x_ref,
+    } = r;
     let n = x.len();
     let (inert, f, t, v, w, q, x_ref) = (
         &inert[..n],
@@ -1084,14 +1072,16 @@ impl FastSim {
         let cfg = self.cfg;
         self.max_disp2 = integrate(
             &cfg,
-            &self.inert,
-            &self.force,
-            &self.torque,
-            &mut self.pos,
-            &mut self.vel,
-            &mut self.ang_vel,
-            &mut self.ori,
-            &self.x_ref,
+            newton::Run {
+                inert: &self.inert,
+                f: &self.force,
+                t: &self.torque,
+                x: &mut self.pos,
+                v: &mut self.vel,
+                w: &mut self.ang_vel,
+                q: &mut self.ori,
+                x_ref: &self.x_ref,
+            },
         );
         self.max_disp2 = self
             .max_disp2
@@ -1126,8 +1116,17 @@ impl FastSim {
         match &mut self.grid {
             None => 0.0,
             Some(g) => integrate(
-                &cfg, &g.inert, &g.force, &g.torque, &mut g.pos, &mut g.vel, &mut g.w, &mut g.ori,
-                &g.x_ref,
+                &cfg,
+                newton::Run {
+                    inert: &g.inert,
+                    f: &g.force,
+                    t: &g.torque,
+                    x: &mut g.pos,
+                    v: &mut g.vel,
+                    w: &mut g.w,
+                    q: &mut g.ori,
+                    x_ref: &g.x_ref,
+                },
             ),
         }
     }
@@ -1263,7 +1262,19 @@ impl FastSim {
                         }
                     }
                 }
-                integrate(&cfg, &inert[lo..hi], f, t, x, v, w, q, &x_ref[lo..hi])
+                integrate(
+                    &cfg,
+                    newton::Run {
+                        inert: &inert[lo..hi],
+                        f,
+                        t,
+                        x,
+                        v,
+                        w,
+                        q,
+                        x_ref: &x_ref[lo..hi],
+                    },
+                )
             })
             .reduce(|| 0.0, f64::max);
         self.max_disp2 = md.max(self.bnd.advance(cfg.dt)).max(self.integrate_nodes());

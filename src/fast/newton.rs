@@ -24,6 +24,20 @@ pub struct Inert {
     pub damped: bool,
 }
 
+/// A run of bodies for the integrator: their constants and loads, and the state it advances
+/// (positions, velocities, angular velocities, orientations; `x_ref`: positions at the last list
+/// build).
+pub struct Run<'a> {
+    pub inert: &'a [Inert],
+    pub f: &'a [V3],
+    pub t: &'a [V3],
+    pub x: &'a mut [V3],
+    pub v: &'a mut [V3],
+    pub w: &'a mut [V3],
+    pub q: &'a mut [Quat],
+    pub x_ref: &'a [V3],
+}
+
 /// YADE's `math::sign`: 0 for 0 and NaN.
 #[inline(always)]
 fn sign(x: f64) -> f64 {

@@ -5,7 +5,7 @@
 //! a rotation too large for the Taylor series (turn).
 
 use super::contact::V3;
-use super::newton::{self, Cfg, Inert};
+use super::newton::{self, Cfg, Inert, Run};
 use crate::math::Quat;
 use std::arch::x86_64::*;
 
@@ -260,18 +260,17 @@ unsafe fn turn4(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
 /// # Safety
 /// The CPU must have AVX2.
 #[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)]
-pub unsafe fn integrate(
-    cfg: &Cfg,
-    inert: &[Inert],
-    f: &[V3],
-    t: &[V3],
-    x: &mut [V3],
-    v: &mut [V3],
-    w: &mut [V3],
-    q: &mut [Quat],
-    x_ref: &[V3],
-) -> f64 {
+pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
+    let Run {
+        inert,
+        f,
+        t,
+        x,
+        v,
+        w,
+        q,
+        x_ref,
+    } = r;
     let n = x.len();
     let mut md: f64 = 0.0;
     let mut k = 0;
@@ -375,15 +374,20 @@ mod tests {
             let (mut xs, mut vs, mut ws, mut qs) = (x.clone(), v.clone(), w.clone(), q.clone());
             let (mut xv, mut vv, mut wv, mut qv) = (x, v, w, q);
             for _ in 0..3 {
-                let ms = super::super::integrate_impl(
-                    &cfg, &inert, &f, &t, &mut xs, &mut vs, &mut ws, &mut qs, &x_ref,
-                );
-                // SAFETY: AVX2 checked above
-                let mv = unsafe {
-                    integrate(
-                        &cfg, &inert, &f, &t, &mut xv, &mut vv, &mut wv, &mut qv, &x_ref,
-                    )
+                let run = |x, v, w, q| Run {
+                    inert: &inert,
+                    f: &f,
+                    t: &t,
+                    x,
+                    v,
+                    w,
+                    q,
+                    x_ref: &x_ref,
                 };
+                let ms =
+                    super::super::integrate_impl(&cfg, run(&mut xs, &mut vs, &mut ws, &mut qs));
+                // SAFETY: AVX2 checked above
+                let mv = unsafe { integrate(&cfg, run(&mut xv, &mut vv, &mut wv, &mut qv)) };
                 assert_eq!(ms.to_bits(), mv.to_bits(), "largest displacement, n {n}");
             }
             let bits3 = |a: &[V3]| a.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
