@@ -979,7 +979,9 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
 
 /// The held-out gap of each observed observable with today's model and with today's model plus
 /// `effects` (knob, strength) as the library predicts them: for the self-test's oracle, the true
-/// effects at their true strengths, what no identification can beat on average. Cycles after the
+/// effects at their true strengths, the reference a right identification is measured against (a
+/// fitted strength can do a little better by also absorbing part of the specimen's own departure).
+/// Cycles after the
 /// first `fit_cycles` are held out, as in `diagnose`.
 pub fn heldout_of(
     lib: &Library,

@@ -1170,7 +1170,7 @@ pub struct CaseScore {
     pub evidence: f64,
     /// The held-out gap of each observable with the true effects at their true strengths, as the
     /// library predicts them (`gap::heldout_of`; empty for today's model or an effect outside the
-    /// catalogue): what a right identification gains at best.
+    /// catalogue): what the true model itself gains, the reference for a right identification.
     #[serde(skip)]
     pub oracle: Vec<gap::HeldOut>,
 }
@@ -1637,7 +1637,8 @@ pub fn format_reliability(dir: &Path, lib: &Library, fit_cycles: usize, winner: 
 }
 
 /// What a right answer `winner` closes of the held-out gap on the self-test's runs (its runs named
-/// right: the diagnosed model, and the oracle, the true strength), median per observable: the yardstick
+/// right: the diagnosed model, and the oracle, the true effects at their true strengths), median per
+/// observable: the yardstick
 /// for the report's own held-out reductions, most of whose shortfall on some observables is one
 /// run's noise.
 fn format_expected_heldout(st: &StoredSelfTest, winner: &str) -> String {
@@ -1667,7 +1668,7 @@ fn format_expected_heldout(st: &StoredSelfTest, winner: &str) -> String {
     };
     match (line(false), line(true)) {
         (Some(m), Some(o)) => format!(
-            "\nWhere the self-test named {} right ({} runs), the held-out gap reduction per observable was, median: {}; with the true strength instead of the fitted one: {}. A reduction in this report well under these is a reason to doubt the answer; one near them is what a right answer gives (the rest is one run's noise, which no model removes).\n",
+            "\nWhere the self-test named {} right ({} runs), the held-out gap reduction per observable was, median: {}; with the true effects at their true strengths instead of the fitted model: {}. A reduction in this report well under these is a reason to doubt the answer; one near them is what a right answer gives (the rest is one run's noise, which no model removes).\n",
             winner,
             right.len(),
             m,
@@ -1747,7 +1748,7 @@ pub fn format_oracle(s: &[CaseScore]) -> String {
         }
     };
     let mut t = String::from(
-        "\nMedian held-out gap reduction per observable: the method against the oracle (the true effect at its true strength, as the library predicts it)\n\n\
+        "\nMedian held-out gap reduction per observable: the method against the oracle (the true effects at their true strengths, as the library predicts them: the true model's own reduction, a reference, not a bound: a fitted strength can do a little better by absorbing part of the specimen's own departure)\n\n\
          | cases | rut | porosity | rebound | grid settlement | tracking error |\n|---|---|---|---|---|---|\n"
     );
     let obs = gap::OBSERVABLES;
@@ -2079,7 +2080,7 @@ mod tests {
             "{r}"
         );
         assert!(
-            r.contains("named rolling right (7 runs), the held-out gap reduction per observable was, median: rut_mm 40 %; with the true strength instead of the fitted one: rut_mm 50 %"),
+            r.contains("named rolling right (7 runs), the held-out gap reduction per observable was, median: rut_mm 40 %; with the true effects at their true strengths instead of the fitted model: rut_mm 50 %"),
             "{r}"
         );
         let n = format_reliability(&dir, &lib, 4, "none");

@@ -462,15 +462,17 @@ fn self_test_predicts_the_yade_blind_rates_r05() {
 }
 
 /// Issue 20's "median held-out gap reduction >= 70 % on every observable" against the oracle: the
-/// true effect at its true strength, predicted by the library (`gap::heldout_of`), on the same
+/// true effects at their true strengths, predicted by the library (`gap::heldout_of`), on the same
 /// cases. On the r05 library's self-test and on Debian YADE's four unfiltered r05 blind sets the
 /// oracle closes most of the held-out rut gap (a model that knows the truth must: this fails,
 /// checked, when the oracle is given today's model instead) but well under 70 % of the porosity
 /// gap: one observed run's own noise, which no model removes, is most of what is left there, so the
-/// target cannot be met by any identification with these observables. And the method's own
-/// reductions on the cases it names right are the oracle's to within 15 points on the rut.
+/// target asks more than the true model itself gives with these observables (a reference, not a
+/// strict bound: a fitted strength can do a little better by absorbing part of the specimen's own
+/// departure). And the method's own reductions on the cases it names right are the oracle's to
+/// within 15 points on the rut.
 #[test]
-fn oracle_bounds_the_heldout_target_r05() {
+fn the_true_model_falls_short_of_the_heldout_target_r05() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/gap");
     let (_, lib) = gap_run::load_library(&root.join("library_r05_G_medium_c6")).unwrap();
     let med = |s: &[&gap_run::CaseScore], o: &str, oracle: bool| -> f64 {
@@ -487,7 +489,13 @@ fn oracle_bounds_the_heldout_target_r05() {
             .collect();
         assert!(!v.is_empty(), "no held-out {o}");
         v.sort_by(|a, b| a.total_cmp(b));
-        v[v.len() / 2]
+        // as the reports: the mean of the two middle values of an even count
+        let m = v.len() / 2;
+        if v.len() % 2 == 1 {
+            v[m]
+        } else {
+            0.5 * (v[m - 1] + v[m])
+        }
     };
     let st = gap_run::self_test(&lib, 4, 2).unwrap();
     let mut yade = Vec::new();

@@ -557,9 +557,11 @@ impl Boundaries {
                     let cl =
                         mat_t_vec(&bd.ori.to_rotation_matrix(), &(pr.s2.pos + shift2 - bd.pos));
                     let g = FacetIdle::gap_of(f, &cl, r);
+                    // a margin for the round-off of the bound and of `go`'s own arithmetic, which
+                    // starts from the absolute positions (and the period's shift)
+                    let scale = r + cl.norm() + pr.s2.pos.norm() + shift2.norm() + bd.pos.norm();
                     c.idle = FacetIdle {
-                        // a margin for the round-off of the bound and of `go`'s own arithmetic
-                        gap: (g * (1.0 - 1e-6) - 1e-12 * (r + cl.norm())).max(0.0),
+                        gap: (g * (1.0 - 1e-6) - 1e-12 * scale).max(0.0),
                         sphere_at: s.pos[k],
                         facet_at: bd.pos,
                     };

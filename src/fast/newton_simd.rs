@@ -185,7 +185,8 @@ unsafe fn turn4(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
     if _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(x2, splat(1e-4))) != 0b1111 {
         return false;
     }
-    // c = 1 + x2 (-1/2 + x2 (1/24 + x2 (-1/720 + x2/40320))), s = h (1 + x2 (-1/6 + x2 (1/120 - x2/5040)))
+    // c = 1 + x2 (-1/2 + x2 (1/24 + x2 (-1/720 + x2 (1/40320)))),
+    // s = h (1 + x2 (-1/6 + x2 (1/120 + x2 (-1/5040)))), as `newton::rotation`
     let p = |k: f64, r: __m256d| _mm256_add_pd(splat(k), _mm256_mul_pd(x2, r));
     let cc = p(
         1.0,
@@ -315,8 +316,11 @@ mod tests {
     use super::*;
 
     /// rapier's scalar/SIMD parity, to the bit: random bodies (some blocked, some undamped, some
-    /// at rest, some spinning beyond the Taylor series, odd counts) through the scalar integrator
-    /// and through the four-lane one give identical states and the same largest displacement.
+    /// spinning beyond the Taylor series, odd counts) through the scalar integrator and through the
+    /// four-lane one give identical states and the same largest displacement. Bodies 8-11 of every
+    /// 16 make a block the lanes take (unblocked, inside the series) with two bodies at rest (the
+    /// ω = 0 lanes), one quaternion off the unit sphere (the 1/sqrt renormalisation) and, in the
+    /// first block, a zero quaternion (no renormalisation).
     #[test]
     fn lanes_are_the_scalar_integrator_to_the_bit() {
         if !std::is_x86_feature_detected!("avx2") {
@@ -345,7 +349,17 @@ mod tests {
                 })
                 .collect();
             let f: Vec<V3> = (0..n).map(|_| v3(&mut u, 5.0)).collect();
-            let t: Vec<V3> = (0..n).map(|_| v3(&mut u, 0.01)).collect();
+            // bodies 8 and 9 of every 16: no torque and no spin (the ω = 0 lanes of an unblocked
+            // block)
+            let t: Vec<V3> = (0..n)
+                .map(|i| {
+                    if i % 16 == 8 || i % 16 == 9 {
+                        [0.0; 3]
+                    } else {
+                        v3(&mut u, 0.01)
+                    }
+                })
+                .collect();
             let x: Vec<V3> = (0..n).map(|_| v3(&mut u, 1.0)).collect();
             let v: Vec<V3> = (0..n)
                 .map(|i| {
@@ -357,17 +371,23 @@ mod tests {
                 })
                 .collect();
             let w: Vec<V3> = (0..n)
-                .map(|i| match i % 13 {
-                    1 => [0.0; 3],
-                    6 => v3(&mut u, 2e3),
+                .map(|i| match (i % 16, i % 13) {
+                    (8 | 9, _) => [0.0; 3],
+                    (_, 1) => [0.0; 3],
+                    (_, 6) => v3(&mut u, 2e3),
                     _ => v3(&mut u, 3.0),
                 })
                 .collect();
+            // unit quaternions, some off the unit sphere (1/sqrt renormalisation) and one zero
             let q: Vec<Quat> = (0..n)
-                .map(|_| {
+                .map(|i| {
                     let mut q = Quat::new(1.0 + u(), u(), u(), u());
                     q.normalize();
-                    q
+                    match i % 16 {
+                        10 => Quat::new(1.01 * q.w, 1.01 * q.x, 1.01 * q.y, 1.01 * q.z),
+                        11 if i < 16 => Quat::new(0.0, 0.0, 0.0, 0.0),
+                        _ => q,
+                    }
                 })
                 .collect();
             let x_ref: Vec<V3> = x.iter().map(|a| [a[0] + 1e-3, a[1], a[2]]).collect();
