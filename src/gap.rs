@@ -711,6 +711,16 @@ impl Surrogate {
     }
 
     /// Prediction of today's model plus effects (index, strength) for observable o at cycle c.
+    /// `predict` by observable name: today's model plus `effects`, as a function of (observable,
+    /// cycle).
+    pub fn predictor(&self, effects: &[(usize, f64)]) -> impl Fn(&str, usize) -> Option<f64> + '_ {
+        let eff = effects.to_vec();
+        move |o: &str, c: usize| {
+            let oi = OBSERVABLES.iter().position(|x| *x == o)?;
+            self.predict(&eff, oi, c)
+        }
+    }
+
     pub fn predict(&self, effects: &[(usize, f64)], o: usize, c: usize) -> Option<f64> {
         let b = self.base[o].get(c).copied().flatten()?;
         Some(
@@ -977,19 +987,33 @@ pub fn where_analysis(lib: &Library, obs: &Series, last: usize) -> Vec<WherePart
     parts
 }
 
+/// The last cycle an observation is compared on: the observed and the library's last, whichever
+/// comes first.
+fn last_compared_cycle(lib: &Library, obs: &Series) -> usize {
+    obs.cycles().min(lib.last_cycle() + 1) - 1
+}
+
+/// The held-out gap reduction `1 - after / before` (0 when there was no gap).
+fn gap_reduction(before: f64, after: f64) -> f64 {
+    if before > 0.0 {
+        1.0 - after / before
+    } else {
+        0.0
+    }
+}
+
 /// The held-out gap of each observed observable with today's model and with today's model plus
 /// `effects` (knob, strength) as the library predicts them: for the self-test's oracle, the true
 /// effects at their true strengths, the reference a right identification is measured against (a
 /// fitted strength can do a little better by also absorbing part of the specimen's own departure).
-/// Cycles after the
-/// first `fit_cycles` are held out, as in `diagnose`.
+/// Cycles after the first `fit_cycles` are held out, as in `diagnose`.
 pub fn heldout_of(
     lib: &Library,
     obs: &Series,
     fit_cycles: usize,
     effects: &[(String, f64)],
 ) -> Vec<HeldOut> {
-    let last = obs.cycles().min(lib.last_cycle() + 1) - 1;
+    let last = last_compared_cycle(lib, obs);
     if fit_cycles >= last {
         return vec![];
     }
@@ -1004,14 +1028,7 @@ pub fn heldout_of(
                 .map(|i| (i, *s))
         })
         .collect();
-    let pred = |eff: Vec<(usize, f64)>| {
-        let sur = &sur;
-        move |o: &str, c: usize| -> Option<f64> {
-            let oi = OBSERVABLES.iter().position(|x| *x == o)?;
-            sur.predict(&eff, oi, c)
-        }
-    };
-    let (base, with) = (pred(vec![]), pred(eff));
+    let (base, with) = (sur.predictor(&[]), sur.predictor(&eff));
     OBSERVABLES
         .iter()
         .filter_map(|o| {
@@ -1021,7 +1038,7 @@ pub fn heldout_of(
                 observable: o.to_string(),
                 before: b,
                 after: a,
-                reduction: if b > 0.0 { 1.0 - a / b } else { 0.0 },
+                reduction: gap_reduction(b, a),
             })
         })
         .collect()
@@ -1472,7 +1489,7 @@ pub fn diagnose_with(
     if lib.baseline.len() < 2 {
         bail!("the library needs at least 2 baseline seeds to estimate the seed-to-seed noise");
     }
-    let last = obs.cycles().min(lib.last_cycle() + 1) - 1;
+    let last = last_compared_cycle(lib, obs);
     if fit_cycles < 1 || fit_cycles >= last {
         bail!(
             "fit cycles {} leave nothing to fit or nothing held out (observed and simulated cycles: {})",
@@ -1491,14 +1508,7 @@ pub fn diagnose_with(
     let fitted = fitted_effects(lib, fit_cycles);
     let fits = fit_models(&sur, obs, fit_cycles, inflation, &fitted);
     let none_chi2 = fits.none_chi2;
-    let knob_pred = |eff: &[(usize, f64)]| {
-        let eff = eff.to_vec();
-        let sur = &sur;
-        move |o: &str, c: usize| -> Option<f64> {
-            let oi = OBSERVABLES.iter().position(|x| *x == o)?;
-            sur.predict(&eff, oi, c)
-        }
-    };
+    let knob_pred = |eff: &[(usize, f64)]| sur.predictor(eff);
     let before = rut_rms(obs, |c| lib.baseline_mean("rut_mm", c), held.clone());
     let norm_before = norm_rms(lib, obs, &knob_pred(&[]), held.clone());
     let make = |eff: Vec<(usize, f64)>, chi: f64, n: usize, pen: f64| -> Candidate {
@@ -1640,7 +1650,6 @@ pub fn diagnose_with(
         .max_by(|a, b| a.chi2.total_cmp(&b.chi2))
         .map(|p| format!("{}: {}", p.observable, p.phase))
         .unwrap_or_default();
-    let red = |b: f64, a: f64| if b > 0.0 { 1.0 - a / b } else { 0.0 };
     // the held-out gap per observable, and a warning for each one the chosen model makes worse
     let mut by_obs = Vec::new();
     let mut warnings = Vec::new();
@@ -1651,7 +1660,7 @@ pub fn diagnose_with(
             if !(a.is_finite() && b.is_finite()) {
                 continue;
             }
-            let r = red(b, a);
+            let r = gap_reduction(b, a);
             // the rut whenever it gets worse (what users extrapolate); another observable when it
             // gets worse and its held-out error exceeds one run's noise
             let is_rut = *o == "rut_mm";
@@ -1659,7 +1668,7 @@ pub fn diagnose_with(
                 warnings.push(if is_rut {
                     format!(
                         "the chosen model predicts the held-out rut worse than today's model (rut RMS {:.2} -> {:.2} mm, {:.0} %): it is named for what it explains on the fitted cycles; do not use it to extrapolate the rut",
-                        before, after, 100.0 * red(before, after)
+                        before, after, 100.0 * gap_reduction(before, after)
                     )
                 } else {
                     format!(
@@ -1692,10 +1701,10 @@ pub fn diagnose_with(
         confidence,
         heldout_rut_rms_before_mm: before,
         heldout_rut_rms_after_mm: after,
-        gap_reduction: red(before, after),
+        gap_reduction: gap_reduction(before, after),
         heldout_norm_rms_before: norm_before,
         heldout_norm_rms_after: norm_after,
-        norm_gap_reduction: red(norm_before, norm_after),
+        norm_gap_reduction: gap_reduction(norm_before, norm_after),
         heldout_by_observable: by_obs,
         below_floor,
         evidence: best_evidence,

@@ -1719,6 +1719,24 @@ pub fn format_self_test(s: &[CaseScore]) -> String {
     t + &format_floor_sweep(s) + &format_score_summary(s) + &format_oracle(s)
 }
 
+/// The held-out gap reductions of observable `o` over `cases`: the diagnosed model's, or the
+/// oracle's; `gap_only`: only where today's model misses by more than one run's noise.
+pub fn heldout_reductions(cases: &[&CaseScore], o: &str, oracle: bool, gap_only: bool) -> Vec<f64> {
+    cases
+        .iter()
+        .filter_map(|c| {
+            let v = if oracle {
+                &c.oracle
+            } else {
+                &c.heldout_by_observable
+            };
+            v.iter().find(|h| h.observable == o)
+        })
+        .filter(|h| !gap_only || h.before > 1.0)
+        .map(|h| h.reduction)
+        .collect()
+}
+
 /// The held-out gap reductions of the method's named cases next to those of the oracle (the true
 /// effects at their true strengths) on the same cases, and the oracle's on every detectable case:
 /// how much of the shortfall from a target is identification and how much is one run's noise,
@@ -1728,19 +1746,7 @@ pub fn format_oracle(s: &[CaseScore]) -> String {
     let det: Vec<&CaseScore> = s.iter().filter(|c| c.detectable).collect();
     let named: Vec<&CaseScore> = det.iter().filter(|c| c.correct).copied().collect();
     let med = |cs: &[&CaseScore], o: &str, oracle: bool, gap_only: bool| -> String {
-        let r: Vec<f64> = cs
-            .iter()
-            .filter_map(|c| {
-                let v = if oracle {
-                    &c.oracle
-                } else {
-                    &c.heldout_by_observable
-                };
-                v.iter().find(|h| h.observable == o)
-            })
-            .filter(|h| !gap_only || h.before > 1.0)
-            .map(|h| h.reduction)
-            .collect();
+        let r = heldout_reductions(cs, o, oracle, gap_only);
         if gap_only {
             format!("{} ({})", pct(median(r.clone())), r.len())
         } else {
@@ -1815,7 +1821,8 @@ pub fn format_floor_sweep(s: &[CaseScore]) -> String {
     t
 }
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
+/// The median (the mean of the two middle values of an even count; None when empty).
+pub fn median(mut v: Vec<f64>) -> Option<f64> {
     v.sort_by(|a, b| a.total_cmp(b));
     if v.is_empty() {
         None

@@ -476,26 +476,8 @@ fn the_true_model_falls_short_of_the_heldout_target_r05() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/gap");
     let (_, lib) = gap_run::load_library(&root.join("library_r05_G_medium_c6")).unwrap();
     let med = |s: &[&gap_run::CaseScore], o: &str, oracle: bool| -> f64 {
-        let mut v: Vec<f64> = s
-            .iter()
-            .filter_map(|c| {
-                let h = if oracle {
-                    &c.oracle
-                } else {
-                    &c.heldout_by_observable
-                };
-                h.iter().find(|h| h.observable == o).map(|h| h.reduction)
-            })
-            .collect();
-        assert!(!v.is_empty(), "no held-out {o}");
-        v.sort_by(|a, b| a.total_cmp(b));
-        // as the reports: the mean of the two middle values of an even count
-        let m = v.len() / 2;
-        if v.len() % 2 == 1 {
-            v[m]
-        } else {
-            0.5 * (v[m - 1] + v[m])
-        }
+        gap_run::median(gap_run::heldout_reductions(s, o, oracle, false))
+            .unwrap_or_else(|| panic!("no held-out {o}"))
     };
     let st = gap_run::self_test(&lib, 4, 2).unwrap();
     let mut yade = Vec::new();
