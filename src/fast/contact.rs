@@ -5,6 +5,8 @@
 //! evaluation order is free (reciprocals, regrouped cross products), so results agree with YADE to
 //! round-off, not bit for bit.
 
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
 pub type V3 = [f64; 3];
 
 /// The coordinate `x` wrapped into the period [0, `l`).
@@ -26,24 +28,80 @@ pub fn nearest_image(d: f64, l: f64) -> f64 {
     }
 }
 
+/// The arithmetic the contact formula is written in: one `f64` (the scalar kernel) or four lanes
+/// (`contact_simd::F4`, AVX2). The formula does the same operations in the same order in either,
+/// so a lane's result is the scalar one to the bit.
+pub trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Which lanes a comparison holds in.
+    type Mask: Copy;
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// `f64::max`'s result for a NaN `self` and a number `o`: `o`.
+    fn max(self, o: Self) -> Self;
+    fn gt(self, o: Self) -> Self::Mask;
+    /// Whether `m` holds in some lane.
+    fn any(m: Self::Mask) -> bool;
+    /// `a` where `m` holds, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn max(self, o: f64) -> f64 {
+        f64::max(self, o)
+    }
+    #[inline(always)]
+    fn gt(self, o: f64) -> bool {
+        self > o
+    }
+    #[inline(always)]
+    fn any(m: bool) -> bool {
+        m
+    }
+    #[inline(always)]
+    fn select(m: bool, a: f64, b: f64) -> f64 {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+}
+
 #[inline(always)]
-pub fn add(a: V3, b: V3) -> V3 {
+pub fn add<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 #[inline(always)]
-pub fn sub(a: V3, b: V3) -> V3 {
+pub fn sub<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 #[inline(always)]
-pub fn scale(a: V3, s: f64) -> V3 {
+pub fn scale<R: Real>(a: [R; 3], s: R) -> [R; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 #[inline(always)]
-pub fn dot(a: V3, b: V3) -> f64 {
+pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 #[inline(always)]
-pub fn cross(a: V3, b: V3) -> V3 {
+pub fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -84,24 +142,41 @@ pub fn create(c: &mut Contact, m1: &Mat, m2: &Mat, r1: f64, r2: f64) {
     c.active = true;
 }
 
-/// Both bodies of a pair as the kernel sees them.
-pub struct Two {
-    pub xi: V3,
+/// Both bodies of a pair (or of four pairs, one per lane) as the kernel sees them.
+pub struct Two<R = f64> {
+    pub xi: [R; 3],
     /// Body j's position plus its periodic shift.
-    pub xj: V3,
-    pub vi: V3,
-    pub vj: V3,
-    pub wi: V3,
-    pub wj: V3,
-    pub ri: f64,
-    pub rj: f64,
+    pub xj: [R; 3],
+    pub vi: [R; 3],
+    pub vj: [R; 3],
+    pub wi: [R; 3],
+    pub wj: [R; 3],
+    pub ri: R,
+    pub rj: R,
 }
 
 /// What one contact adds to its bodies: `f` on i (j gets `-f`), torques on i and j.
-pub struct Load {
-    pub f: V3,
-    pub ti: V3,
-    pub tj: V3,
+pub struct Load<R = f64> {
+    pub f: [R; 3],
+    pub ti: [R; 3],
+    pub tj: [R; 3],
+}
+
+/// What the formula reads of a touching contact's state: the last step's normal, the shear force
+/// and the stiffnesses.
+pub struct Touch<R> {
+    pub n0: [R; 3],
+    pub fs: [R; 3],
+    pub kn: R,
+    pub ks: R,
+    pub tan_phi: R,
+}
+
+/// A touching contact's new normal and shear force, and its loads.
+pub struct Out<R> {
+    pub n: [R; 3],
+    pub fs: [R; 3],
+    pub load: Load<R>,
 }
 
 /// Distance test, geometry, shear update and force of one pair. `new_contact` is called when the
@@ -131,43 +206,69 @@ pub fn pair(
         c.active = false;
         return None;
     }
-    let inv = 1.0 / dist;
+    let s = Touch {
+        n0: c.normal,
+        fs: c.fs,
+        kn: c.kn,
+        ks: c.ks,
+        tan_phi: c.tan_phi,
+    };
+    let o = law(&s, b, d, dist, pen, dt);
+    c.normal = o.n;
+    c.fs = o.fs;
+    c.pen = pen;
+    Some(o.load)
+}
+
+/// The geometry, shear update and force of a touching contact (`d` from i to j, `dist` = |d|,
+/// `pen` = ri + rj - dist): one formula for the scalar kernel and the lanes. A fresh contact
+/// (`fs` zero, as `create` leaves it) comes out of the frame rotation unchanged, as YADE's first
+/// step skips it.
+#[inline(always)]
+pub fn law<R: Real>(s: &Touch<R>, b: &Two<R>, d: [R; 3], dist: R, pen: R, dt: R) -> Out<R> {
+    let inv = R::splat(1.0) / dist;
     let n = scale(d, inv);
-    let mut fs = c.fs;
-    if !is_new {
-        // ScGeom::rotate with the frame rotation since the last step
-        let n0 = c.normal;
-        let orth = cross(n0, n);
-        let angle = dt * 0.5 * dot(n0, add(b.wi, b.wj));
-        let twist = scale(n0, angle);
-        fs = sub(fs, cross(fs, orth));
-        fs = sub(fs, cross(fs, twist));
-    }
+    // ScGeom::rotate with the frame rotation since the last step
+    let n0 = s.n0;
+    let orth = cross(n0, n);
+    let angle = dt * R::splat(0.5) * dot(n0, add(b.wi, b.wj));
+    let twist = scale(n0, angle);
+    let mut fs = s.fs;
+    fs = sub(fs, cross(fs, orth));
+    fs = sub(fs, cross(fs, twist));
     // ScGeom::getIncidentVel with avoidGranularRatcheting: alpha (vj - vi) - (ri wi + rj wj) x n
-    let alpha = rs * inv;
+    let alpha = (b.ri + b.rj) * inv;
     let spin = add(scale(b.wi, b.ri), scale(b.wj, b.rj));
     let vrel = sub(scale(sub(b.vj, b.vi), alpha), cross(spin, n));
     let vt = sub(vrel, scale(n, dot(n, vrel)));
-    fs = sub(fs, scale(vt, dt * c.ks));
+    fs = sub(fs, scale(vt, dt * s.ks));
     // Law2_ScGeom_FrictPhys_CundallStrack: Coulomb cap on |Fs| against |Fn| tan(phi)
-    let fn_mag = c.kn * pen.max(0.0);
-    let max_fs2 = (fn_mag * fn_mag) * (c.tan_phi * c.tan_phi);
+    let fn_mag = s.kn * pen.max(R::splat(0.0));
+    let max_fs2 = (fn_mag * fn_mag) * (s.tan_phi * s.tan_phi);
     let fs2 = dot(fs, fs);
-    if fs2 > max_fs2 {
-        fs = scale(fs, (max_fs2 / fs2).sqrt());
+    let over = fs2.gt(max_fs2);
+    if R::any(over) {
+        let capped = scale(fs, (max_fs2 / fs2).sqrt());
+        fs = [
+            R::select(over, capped[0], fs[0]),
+            R::select(over, capped[1], fs[1]),
+            R::select(over, capped[2], fs[2]),
+        ];
     }
-    c.normal = n;
-    c.fs = fs;
-    c.pen = pen;
     let f = [
         -n[0] * fn_mag - fs[0],
         -n[1] * fn_mag - fs[1],
         -n[2] * fn_mag - fs[2],
     ];
     let nf = cross(n, f);
-    Some(Load {
-        f,
-        ti: scale(nf, b.ri - 0.5 * pen),
-        tj: scale(nf, b.rj - 0.5 * pen),
-    })
+    let half = R::splat(0.5);
+    Out {
+        n,
+        fs,
+        load: Load {
+            f,
+            ti: scale(nf, b.ri - half * pen),
+            tj: scale(nf, b.rj - half * pen),
+        },
+    }
 }

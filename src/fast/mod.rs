@@ -21,6 +21,8 @@
 
 mod boundary;
 pub mod contact;
+#[cfg(target_arch = "x86_64")]
+mod contact_simd;
 mod grid;
 pub mod neighbors;
 pub mod newton;
@@ -192,19 +194,25 @@ struct View<'a> {
     dt: f64,
 }
 
-avx2_dispatch! {
-    /// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
-    /// the bodies from `lo`; forces on bodies past them go to `ghosts`. Body i's sums stay in
-    /// registers while its pairs last.
-    fn chunk_forces / chunk_forces_avx2 => chunk_forces_impl(
-        v: &View,
-        pairs: &[Pair],
-        cs: &mut [Contact],
-        f: &mut [V3],
-        t: &mut [V3],
-        lo: usize,
-        ghosts: &mut Vec<Ghost>,
-    )
+/// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
+/// the bodies from `lo`; forces on bodies past them go to `ghosts`. Body i's sums stay in
+/// registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
+/// bits).
+fn chunk_forces(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+    ghosts: &mut Vec<Ghost>,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { contact_simd::chunk(v, pairs, cs, f, t, lo, ghosts) };
+    }
+    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
 }
 
 /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
@@ -372,47 +380,96 @@ fn chunk_loop<K: Kernel>(
     lo: usize,
     ghosts: &mut Vec<Ghost>,
 ) {
-    ghosts.clear();
-    let hi = lo + f.len();
-    for x in f.iter_mut() {
-        *x = [0.0; 3];
-    }
-    for x in t.iter_mut() {
-        *x = [0.0; 3];
-    }
+    let mut acc = Acc::new(f, t, lo, ghosts);
     let np = pairs.len();
     let mut p = 0;
     while p < np {
         let i = pairs[p].i as usize;
         let bi = k.body(i);
-        let (mut fi, mut ti) = ([0.0; 3], [0.0; 3]);
+        acc.begin(i);
         while p < np && pairs[p].i as usize == i {
             const AHEAD: usize = 6;
             if p + AHEAD < np {
                 k.prefetch(&cs[p + AHEAD]);
             }
             let pr = pairs[p];
-            let j = pr.j as usize;
             if let Some((lf, lti, ltj)) = k.pair(&bi, &pr, &mut cs[p]) {
-                fi = contact::add(fi, lf);
-                ti = contact::add(ti, lti);
-                if j < hi {
-                    let jj = j - lo;
-                    f[jj] = contact::sub(f[jj], lf);
-                    t[jj] = contact::add(t[jj], ltj);
-                } else {
-                    ghosts.push(Ghost {
-                        j: j as u32,
-                        f: [-lf[0], -lf[1], -lf[2]],
-                        t: ltj,
-                    });
-                }
+                acc.add(pr.j as usize, lf, lti, ltj);
             }
             p += 1;
         }
-        let ii = i - lo;
-        f[ii] = contact::add(f[ii], fi);
-        t[ii] = contact::add(t[ii], ti);
+        acc.end();
+    }
+}
+
+/// The sums of a chunk's loads, in the one order both pair loops (`chunk_loop`, the lanes'
+/// `contact_simd::chunk`) keep: body i's in registers from `begin(i)` to `end`, added to its force
+/// then; body j's into its force at once (or into a ghost when another chunk owns it).
+struct Acc<'a> {
+    f: &'a mut [V3],
+    t: &'a mut [V3],
+    lo: usize,
+    hi: usize,
+    ghosts: &'a mut Vec<Ghost>,
+    i: usize,
+    fi: V3,
+    ti: V3,
+}
+
+impl<'a> Acc<'a> {
+    /// Zeroes the chunk's forces and torques and its ghosts.
+    #[inline(always)]
+    fn new(f: &'a mut [V3], t: &'a mut [V3], lo: usize, ghosts: &'a mut Vec<Ghost>) -> Acc<'a> {
+        ghosts.clear();
+        for x in f.iter_mut() {
+            *x = [0.0; 3];
+        }
+        for x in t.iter_mut() {
+            *x = [0.0; 3];
+        }
+        let hi = lo + f.len();
+        Acc {
+            f,
+            t,
+            lo,
+            hi,
+            ghosts,
+            i: lo,
+            fi: [0.0; 3],
+            ti: [0.0; 3],
+        }
+    }
+
+    #[inline(always)]
+    fn begin(&mut self, i: usize) {
+        self.i = i;
+        self.fi = [0.0; 3];
+        self.ti = [0.0; 3];
+    }
+
+    /// One contact's loads: `lf` and `lti` on body i, `-lf` and `ltj` on body `j`.
+    #[inline(always)]
+    fn add(&mut self, j: usize, lf: V3, lti: V3, ltj: V3) {
+        self.fi = contact::add(self.fi, lf);
+        self.ti = contact::add(self.ti, lti);
+        if j < self.hi {
+            let jj = j - self.lo;
+            self.f[jj] = contact::sub(self.f[jj], lf);
+            self.t[jj] = contact::add(self.t[jj], ltj);
+        } else {
+            self.ghosts.push(Ghost {
+                j: j as u32,
+                f: [-lf[0], -lf[1], -lf[2]],
+                t: ltj,
+            });
+        }
+    }
+
+    #[inline(always)]
+    fn end(&mut self) {
+        let ii = self.i - self.lo;
+        self.f[ii] = contact::add(self.f[ii], self.fi);
+        self.t[ii] = contact::add(self.t[ii], self.ti);
     }
 }
 

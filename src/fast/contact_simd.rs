@@ -1,0 +1,464 @@
+//! The Cundall-Strack pair loop four pairs at a time (AVX2): `contact::law`, the one formula, in
+//! four lanes (`F4`), and the chunk's sums in `Acc`'s order, so forces, torques and contact states
+//! are the scalar loop's to the bit (`tests::lanes_are_the_scalar_pair_loop_to_the_bit`). The lanes
+//! break the scalar loop's chain of square root, division and branches on the contact's state, one
+//! pair after the other; they gather the bodies and states from the same arrays (no second copy).
+
+use super::contact::{self, Contact, Pair, Real, Touch, Two, V3};
+use super::{Acc, Ghost, Kernel, Plain, View};
+use std::arch::x86_64::*;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Four doubles, one per lane.
+#[derive(Clone, Copy)]
+pub struct F4(__m256d);
+
+macro_rules! lane_op {
+    ($tr:ident, $f:ident, $op:ident) => {
+        impl $tr for F4 {
+            type Output = F4;
+            #[inline(always)]
+            fn $f(self, o: F4) -> F4 {
+                // SAFETY: F4 exists only in code that runs after the AVX2 check (`chunk`)
+                F4(unsafe { $op(self.0, o.0) })
+            }
+        }
+    };
+}
+lane_op!(Add, add, _mm256_add_pd);
+lane_op!(Sub, sub, _mm256_sub_pd);
+lane_op!(Mul, mul, _mm256_mul_pd);
+lane_op!(Div, div, _mm256_div_pd);
+
+impl Neg for F4 {
+    type Output = F4;
+    #[inline(always)]
+    fn neg(self) -> F4 {
+        // SAFETY: as in lane_op; a flip of the sign bit, as f64's negation
+        F4(unsafe { _mm256_xor_pd(self.0, _mm256_set1_pd(-0.0)) })
+    }
+}
+
+impl Real for F4 {
+    type Mask = __m256d;
+    #[inline(always)]
+    fn splat(x: f64) -> F4 {
+        // SAFETY: as in lane_op
+        F4(unsafe { _mm256_set1_pd(x) })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F4 {
+        // SAFETY: as in lane_op
+        F4(unsafe { _mm256_sqrt_pd(self.0) })
+    }
+    #[inline(always)]
+    fn max(self, o: F4) -> F4 {
+        // SAFETY: as in lane_op; maxpd returns its second operand where the first is NaN
+        F4(unsafe { _mm256_max_pd(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn gt(self, o: F4) -> __m256d {
+        // SAFETY: as in lane_op
+        unsafe { _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn any(m: __m256d) -> bool {
+        // SAFETY: as in lane_op
+        unsafe { _mm256_movemask_pd(m) != 0 }
+    }
+    #[inline(always)]
+    fn select(m: __m256d, a: F4, b: F4) -> F4 {
+        // SAFETY: as in lane_op
+        F4(unsafe { _mm256_blendv_pd(b.0, a.0, m) })
+    }
+}
+
+/// The four lanes as an array.
+#[inline(always)]
+unsafe fn lanes(x: F4) -> [f64; 4] {
+    let mut a = [0.0; 4];
+    _mm256_storeu_pd(a.as_mut_ptr(), x.0);
+    a
+}
+
+/// Element `k[l]` of `a` in lane l, for each of the three components.
+#[inline(always)]
+unsafe fn gather3(a: &[V3], k: [usize; 4]) -> [F4; 3] {
+    gather_refs([&a[k[0]], &a[k[1]], &a[k[2]], &a[k[3]]])
+}
+
+/// Vector `e[l]` in lane l, for each of the three components.
+#[inline(always)]
+unsafe fn gather_refs(e: [&V3; 4]) -> [F4; 3] {
+    let [e0, e1, e2, e3] = e;
+    let (p0, p1, p2, p3) = (
+        _mm_loadu_pd(e0.as_ptr()),
+        _mm_loadu_pd(e1.as_ptr()),
+        _mm_loadu_pd(e2.as_ptr()),
+        _mm_loadu_pd(e3.as_ptr()),
+    );
+    let x = _mm256_insertf128_pd::<1>(
+        _mm256_castpd128_pd256(_mm_unpacklo_pd(p0, p1)),
+        _mm_unpacklo_pd(p2, p3),
+    );
+    let y = _mm256_insertf128_pd::<1>(
+        _mm256_castpd128_pd256(_mm_unpackhi_pd(p0, p1)),
+        _mm_unpackhi_pd(p2, p3),
+    );
+    let z = _mm256_set_pd(e3[2], e2[2], e1[2], e0[2]);
+    [F4(x), F4(y), F4(z)]
+}
+
+/// One scalar per lane.
+#[inline(always)]
+unsafe fn gather1(a: [f64; 4]) -> F4 {
+    F4(_mm256_set_pd(a[3], a[2], a[1], a[0]))
+}
+
+/// A lane mask's bits (bit l: lane l).
+#[inline(always)]
+unsafe fn bits(m: __m256d) -> i32 {
+    _mm256_movemask_pd(m)
+}
+
+/// `chunk_forces` four pairs at a time (see the module): same arguments, same results. A first
+/// pass over a block of pairs keeps those that are contacts or touch (the scalar kernel's test,
+/// in lanes); the second runs the formula on them four at a time. The pairs left over at the end
+/// go through the scalar kernel.
+#[target_feature(enable = "avx2")]
+pub(super) unsafe fn chunk(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    f: &mut [V3],
+    t: &mut [V3],
+    lo: usize,
+    ghosts: &mut Vec<Ghost>,
+) {
+    const BLOCK: usize = 256;
+    let mut g = Group {
+        v,
+        pairs,
+        cs: &mut cs[..pairs.len()],
+        acc: Acc::new(f, t, lo, ghosts),
+        cur: usize::MAX,
+    };
+    let np = pairs.len();
+    let mut work = [0usize; BLOCK + 4];
+    let mut nw = 0;
+    let mut p = 0;
+    while p < np {
+        let end = (p + BLOCK).min(np);
+        while p + 4 <= end {
+            let k = [p, p + 1, p + 2, p + 3];
+            let (_, _, _, d2, rs) = g.geometry(k);
+            let m = bits(_mm256_or_pd(
+                g.active(k),
+                _mm256_cmp_pd::<_CMP_NGT_UQ>(d2.0, (rs * rs).0),
+            ));
+            for (l, &q) in k.iter().enumerate() {
+                work[nw] = q;
+                nw += ((m >> l) & 1) as usize;
+            }
+            p += 4;
+        }
+        while p < end {
+            let pr = pairs[p];
+            let d = contact::sub(
+                contact::add(v.pos[pr.j as usize], v.shifts[pr.img as usize]),
+                v.pos[pr.i as usize],
+            );
+            let rs = v.rad[pr.i as usize] + v.rad[pr.j as usize];
+            work[nw] = p;
+            nw += (g.cs[p].active || !(contact::dot(d, d) > rs * rs)) as usize;
+            p += 1;
+        }
+        let mut q = 0;
+        while q + 4 <= nw {
+            g.four([work[q], work[q + 1], work[q + 2], work[q + 3]]);
+            q += 4;
+        }
+        work.copy_within(q..nw, 0);
+        nw -= q;
+    }
+    let k = Plain(v);
+    for &q in &work[..nw] {
+        let pr = pairs[q];
+        let i = pr.i as usize;
+        g.body(i);
+        if let Some((lf, lti, ltj)) = k.pair(&k.body(i), &pr, &mut g.cs[q]) {
+            g.acc.add(pr.j as usize, lf, lti, ltj);
+        }
+    }
+    if g.cur != usize::MAX {
+        g.acc.end();
+    }
+}
+
+/// The second pass's state: the chunk's pairs and contacts, its sums and the body whose sums are
+/// open in them.
+struct Group<'a, 'b> {
+    v: &'a View<'b>,
+    pairs: &'a [Pair],
+    cs: &'a mut [Contact],
+    acc: Acc<'a>,
+    cur: usize,
+}
+
+impl Group<'_, '_> {
+    /// Opens body `i`'s sums (closing the previous body's) unless they are open.
+    #[inline(always)]
+    fn body(&mut self, i: usize) {
+        if i != self.cur {
+            if self.cur != usize::MAX {
+                self.acc.end();
+            }
+            self.cur = i;
+            self.acc.begin(i);
+        }
+    }
+
+    /// Which of pairs `k` are contacts, as a lane mask.
+    #[inline(always)]
+    unsafe fn active(&self, k: [usize; 4]) -> __m256d {
+        let a = k.map(|q| -(self.cs[q].active as i64));
+        _mm256_castsi256_pd(_mm256_set_epi64x(a[3], a[2], a[1], a[0]))
+    }
+
+    /// Pairs `k`, the positions of their bodies i and j (j's shifted), `d` = xj - xi, |d|² and
+    /// ri + rj, in `contact::pair`'s operations.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    unsafe fn geometry(&self, k: [usize; 4]) -> ([Pair; 4], [F4; 3], [F4; 3], F4, F4) {
+        let v = self.v;
+        let pr = k.map(|q| self.pairs[q]);
+        let xi = gather3(v.pos, pr.map(|q| q.i as usize));
+        let xj = contact::add(
+            gather3(v.pos, pr.map(|q| q.j as usize)),
+            gather3(v.shifts, pr.map(|q| q.img as usize)),
+        );
+        let d = contact::sub(xj, xi);
+        let rs = gather1(pr.map(|q| v.rad[q.i as usize])) + gather1(pr.map(|q| v.rad[q.j as usize]));
+        (pr, xi, xj, contact::dot(d, d), rs)
+    }
+
+    /// `contact::pair` on pairs `k` (increasing), one per lane, and their loads into the sums in
+    /// the pairs' order.
+    #[inline(always)]
+    unsafe fn four(&mut self, k: [usize; 4]) {
+        let v = self.v;
+        let (pr, xi, xj, d2, rs) = self.geometry(k);
+        let d = contact::sub(xj, xi);
+        let ki = pr.map(|q| q.i as usize);
+        let kj = pr.map(|q| q.j as usize);
+        let (ri, rj) = (gather1(ki.map(|i| v.rad[i])), gather1(kj.map(|j| v.rad[j])));
+        let active = self.active(k);
+        // a fresh pair touches where !(d2 > rs²), NaN included, as the scalar test
+        let fresh = bits(_mm256_andnot_pd(
+            active,
+            _mm256_cmp_pd::<_CMP_NGT_UQ>(d2.0, (rs * rs).0),
+        ));
+        for l in 0..4 {
+            if fresh & (1 << l) != 0 {
+                let (i, j) = (ki[l], kj[l]);
+                contact::create(
+                    &mut self.cs[k[l]],
+                    &v.mats[v.mat[i] as usize],
+                    &v.mats[v.mat[j] as usize],
+                    v.rad[i],
+                    v.rad[j],
+                );
+            }
+        }
+        let c = k.map(|q| &self.cs[q]);
+        let s = Touch {
+            n0: gather_refs(c.map(|c| &c.normal)),
+            fs: gather_refs(c.map(|c| &c.fs)),
+            kn: gather1(c.map(|c| c.kn)),
+            ks: gather1(c.map(|c| c.ks)),
+            tan_phi: gather1(c.map(|c| c.tan_phi)),
+        };
+        let b = Two {
+            xi,
+            xj,
+            vi: gather3(v.vel, ki),
+            vj: gather3(v.vel, kj),
+            wi: gather3(v.w, ki),
+            wj: gather3(v.w, kj),
+            ri,
+            rj,
+        };
+        let dist = d2.sqrt();
+        let pen = rs - dist;
+        // an existing contact with pen < 0 is erased (NaN: kept, as the scalar test)
+        let gone = bits(_mm256_and_pd(
+            active,
+            _mm256_cmp_pd::<_CMP_LT_OQ>(pen.0, _mm256_setzero_pd()),
+        ));
+        let load = (fresh | bits(active)) & !gone;
+        let o = contact::law(&s, &b, d, dist, pen, F4::splat(v.dt));
+        let (n, fsn, pl) = (o.n.map(|x| lanes(x)), o.fs.map(|x| lanes(x)), lanes(pen));
+        let (lf, lti, ltj) = (
+            o.load.f.map(|x| lanes(x)),
+            o.load.ti.map(|x| lanes(x)),
+            o.load.tj.map(|x| lanes(x)),
+        );
+        for l in 0..4 {
+            let c = &mut self.cs[k[l]];
+            if gone & (1 << l) != 0 {
+                c.active = false;
+            } else if load & (1 << l) != 0 {
+                c.normal = [n[0][l], n[1][l], n[2][l]];
+                c.fs = [fsn[0][l], fsn[1][l], fsn[2][l]];
+                c.pen = pl[l];
+            }
+        }
+        for l in 0..4 {
+            self.body(ki[l]);
+            if load & (1 << l) != 0 {
+                self.acc.add(
+                    kj[l],
+                    [lf[0][l], lf[1][l], lf[2][l]],
+                    [lti[0][l], lti[1][l], lti[2][l]],
+                    [ltj[0][l], ltj[1][l], ltj[2][l]],
+                );
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::phys::FrictConsts;
+
+    /// rapier's scalar/SIMD parity, to the bit: random pairs in every state the kernel meets
+    /// (contacts that stay, that open and are erased, that slide on the Coulomb cap; pairs apart;
+    /// pairs that touch for the first time; periodic images; bodies owned by the next chunk, whose
+    /// loads go to ghosts; odd counts leaving a scalar tail) through the scalar pair loop and the
+    /// lanes, three steps in a row: the same contact states, forces, torques and ghosts.
+    #[test]
+    fn lanes_are_the_scalar_pair_loop_to_the_bit() {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let mut mt = rand_mt::Mt64::new(7);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        for n in [40usize, 7, 301, 1000] {
+            let rad: Vec<f64> = (0..n).map(|_| 1e-3 * (1.0 + 0.3 * u())).collect();
+            // a jittered chain: each body within reach of its next few neighbours
+            let pos: Vec<V3> = (0..n)
+                .map(|i| [0.7e-3 * i as f64 + 4e-4 * u(), 4e-4 * u(), 4e-4 * u()])
+                .collect();
+            let vel: Vec<V3> = (0..n).map(|_| [u(), u(), u()]).collect();
+            let w: Vec<V3> = (0..n).map(|_| [50.0 * u(), 50.0 * u(), 50.0 * u()]).collect();
+            let mats = [
+                FrictConsts {
+                    young: 1e8,
+                    poisson: 0.3,
+                    friction_angle: 0.5,
+                },
+                FrictConsts {
+                    young: 3e7,
+                    poisson: 0.25,
+                    friction_angle: 0.2,
+                },
+            ];
+            let mat: Vec<u32> = (0..n).map(|i| (i % 3 == 0) as u32).collect();
+            // shift 1 brings body j back next to body i (the chain's far end as a periodic image)
+            let shifts = [[0.0; 3], [-0.7e-3 * n as f64 + 0.7e-3, 0.0, 0.0]];
+            let mut pairs = Vec::new();
+            for i in 0..n {
+                for dj in 1..5 {
+                    if i + dj < n {
+                        pairs.push(Pair {
+                            i: i as u32,
+                            j: (i + dj) as u32,
+                            img: 0,
+                        });
+                    }
+                }
+                if i == 0 && n > 2 {
+                    pairs.push(Pair {
+                        i: 0,
+                        j: n as u32 - 1,
+                        img: 1,
+                    });
+                }
+            }
+            // states: contacts with a random normal and shear force (some far over the cap), and
+            // pairs that are not contacts
+            let cs0: Vec<Contact> = pairs
+                .iter()
+                .enumerate()
+                .map(|(k, _)| {
+                    if k % 5 == 1 {
+                        return Contact::default();
+                    }
+                    let mut c = Contact::default();
+                    contact::create(&mut c, &mats[k % 2], &mats[(k / 2) % 2], 1e-3, 1.1e-3);
+                    let s = if k % 4 == 0 { 1e3 } else { 1.0 };
+                    c.normal = [1.0 + 0.1 * u(), 0.1 * u(), 0.1 * u()];
+                    c.fs = [s * u(), s * u(), s * u()];
+                    c
+                })
+                .collect();
+            let view = View {
+                pos: &pos,
+                vel: &vel,
+                w: &w,
+                rad: &rad,
+                mats: &mats,
+                mat: &mat,
+                shifts: &shifts,
+                dt: 1e-5,
+            };
+            // this chunk owns bodies 0..hi; the pairs of bodies past it go to another chunk
+            let hi = n - n / 10;
+            let cut = pairs.partition_point(|p| (p.i as usize) < hi);
+            let pairs = &pairs[..cut];
+            let (mut cs_s, mut cs_v) = (cs0[..cut].to_vec(), cs0[..cut].to_vec());
+            let (mut f_s, mut t_s, mut g_s) = (vec![[0.0; 3]; hi], vec![[0.0; 3]; hi], Vec::new());
+            let (mut f_v, mut t_v, mut g_v) = (vec![[1.0; 3]; hi], vec![[1.0; 3]; hi], Vec::new());
+            let (mut loads, mut gone, mut fresh) = (0, 0, 0);
+            for _ in 0..3 {
+                let was: Vec<bool> = cs_s.iter().map(|c| c.active).collect();
+                super::super::chunk_forces_impl(
+                    &view, pairs, &mut cs_s, &mut f_s, &mut t_s, 0, &mut g_s,
+                );
+                // SAFETY: AVX2 checked above
+                unsafe { chunk(&view, pairs, &mut cs_v, &mut f_v, &mut t_v, 0, &mut g_v) };
+                for (a, c) in was.iter().zip(&cs_s) {
+                    gone += (*a && !c.active) as usize;
+                    fresh += (!*a && c.active) as usize;
+                    loads += c.active as usize;
+                }
+                let bits3 = |a: &[V3]| a.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+                let bitsc = |a: &[Contact]| {
+                    a.iter()
+                        .map(|c| {
+                            let mut b = vec![c.active as u64, c.pen.to_bits(), c.kn.to_bits()];
+                            b.extend([c.ks, c.tan_phi].map(f64::to_bits));
+                            b.extend(c.normal.iter().chain(&c.fs).map(|x| x.to_bits()));
+                            b
+                        })
+                        .collect::<Vec<_>>()
+                };
+                let bitsg = |a: &[Ghost]| {
+                    a.iter()
+                        .map(|g| (g.j, bits3(&[g.f, g.t])))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(bitsc(&cs_s), bitsc(&cs_v), "contact states, n {n}");
+                assert_eq!(bits3(&f_s), bits3(&f_v), "forces, n {n}");
+                assert_eq!(bits3(&t_s), bits3(&t_v), "torques, n {n}");
+                assert_eq!(bitsg(&g_s), bitsg(&g_v), "ghosts, n {n}");
+            }
+            if n >= 301 {
+                // the states the test means to reach were reached
+                assert!(gone > 10 && fresh > 10 && loads > 100, "{gone} {fresh} {loads}");
+                assert!(!g_s.is_empty());
+            }
+        }
+    }
+}
