@@ -170,7 +170,8 @@ pub(super) unsafe fn chunk(
             );
             let rs = v.rad[pr.i as usize] + v.rad[pr.j as usize];
             work[nw] = p;
-            nw += (g.cs[p].active || !(contact::dot(d, d) > rs * rs)) as usize;
+            let apart = contact::dot(d, d) > rs * rs;
+            nw += (g.cs[p].active || !apart) as usize;
             p += 1;
         }
         let mut q = 0;
@@ -238,7 +239,8 @@ impl Group<'_, '_> {
             gather3(v.shifts, pr.map(|q| q.img as usize)),
         );
         let d = contact::sub(xj, xi);
-        let rs = gather1(pr.map(|q| v.rad[q.i as usize])) + gather1(pr.map(|q| v.rad[q.j as usize]));
+        let rs =
+            gather1(pr.map(|q| v.rad[q.i as usize])) + gather1(pr.map(|q| v.rad[q.j as usize]));
         (pr, xi, xj, contact::dot(d, d), rs)
     }
 
@@ -351,7 +353,9 @@ mod tests {
                 .map(|i| [0.7e-3 * i as f64 + 4e-4 * u(), 4e-4 * u(), 4e-4 * u()])
                 .collect();
             let vel: Vec<V3> = (0..n).map(|_| [u(), u(), u()]).collect();
-            let w: Vec<V3> = (0..n).map(|_| [50.0 * u(), 50.0 * u(), 50.0 * u()]).collect();
+            let w: Vec<V3> = (0..n)
+                .map(|_| [50.0 * u(), 50.0 * u(), 50.0 * u()])
+                .collect();
             let mats = [
                 FrictConsts {
                     young: 1e8,
@@ -456,7 +460,10 @@ mod tests {
             }
             if n >= 301 {
                 // the states the test means to reach were reached
-                assert!(gone > 10 && fresh > 10 && loads > 100, "{gone} {fresh} {loads}");
+                assert!(
+                    gone > 10 && fresh > 10 && loads > 100,
+                    "{gone} {fresh} {loads}"
+                );
                 assert!(!g_s.is_empty());
             }
         }

@@ -274,6 +274,9 @@ trait Kernel {
     type I: Copy;
     fn body(&self, i: usize) -> Self::I;
     fn pair(&self, bi: &Self::I, p: &Pair, c: &mut Self::C) -> Option<(V3, V3, V3)>;
+    /// Whether `pair` would certainly return None and leave `c` as it is (a potential pair that
+    /// does not touch), tested without gathering the bodies' kinematics.
+    fn idle(&self, p: &Pair, c: &Self::C) -> bool;
     /// Ask the CPU to bring what `pair` will read of a state out of line (a hint: no effect on
     /// results), a few pairs ahead.
     #[inline(always)]
@@ -317,6 +320,15 @@ impl Kernel for Plain<'_, '_> {
         };
         contact::pair(c, &two, v.dt, created).map(|l| (l.f, l.ti, l.tj))
     }
+    #[inline(always)]
+    fn idle(&self, p: &Pair, c: &Contact) -> bool {
+        // contact::pair's test, in its operations
+        let v = self.0;
+        let (i, j) = (p.i as usize, p.j as usize);
+        let d = contact::sub(contact::add(v.pos[j], v.shifts[p.img as usize]), v.pos[i]);
+        let rs = v.rad[i] + v.rad[j];
+        !c.active && contact::dot(d, d) > rs * rs
+    }
 }
 
 /// The rolling-resistance kernel (`six::pair`).
@@ -333,6 +345,10 @@ impl Kernel for Six<'_, '_> {
     #[inline(always)]
     fn pair(&self, _: &(), p: &Pair, c: &mut six::C6) -> Option<(V3, V3, V3)> {
         six::pair(self.cfg, self.b, p, c)
+    }
+    #[inline(always)]
+    fn idle(&self, p: &Pair, c: &six::C6) -> bool {
+        six::idle(self.cfg, self.b, p, c)
     }
     #[inline(always)]
     fn prefetch(&self, c: &six::C6) {
@@ -369,7 +385,9 @@ avx2_dispatch! {
     )
 }
 
-/// The pair loop of one chunk (see `chunk_forces`).
+/// The pair loop of one chunk (see `chunk_forces`). Per block of pairs, a first pass keeps those
+/// the kernel may load (`Kernel::idle`: no branch, no kinematics), the second runs the kernel on
+/// them in the pairs' order.
 #[inline(always)]
 fn chunk_loop<K: Kernel>(
     k: &K,
@@ -380,24 +398,43 @@ fn chunk_loop<K: Kernel>(
     lo: usize,
     ghosts: &mut Vec<Ghost>,
 ) {
+    const BLOCK: usize = 256;
+    const AHEAD: usize = 6;
     let mut acc = Acc::new(f, t, lo, ghosts);
     let np = pairs.len();
-    let mut p = 0;
-    while p < np {
-        let i = pairs[p].i as usize;
-        let bi = k.body(i);
-        acc.begin(i);
-        while p < np && pairs[p].i as usize == i {
-            const AHEAD: usize = 6;
-            if p + AHEAD < np {
-                k.prefetch(&cs[p + AHEAD]);
+    let cs = &mut cs[..np];
+    let mut work = [0u32; BLOCK];
+    let mut cur = usize::MAX;
+    let mut bi = None;
+    for b0 in (0..np).step_by(BLOCK) {
+        let b1 = (b0 + BLOCK).min(np);
+        let mut nw = 0;
+        for p in b0..b1 {
+            work[nw] = p as u32;
+            nw += !k.idle(&pairs[p], &cs[p]) as usize;
+        }
+        for w in 0..nw {
+            if w + AHEAD < nw {
+                k.prefetch(&cs[work[w + AHEAD] as usize]);
             }
+            let p = work[w] as usize;
             let pr = pairs[p];
-            if let Some((lf, lti, ltj)) = k.pair(&bi, &pr, &mut cs[p]) {
+            let i = pr.i as usize;
+            if i != cur {
+                if cur != usize::MAX {
+                    acc.end();
+                }
+                cur = i;
+                bi = Some(k.body(i));
+                acc.begin(i);
+            }
+            let Some(b) = bi.as_ref() else { continue };
+            if let Some((lf, lti, ltj)) = k.pair(b, &pr, &mut cs[p]) {
                 acc.add(pr.j as usize, lf, lti, ltj);
             }
-            p += 1;
         }
+    }
+    if cur != usize::MAX {
         acc.end();
     }
 }

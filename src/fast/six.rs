@@ -104,19 +104,36 @@ fn a3(v: &Vec3) -> V3 {
     [v[0], v[1], v[2]]
 }
 
+/// Pair `p` as the Scene sees it: whether its slots swap, body 1 (the lower scene id), body 2 and
+/// body 2's period shift (+sh with j second, -sh with i second).
+#[inline(always)]
+fn oriented(b: &Bodies6, p: &Pair) -> (bool, usize, usize, Vec3) {
+    let (i, j) = (p.i as usize, p.j as usize);
+    let sh = b.shifts[p.img as usize];
+    let swap = b.ids[i] > b.ids[j];
+    if swap {
+        (true, j, i, Vec3::new(-sh[0], -sh[1], -sh[2]))
+    } else {
+        (false, i, j, v(&sh))
+    }
+}
+
+/// Whether `pair` certainly leaves pair `p` as it is and loads nothing: a potential pair that
+/// `Ig2_Sphere_Sphere_ScGeom6D` would leave potential (`sphere_sphere::go`'s own test).
+#[inline(always)]
+pub(super) fn idle(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &C6) -> bool {
+    let (_, k1, k2, shift2) = oriented(b, p);
+    let (p1, p2) = (v(&b.pos[k1]), v(&b.pos[k2]));
+    // both tests, no branch on the first: real and potential pairs alternate without pattern
+    !c.is_real()
+        & !geom::sphere_sphere::within_reach(&cfg.p6.ss, b.rad[k1], b.rad[k2], &p1, &p2, &shift2)
+}
+
 /// Geometry, physics (on creation) and law of one pair (slots `p.i < p.j`). Returns the force on
 /// slot i and the torques on i and j, or None (apart, or erased).
 #[inline(always)]
 pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V3, V3, V3)> {
-    let (i, j) = (p.i as usize, p.j as usize);
-    let sh = b.shifts[p.img as usize];
-    // body 1 is the lower scene id; body 2's period shift is then +sh (j second) or -sh (i second)
-    let swap = b.ids[i] > b.ids[j];
-    let (k1, k2, shift2) = if swap {
-        (j, i, Vec3::new(-sh[0], -sh[1], -sh[2]))
-    } else {
-        (i, j, v(&sh))
-    };
+    let (swap, k1, k2, shift2) = oriented(b, p);
     let kin = |k: usize| Kin {
         pos: v(&b.pos[k]),
         vel: v(&b.vel[k]),

@@ -22,9 +22,16 @@ impl Default for Params {
 /// interaction loop skip gathering both bodies' kinematics for pairs that do not touch).
 #[inline(always)]
 pub fn within_reach(p: &Params, r1: f64, r2: f64, pos1: &Vec3, pos2: &Vec3, shift2: &Vec3) -> bool {
-    let d = (pos2 + shift2) - pos1;
+    !apart(p, r1, r2, &((pos2 + shift2) - pos1))
+}
+
+/// The test that leaves a potential pair potential: `d` (sphere 1 to sphere 2) longer than the
+/// detection distance (NaN: not apart, as `go` goes on).
+#[inline(always)]
+pub fn apart(p: &Params, r1: f64, r2: f64, d: &Vec3) -> bool {
     let f = p.interaction_detection_factor * (r1 + r2);
-    f * f - norm2(&d) >= 0.0
+    // pow(x, 2) is x*x in glibc for every finite x
+    f * f - norm2(d) < 0.0
 }
 
 /// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
@@ -33,12 +40,8 @@ pub fn within_reach(p: &Params, r1: f64, r2: f64, pos1: &Vec3, pos2: &Vec3, shif
 pub fn go(p: &Params, r1: f64, r2: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
     let (s1, s2, shift2) = (&pr.s1, &pr.s2, &pr.shift2);
     let d = (s2.pos + shift2) - s1.pos;
-    if !pr.is_real {
-        let f = p.interaction_detection_factor * (r1 + r2);
-        // pow(x, 2) is x*x in glibc for every finite x
-        if f * f - norm2(&d) < 0.0 {
-            return false;
-        }
+    if !pr.is_real && apart(p, r1, r2, &d) {
+        return false;
     }
     let is_new = geom.is_none();
     let g = geom.get_or_insert_with(ScGeom::default);
