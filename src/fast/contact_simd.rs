@@ -5,7 +5,7 @@
 //! pair after the other; they gather the bodies and states from the same arrays (no second copy).
 
 use super::contact::{self, Contact, Pair, Real, Touch, Two, V3};
-use super::{Acc, Ghost, Kernel, Plain, View};
+use super::{Acc, Kernel, Plain, View};
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -126,21 +126,13 @@ unsafe fn bits(m: __m256d) -> i32 {
 /// in lanes); the second runs the formula on them four at a time. The pairs left over at the end
 /// go through the scalar kernel.
 #[target_feature(enable = "avx2")]
-pub(super) unsafe fn chunk(
-    v: &View,
-    pairs: &[Pair],
-    cs: &mut [Contact],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
+pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     const BLOCK: usize = 256;
     let mut g = Group {
         v,
         pairs,
         cs: &mut cs[..pairs.len()],
-        acc: Acc::new(f, t, lo, ghosts),
+        acc,
         cur: usize::MAX,
     };
     let np = pairs.len();
@@ -331,6 +323,7 @@ impl Group<'_, '_> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Ghost;
     use super::*;
     use crate::phys::FrictConsts;
 
@@ -427,11 +420,11 @@ mod tests {
             let (mut loads, mut gone, mut fresh) = (0, 0, 0);
             for _ in 0..3 {
                 let was: Vec<bool> = cs_s.iter().map(|c| c.active).collect();
-                super::super::chunk_forces_impl(
-                    &view, pairs, &mut cs_s, &mut f_s, &mut t_s, 0, &mut g_s,
-                );
+                let scalar = Acc::new(&mut f_s, &mut t_s, 0, &mut g_s);
+                super::super::chunk_loop(&Plain(&view), pairs, &mut cs_s, scalar);
+                let lanes = Acc::new(&mut f_v, &mut t_v, 0, &mut g_v);
                 // SAFETY: AVX2 checked above
-                unsafe { chunk(&view, pairs, &mut cs_v, &mut f_v, &mut t_v, 0, &mut g_v) };
+                unsafe { chunk(&view, pairs, &mut cs_v, lanes) };
                 for (a, c) in was.iter().zip(&cs_s) {
                     gone += (*a && !c.active) as usize;
                     fresh += (!*a && c.active) as usize;

@@ -194,25 +194,16 @@ struct View<'a> {
     dt: f64,
 }
 
-/// Forces and torques of a run of pairs (sorted by i) into `f`, `t` (zeroed here), which cover
-/// the bodies from `lo`; forces on bodies past them go to `ghosts`. Body i's sums stay in
-/// registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
+/// Forces and torques of a run of pairs (sorted by i) into `acc` (see `Acc`). Body i's sums stay
+/// in registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
 /// bits).
-fn chunk_forces(
-    v: &View,
-    pairs: &[Pair],
-    cs: &mut [Contact],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
+fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { contact_simd::chunk(v, pairs, cs, f, t, lo, ghosts) };
+        return unsafe { contact_simd::chunk(v, pairs, cs, acc) };
     }
-    chunk_forces_impl(v, pairs, cs, f, t, lo, ghosts)
+    chunk_loop(&Plain(v), pairs, cs, acc)
 }
 
 /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
@@ -359,29 +350,13 @@ impl Kernel for Six<'_, '_> {
     }
 }
 
-#[inline(always)]
-fn chunk_forces_impl(
-    v: &View,
-    pairs: &[Pair],
-    cs: &mut [Contact],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
-    chunk_loop(&Plain(v), pairs, cs, f, t, lo, ghosts)
-}
-
 avx2_dispatch! {
     /// `chunk_forces` for rolling-resistance contacts.
     fn chunk_forces6 / chunk_forces6_avx2 => chunk_loop(
         k: &Six,
         pairs: &[Pair],
         cs: &mut [six::C6],
-        f: &mut [V3],
-        t: &mut [V3],
-        lo: usize,
-        ghosts: &mut Vec<Ghost>,
+        acc: Acc,
     )
 }
 
@@ -389,18 +364,9 @@ avx2_dispatch! {
 /// the kernel may load (`Kernel::idle`: no branch, no kinematics), the second runs the kernel on
 /// them in the pairs' order.
 #[inline(always)]
-fn chunk_loop<K: Kernel>(
-    k: &K,
-    pairs: &[Pair],
-    cs: &mut [K::C],
-    f: &mut [V3],
-    t: &mut [V3],
-    lo: usize,
-    ghosts: &mut Vec<Ghost>,
-) {
+fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
     const BLOCK: usize = 256;
     const AHEAD: usize = 6;
-    let mut acc = Acc::new(f, t, lo, ghosts);
     let np = pairs.len();
     let cs = &mut cs[..np];
     let mut work = [0u32; BLOCK];
@@ -439,7 +405,8 @@ fn chunk_loop<K: Kernel>(
     }
 }
 
-/// The sums of a chunk's loads, in the one order both pair loops (`chunk_loop`, the lanes'
+/// The sums of a chunk's loads into its forces and torques (zeroed by `new`), which cover the
+/// bodies from `lo`; loads on bodies past them go to `ghosts`. In the one order both pair loops (`chunk_loop`, the lanes'
 /// `contact_simd::chunk`) keep: body i's in registers from `begin(i)` to `end`, added to its force
 /// then; body j's into its force at once (or into a ghost when another chunk owns it).
 struct Acc<'a> {
@@ -1251,7 +1218,7 @@ impl FastSim {
                 &mut self.contacts,
                 &mut self.force,
                 &mut self.torque,
-                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, f, t, lo, g),
+                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, Acc::new(f, t, lo, g)),
             ),
             Some(cfg) => {
                 let b6 = six::Bodies6 {
@@ -1274,7 +1241,7 @@ impl FastSim {
                     &mut self.contacts6,
                     &mut self.force,
                     &mut self.torque,
-                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, f, t, lo, g),
+                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, Acc::new(f, t, lo, g)),
                 )
             }
         }
