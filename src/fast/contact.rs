@@ -190,12 +190,10 @@ pub fn pair(
     dt: f64,
     new_contact: impl FnOnce(&mut Contact),
 ) -> Option<Load> {
-    let d = sub(b.xj, b.xi);
-    let d2 = dot(d, d);
-    let rs = b.ri + b.rj;
+    let (d, d2, rs) = separation(b.xi, b.xj, b.ri, b.rj);
     let is_new = !c.active;
     if is_new {
-        if d2 > rs * rs {
+        if apart(d2, rs) {
             return None;
         }
         new_contact(c);
@@ -218,6 +216,21 @@ pub fn pair(
     c.fs = o.fs;
     c.pen = pen;
     Some(o.load)
+}
+
+/// `d` = xj - xi, |d|² and ri + rj of a pair (or of four pairs, one per lane), in the operations
+/// every kernel and pass uses for the distance test.
+#[inline(always)]
+pub fn separation<R: Real>(xi: [R; 3], xj: [R; 3], ri: R, rj: R) -> ([R; 3], R, R) {
+    let d = sub(xj, xi);
+    (d, dot(d, d), ri + rj)
+}
+
+/// Ig2_Sphere_Sphere_ScGeom's test on a pair that is no contact: apart when |d|² > (ri + rj)²
+/// (NaN: not apart).
+#[inline(always)]
+pub fn apart<R: Real>(d2: R, rs: R) -> R::Mask {
+    d2.gt(rs * rs)
 }
 
 /// The geometry, shear update and force of a touching contact (`d` from i to j, `dist` = |d|,

@@ -133,8 +133,8 @@ pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Ac
         pairs,
         cs: &mut cs[..pairs.len()],
         acc,
-        cur: usize::MAX,
     };
+    let k = Plain(v);
     let np = pairs.len();
     let mut work = [0usize; BLOCK + 4];
     let mut nw = 0;
@@ -142,28 +142,20 @@ pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Ac
     while p < np {
         let end = (p + BLOCK).min(np);
         while p + 4 <= end {
-            let k = [p, p + 1, p + 2, p + 3];
-            let (_, _, _, d2, rs) = g.geometry(k);
-            let m = bits(_mm256_or_pd(
-                g.active(k),
-                _mm256_cmp_pd::<_CMP_NGT_UQ>(d2.0, (rs * rs).0),
-            ));
-            for (l, &q) in k.iter().enumerate() {
-                work[nw] = q;
+            let q = [p, p + 1, p + 2, p + 3];
+            let x = g.geometry(q);
+            // kept unless apart and no contact (`Plain::idle`)
+            let idle = _mm256_andnot_pd(g.active(q), contact::apart(x.d2, x.rs));
+            let m = !bits(idle);
+            for (l, &w) in q.iter().enumerate() {
+                work[nw] = w;
                 nw += ((m >> l) & 1) as usize;
             }
             p += 4;
         }
         while p < end {
-            let pr = pairs[p];
-            let d = contact::sub(
-                contact::add(v.pos[pr.j as usize], v.shifts[pr.img as usize]),
-                v.pos[pr.i as usize],
-            );
-            let rs = v.rad[pr.i as usize] + v.rad[pr.j as usize];
             work[nw] = p;
-            let apart = contact::dot(d, d) > rs * rs;
-            nw += (g.cs[p].active || !apart) as usize;
+            nw += !k.idle(&pairs[p], &g.cs[p]) as usize;
             p += 1;
         }
         let mut q = 0;
@@ -174,43 +166,40 @@ pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Ac
         work.copy_within(q..nw, 0);
         nw -= q;
     }
-    let k = Plain(v);
     for &q in &work[..nw] {
         let pr = pairs[q];
         let i = pr.i as usize;
-        g.body(i);
+        g.acc.open(i);
         if let Some((lf, lti, ltj)) = k.pair(&k.body(i), &pr, &mut g.cs[q]) {
             g.acc.add(pr.j as usize, lf, lti, ltj);
         }
     }
-    if g.cur != usize::MAX {
-        g.acc.end();
-    }
+    g.acc.finish();
 }
 
-/// The second pass's state: the chunk's pairs and contacts, its sums and the body whose sums are
-/// open in them.
+/// The second pass's state: the chunk's pairs and contacts, and its sums.
 struct Group<'a, 'b> {
     v: &'a View<'b>,
     pairs: &'a [Pair],
     cs: &'a mut [Contact],
     acc: Acc<'a>,
-    cur: usize,
+}
+
+/// Four pairs' bodies and distances, one pair per lane.
+struct Geometry {
+    pr: [Pair; 4],
+    xi: [F4; 3],
+    /// Body j's positions plus their periodic shifts.
+    xj: [F4; 3],
+    ri: F4,
+    rj: F4,
+    /// `contact::separation`: xj - xi, its square and ri + rj.
+    d: [F4; 3],
+    d2: F4,
+    rs: F4,
 }
 
 impl Group<'_, '_> {
-    /// Opens body `i`'s sums (closing the previous body's) unless they are open.
-    #[inline(always)]
-    fn body(&mut self, i: usize) {
-        if i != self.cur {
-            if self.cur != usize::MAX {
-                self.acc.end();
-            }
-            self.cur = i;
-            self.acc.begin(i);
-        }
-    }
-
     /// Which of pairs `k` are contacts, as a lane mask.
     #[inline(always)]
     unsafe fn active(&self, k: [usize; 4]) -> __m256d {
@@ -218,22 +207,30 @@ impl Group<'_, '_> {
         _mm256_castsi256_pd(_mm256_set_epi64x(a[3], a[2], a[1], a[0]))
     }
 
-    /// Pairs `k`, the positions of their bodies i and j (j's shifted), `d` = xj - xi, |d|² and
-    /// ri + rj, in `contact::pair`'s operations.
+    /// Pairs `k`, their bodies' positions and radii, and their distances, in `contact::pair`'s
+    /// operations.
     #[inline(always)]
-    #[allow(clippy::type_complexity)]
-    unsafe fn geometry(&self, k: [usize; 4]) -> ([Pair; 4], [F4; 3], [F4; 3], F4, F4) {
+    unsafe fn geometry(&self, k: [usize; 4]) -> Geometry {
         let v = self.v;
         let pr = k.map(|q| self.pairs[q]);
-        let xi = gather3(v.pos, pr.map(|q| q.i as usize));
+        let (ki, kj) = (pr.map(|q| q.i as usize), pr.map(|q| q.j as usize));
+        let xi = gather3(v.pos, ki);
         let xj = contact::add(
-            gather3(v.pos, pr.map(|q| q.j as usize)),
+            gather3(v.pos, kj),
             gather3(v.shifts, pr.map(|q| q.img as usize)),
         );
-        let d = contact::sub(xj, xi);
-        let rs =
-            gather1(pr.map(|q| v.rad[q.i as usize])) + gather1(pr.map(|q| v.rad[q.j as usize]));
-        (pr, xi, xj, contact::dot(d, d), rs)
+        let (ri, rj) = (gather1(ki.map(|i| v.rad[i])), gather1(kj.map(|j| v.rad[j])));
+        let (d, d2, rs) = contact::separation(xi, xj, ri, rj);
+        Geometry {
+            pr,
+            xi,
+            xj,
+            ri,
+            rj,
+            d,
+            d2,
+            rs,
+        }
     }
 
     /// `contact::pair` on pairs `k` (increasing), one per lane, and their loads into the sums in
@@ -241,17 +238,12 @@ impl Group<'_, '_> {
     #[inline(always)]
     unsafe fn four(&mut self, k: [usize; 4]) {
         let v = self.v;
-        let (pr, xi, xj, d2, rs) = self.geometry(k);
-        let d = contact::sub(xj, xi);
-        let ki = pr.map(|q| q.i as usize);
-        let kj = pr.map(|q| q.j as usize);
-        let (ri, rj) = (gather1(ki.map(|i| v.rad[i])), gather1(kj.map(|j| v.rad[j])));
+        let x = self.geometry(k);
+        let ki = x.pr.map(|q| q.i as usize);
+        let kj = x.pr.map(|q| q.j as usize);
         let active = self.active(k);
-        // a fresh pair touches where !(d2 > rs²), NaN included, as the scalar test
-        let fresh = bits(_mm256_andnot_pd(
-            active,
-            _mm256_cmp_pd::<_CMP_NGT_UQ>(d2.0, (rs * rs).0),
-        ));
+        // a fresh pair: no contact, not apart (NaN included), as the scalar test
+        let fresh = !bits(_mm256_or_pd(active, contact::apart(x.d2, x.rs))) & 0b1111;
         for l in 0..4 {
             if fresh & (1 << l) != 0 {
                 let (i, j) = (ki[l], kj[l]);
@@ -273,24 +265,24 @@ impl Group<'_, '_> {
             tan_phi: gather1(c.map(|c| c.tan_phi)),
         };
         let b = Two {
-            xi,
-            xj,
+            xi: x.xi,
+            xj: x.xj,
             vi: gather3(v.vel, ki),
             vj: gather3(v.vel, kj),
             wi: gather3(v.w, ki),
             wj: gather3(v.w, kj),
-            ri,
-            rj,
+            ri: x.ri,
+            rj: x.rj,
         };
-        let dist = d2.sqrt();
-        let pen = rs - dist;
+        let dist = x.d2.sqrt();
+        let pen = x.rs - dist;
         // an existing contact with pen < 0 is erased (NaN: kept, as the scalar test)
         let gone = bits(_mm256_and_pd(
             active,
             _mm256_cmp_pd::<_CMP_LT_OQ>(pen.0, _mm256_setzero_pd()),
         ));
         let load = (fresh | bits(active)) & !gone;
-        let o = contact::law(&s, &b, d, dist, pen, F4::splat(v.dt));
+        let o = contact::law(&s, &b, x.d, dist, pen, F4::splat(v.dt));
         let (n, fsn, pl) = (o.n.map(|x| lanes(x)), o.fs.map(|x| lanes(x)), lanes(pen));
         let (lf, lti, ltj) = (
             o.load.f.map(|x| lanes(x)),
@@ -308,7 +300,7 @@ impl Group<'_, '_> {
             }
         }
         for l in 0..4 {
-            self.body(ki[l]);
+            self.acc.open(ki[l]);
             if load & (1 << l) != 0 {
                 self.acc.add(
                     kj[l],

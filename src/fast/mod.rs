@@ -316,9 +316,9 @@ impl Kernel for Plain<'_, '_> {
         // contact::pair's test, in its operations
         let v = self.0;
         let (i, j) = (p.i as usize, p.j as usize);
-        let d = contact::sub(contact::add(v.pos[j], v.shifts[p.img as usize]), v.pos[i]);
-        let rs = v.rad[i] + v.rad[j];
-        !c.active && contact::dot(d, d) > rs * rs
+        let xj = contact::add(v.pos[j], v.shifts[p.img as usize]);
+        let (_, d2, rs) = contact::separation(v.pos[i], xj, v.rad[i], v.rad[j]);
+        !c.active && contact::apart(d2, rs)
     }
 }
 
@@ -370,7 +370,6 @@ fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
     let np = pairs.len();
     let cs = &mut cs[..np];
     let mut work = [0u32; BLOCK];
-    let mut cur = usize::MAX;
     let mut bi = None;
     for b0 in (0..np).step_by(BLOCK) {
         let b1 = (b0 + BLOCK).min(np);
@@ -386,13 +385,8 @@ fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
             let p = work[w] as usize;
             let pr = pairs[p];
             let i = pr.i as usize;
-            if i != cur {
-                if cur != usize::MAX {
-                    acc.end();
-                }
-                cur = i;
+            if acc.open(i) {
                 bi = Some(k.body(i));
-                acc.begin(i);
             }
             let Some(b) = bi.as_ref() else { continue };
             if let Some((lf, lti, ltj)) = k.pair(b, &pr, &mut cs[p]) {
@@ -400,21 +394,21 @@ fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
             }
         }
     }
-    if cur != usize::MAX {
-        acc.end();
-    }
+    acc.finish();
 }
 
 /// The sums of a chunk's loads into its forces and torques (zeroed by `new`), which cover the
-/// bodies from `lo`; loads on bodies past them go to `ghosts`. In the one order both pair loops (`chunk_loop`, the lanes'
-/// `contact_simd::chunk`) keep: body i's in registers from `begin(i)` to `end`, added to its force
-/// then; body j's into its force at once (or into a ghost when another chunk owns it).
+/// bodies from `lo`; loads on bodies past them go to `ghosts`. In the one order both pair loops
+/// (`chunk_loop`, the lanes' `contact_simd::chunk`) keep: the open body i's in registers from
+/// `open(i)` until another body opens (or `finish`), then added to its force; body j's into its
+/// force at once (or into a ghost when another chunk owns it).
 struct Acc<'a> {
     f: &'a mut [V3],
     t: &'a mut [V3],
     lo: usize,
     hi: usize,
     ghosts: &'a mut Vec<Ghost>,
+    /// The open body (`usize::MAX`: none).
     i: usize,
     fi: V3,
     ti: V3,
@@ -438,17 +432,24 @@ impl<'a> Acc<'a> {
             lo,
             hi,
             ghosts,
-            i: lo,
+            i: usize::MAX,
             fi: [0.0; 3],
             ti: [0.0; 3],
         }
     }
 
+    /// Opens body `i`'s sums, closing the open body's, unless they are open; true when it opened
+    /// them.
     #[inline(always)]
-    fn begin(&mut self, i: usize) {
+    fn open(&mut self, i: usize) -> bool {
+        if i == self.i {
+            return false;
+        }
+        self.close();
         self.i = i;
         self.fi = [0.0; 3];
         self.ti = [0.0; 3];
+        true
     }
 
     /// One contact's loads: `lf` and `lti` on body i, `-lf` and `ltj` on body `j`.
@@ -469,11 +470,20 @@ impl<'a> Acc<'a> {
         }
     }
 
+    /// The open body's sums into its force and torque.
     #[inline(always)]
-    fn end(&mut self) {
-        let ii = self.i - self.lo;
-        self.f[ii] = contact::add(self.f[ii], self.fi);
-        self.t[ii] = contact::add(self.t[ii], self.ti);
+    fn close(&mut self) {
+        if self.i != usize::MAX {
+            let ii = self.i - self.lo;
+            self.f[ii] = contact::add(self.f[ii], self.fi);
+            self.t[ii] = contact::add(self.t[ii], self.ti);
+        }
+    }
+
+    /// Closes the open body: the chunk's sums are complete.
+    #[inline(always)]
+    fn finish(mut self) {
+        self.close();
     }
 }
 
