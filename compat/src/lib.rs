@@ -1475,7 +1475,7 @@ impl Sim {
                 // one line per fast run: what it held and where its time went
                 let m = f.memory();
                 eprintln!(
-                    "[ryade] fast run to iteration {}: {} bodies, {} listed pairs, {} contacts, {} grid interactions, {} list builds; memory {:.0} B/particle, {:.0} B/listed pair, {:.0} B/contact; time: lists {:.3} s, contacts {:.3} s, integration {:.3} s",
+                    "[ryade] fast run to iteration {}: {} bodies, {} listed pairs, {} contacts, {} grid interactions, {} list builds; memory {:.0} B/particle, {:.0} B/listed pair, {:.0} B/contact; time: lists {:.3} s, contacts {:.3} s (grid {:.3} s), integration {:.3} s",
                     f.iter,
                     f.len(),
                     f.pairs(),
@@ -1487,6 +1487,7 @@ impl Sim {
                     m.per_contact,
                     f.timing.rebuild,
                     f.timing.contacts,
+                    f.timing.grid,
                     f.timing.newton
                 );
             }

@@ -179,6 +179,8 @@ impl<'a> Listing<'a> {
 pub struct Timing {
     pub rebuild: f64,
     pub contacts: f64,
+    /// The geogrid's part of `contacts`.
+    pub grid: f64,
     pub newton: f64,
 }
 
@@ -1165,7 +1167,8 @@ impl FastSim {
     /// by other chunks get their loads here too: the parallel integration reads `force` after this.
     fn grid_phase(&mut self) {
         let Some(g) = &mut self.grid else { return };
-        if let Err(e) = g.forces(
+        let t0 = std::time::Instant::now();
+        let r = g.forces(
             &self.pos,
             &self.vel,
             &self.ang_vel,
@@ -1174,7 +1177,9 @@ impl FastSim {
             self.time,
             &mut self.force,
             &mut self.torque,
-        ) {
+        );
+        self.timing.grid += t0.elapsed().as_secs_f64();
+        if let Err(e) = r {
             self.error.get_or_insert(e);
             self.stop = true;
         }
