@@ -23,16 +23,21 @@
 //! the same way: a point's distance to a segment shrinks by at most the point's displacement plus
 //! the larger of the two ends' (every point of the segment is a convex combination of its ends), so
 //! the same `travel` bounds it. That functor can also make a potential pair real without any
-//! distance check, by taking over the contact of a neighbouring connection; it does so only when
-//! the sphere has a real interaction with that neighbour. `grid_real` marks every body seen in a
-//! real interaction with a connection during the current and the previous loop (and by
-//! `createInteraction`): a real interaction is visited by every loop, so a sphere with a real
-//! connection contact now is marked, and its potential connection pairs are never skipped.
+//! distance check, by taking over the contact of a neighbouring connection (one sharing a node):
+//! it does so only when the sphere has a real interaction with that neighbour and lies behind it,
+//! i.e. `a·b <= 0` with `a` the sphere's branch from the node and `b` the neighbour's direction away
+//! from it (`geom::grid::takeover_operands`). A pair's deadline is therefore also bounded by each
+//! real neighbour's test: with every body moved by at most `t/2` (`t` the travel since), `a` and
+//! `b` each change by at most `t`, so `a·b` stays positive while `t² + t (|a| + |b|) < a·b`. A
+//! neighbour contact made real later is not in that bound: `grid_gen` counts, per body, the real
+//! connection interactions it gained (made in the loop, taken over, or created from Python), and
+//! a pair is skipped only while its sphere's count is the one it had when the deadline was set.
+//! Node connection lists are part of the snapshot (a change resets).
 
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::interaction::ScanEntry;
-use crate::math::{norm2, Mat3, Vec3};
+use crate::math::{dot, norm2, Mat3, Vec3};
 use crate::shape::{GridConnection, Shape};
 
 /// The snapshot and the accumulated bound (see the module doc); owned by the scene, used only by
@@ -46,9 +51,11 @@ pub struct IdleSkip {
     factor: f64,
     /// Every `GridConnection` body and its shape at the snapshot (a change resets).
     conns: Vec<(u32, GridConnection)>,
-    /// Per body: bit 1 set when seen in a real interaction with a connection during the current
-    /// loop, bit 0 during the previous one (see the module doc); empty until the first mark.
-    grid_real: Vec<u8>,
+    /// Every `GridNode` body and its connection list at the snapshot (a change resets).
+    nodes: Vec<(u32, Vec<u32>)>,
+    /// Per body: how many real interactions with a connection it gained (wrapping; a wrap ends
+    /// every skip until the next reset); empty until the first.
+    grid_gen: Vec<u16>,
     /// Upper bound on how much any pair's gap has shrunk since the last reset.
     pub travel: f64,
 }
@@ -93,7 +100,14 @@ impl IdleSkip {
                     .any(|(id, c)| match &bodies.shape[*id as usize] {
                         Shape::GridConnection(now) => **now != *c,
                         _ => true,
-                    });
+                    })
+                    || self
+                        .nodes
+                        .iter()
+                        .any(|(id, l)| match &bodies.shape[*id as usize] {
+                            Shape::GridNode(now) => now.conn_list != *l,
+                            _ => true,
+                        });
             // a sphere-connection reach is r + R whatever the detection factor
             let step = 2.0 * (d2max.sqrt() + factor.abs().max(1.0) * drmax) * (1.0 + 1e-9);
             self.travel += step;
@@ -105,9 +119,12 @@ impl IdleSkip {
             self.radius.clear();
             self.radius.extend(bodies.shape.iter().map(radius_of));
             self.conns.clear();
+            self.nodes.clear();
             for (id, s) in bodies.shape.iter().enumerate() {
-                if let Shape::GridConnection(c) = s {
-                    self.conns.push((id as u32, (**c).clone()));
+                match s {
+                    Shape::GridConnection(c) => self.conns.push((id as u32, (**c).clone())),
+                    Shape::GridNode(n) => self.nodes.push((id as u32, n.conn_list.clone())),
+                    _ => {}
                 }
             }
             self.hsize = hsize;
@@ -117,29 +134,53 @@ impl IdleSkip {
                 e.deadline = f64::NEG_INFINITY;
             }
         }
-        // the current loop's marks become the previous loop's
-        for m in self.grid_real.iter_mut() {
-            *m >>= 1;
+    }
+
+    /// Bodies `a` and `b` are in an interaction with a `GridConnection` just made real (or may
+    /// be): the deadlines their potential connection pairs got before no longer hold.
+    #[inline]
+    pub fn gained_grid_real(&mut self, a: u32, b: u32) {
+        let hi = a.max(b) as usize;
+        if hi >= self.grid_gen.len() {
+            self.grid_gen.resize(hi + 1, 0);
+        }
+        let ids = [a as usize, b as usize];
+        for &id in &ids[..if a == b { 1 } else { 2 }] {
+            self.grid_gen[id] = self.grid_gen[id].wrapping_add(1);
+            if self.grid_gen[id] == 0 {
+                // a count back where it started could match an old deadline: none holds now
+                self.travel = f64::INFINITY;
+            }
         }
     }
 
-    /// Bodies `a` and `b` are in a real interaction that involves a `GridConnection` (or may be):
-    /// their potential connection pairs are not skipped during this loop and the next.
-    #[inline]
-    pub fn mark_grid_real(&mut self, a: u32, b: u32) {
-        let hi = a.max(b) as usize;
-        if hi >= self.grid_real.len() {
-            self.grid_real.resize(hi + 1, 0);
+    /// Body `id`'s count of real connection interactions gained.
+    #[inline(always)]
+    pub fn grid_gen(&self, id: u32) -> u16 {
+        self.grid_gen.get(id as usize).copied().unwrap_or(0)
+    }
+
+    /// The deadline of a real neighbour's take-over test `a·b <= 0` found false (see the module
+    /// doc): `a·b` stays positive while the travel grows by less than `t` with
+    /// `t² + t (|a| + |b|) = a·b - tol`. -inf when the test is not clearly false.
+    pub fn behind_deadline(&self, a: &Vec3, b: &Vec3) -> f64 {
+        let (na, nb) = (norm2(a).sqrt(), norm2(b).sqrt());
+        let s = na + nb;
+        // rounding of the dot product, and the later test's zeroing of components below 1e-14
+        let m = dot(a, b) - (1e-9 * na * nb + 1e-12 * s);
+        if !(m > 0.0) {
+            return f64::NEG_INFINITY;
         }
-        self.grid_real[a as usize] |= 2;
-        self.grid_real[b as usize] |= 2;
+        // the positive root of t² + s t - m, without cancellation
+        let t = 2.0 * m / ((s * s + 4.0 * m).sqrt() + s);
+        self.travel + t * (1.0 - 1e-9)
     }
 
     /// True when the idle sphere-connection pair of `e` (sphere `e.id1`) is still apart by the
     /// bound and no take-over of a neighbour's contact is possible (see the module doc).
     #[inline(always)]
     pub fn skips_gridco(&self, e: &ScanEntry) -> bool {
-        self.travel < e.deadline && self.grid_real.get(e.id1 as usize).copied().unwrap_or(0) == 0
+        self.travel < e.deadline && self.grid_gen(e.id1) == e.gen
     }
 
     /// The radius of body `id` when it was a sphere at the snapshot.
@@ -268,11 +309,12 @@ mod tests {
         }
     }
 
-    /// A mark blocks the sphere's connection pairs during the loop that set it and the next one;
-    /// a connection whose nodes or radius change, or a sphere that becomes another shape, ends
-    /// every skip.
+    /// A real connection interaction gained by the sphere ends its connection pairs' skips (the
+    /// deadline set before does not know that neighbour); a count that wraps ends every skip; a
+    /// connection whose nodes or radius change, or a sphere that becomes another shape, ends every
+    /// skip.
     #[test]
-    fn marks_last_two_loops_and_shape_changes_reset() {
+    fn gains_wraps_and_shape_changes_end_the_skipping() {
         let mut b = two_spheres(4.0);
         let mut s = IdleSkip::default();
         let mut scan = vec![ScanEntry {
@@ -284,12 +326,29 @@ mod tests {
         scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(s.skips_gridco(&scan[0]));
-        s.mark_grid_real(0, 1);
-        assert!(!s.skips_gridco(&scan[0]), "marked during this loop");
+        s.gained_grid_real(0, 1);
+        assert!(!s.skips_gridco(&scan[0]), "gained during this loop");
         s.prepare(&b, None, 1.0, &mut scan);
-        assert!(!s.skips_gridco(&scan[0]), "marked during the previous loop");
+        assert!(!s.skips_gridco(&scan[0]), "gained since the deadline");
+        scan[0].gen = s.grid_gen(0);
+        assert!(s.skips_gridco(&scan[0]), "a deadline set after the gain");
+        // another body's gains change nothing; 65,536 of the sphere's bring its count back, and
+        // then nothing is skipped until the next reset
+        for _ in 1..u16::MAX {
+            s.gained_grid_real(1, 1);
+        }
+        assert_eq!(s.grid_gen(1), u16::MAX);
+        assert!(s.skips_gridco(&scan[0]));
+        for _ in 0..=u16::MAX {
+            s.gained_grid_real(0, 0);
+        }
+        assert_eq!(s.grid_gen(0), scan[0].gen);
+        assert!(!s.skips_gridco(&scan[0]), "wrapped");
         s.prepare(&b, None, 1.0, &mut scan);
-        assert!(s.skips_gridco(&scan[0]), "no mark for two loops");
+        assert!(!s.skips_gridco(&scan[0]), "reset");
+        scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
+        s.prepare(&b, None, 1.0, &mut scan);
+        assert!(s.skips_gridco(&scan[0]));
         // body 1 becomes a connection: kind change, reset
         b.shape[1] = Shape::GridConnection(Box::new(GridConnection {
             radius: 0.1,
@@ -309,5 +368,57 @@ mod tests {
         }
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]));
+    }
+
+    /// A take-over test `a·b <= 0` that is false stays false until the travel reaches the
+    /// deadline, however the three bodies involved (sphere, node, far node) move by up to half
+    /// the travel each; and the deadline is not needlessly short (at least 0.8 of `a·b/(|a|+|b|)`,
+    /// while a move of the sphere alone by `a·b/|b|` turns the test).
+    #[test]
+    fn behind_deadline_bounds_every_move() {
+        let mut mt = rand_mt::Mt64::new(11);
+        let mut rnd = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut unit = move || loop {
+            let v = Vec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
+            let n = norm2(&v).sqrt();
+            if n <= 1.0 && n > 1e-3 {
+                return v / n;
+            }
+        };
+        let s = IdleSkip {
+            travel: 0.25,
+            ..Default::default()
+        };
+        let mut cases = 0;
+        for _ in 0..20_000 {
+            let (sp, n, o) = (unit() * 0.05, unit() * 0.01, unit() * 0.06);
+            let (a, b) = (sp - n, o - n);
+            let d = s.behind_deadline(&a, &b);
+            let ab = dot(&a, &b);
+            let (na, nb) = (norm2(&a).sqrt(), norm2(&b).sqrt());
+            if ab <= 1e-9 * na * nb + 1e-12 * (na + nb) {
+                assert_eq!(d, f64::NEG_INFINITY);
+                continue;
+            }
+            cases += 1;
+            let t = d - s.travel;
+            assert!(t >= 0.8 * ab / (na + nb) * (1.0 - 1e-6), "{a} {b} {t}");
+            assert!(0.5 * t < ab / nb);
+            let h = 0.5 * t;
+            let (ua, ub) = (a / na, b / nb);
+            let w = (ua + ub) / norm2(&(ua + ub)).sqrt().max(1e-300);
+            for k in 0..20 {
+                // the sphere against the neighbour's direction, the far node against the branch,
+                // the node between them; then random moves of the same length
+                let (ds, dn, dd) = if k == 0 {
+                    (-ub * h, w * h, -ua * h)
+                } else {
+                    (unit() * h, unit() * h, unit() * h)
+                };
+                let (a2, b2) = ((sp + ds) - (n + dn), (o + dd) - (n + dn));
+                assert!(dot(&a2, &b2) > 0.0, "{a} {b} t {t} move {k}");
+            }
+        }
+        assert!(cases > 5000, "{cases}");
     }
 }

@@ -206,6 +206,9 @@ pub struct ScanEntry {
     pub cell_dist: [i32; 3],
     pub idle: bool,
     pub idle_gc: bool,
+    /// For `idle_gc`: the sphere's count of real connection interactions gained
+    /// (`IdleSkip::grid_gen`) when the deadline was set.
+    pub gen: u16,
     pub deadline: f64,
 }
 
@@ -225,6 +228,7 @@ impl Default for ScanEntry {
             cell_dist: [0; 3],
             idle: false,
             idle_gc: false,
+            gen: 0,
             deadline: f64::NEG_INFINITY,
         }
     }

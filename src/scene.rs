@@ -1074,7 +1074,7 @@ impl Scene {
         self.interactions.list[k].iter_made_real = self.iter;
         // a contact made outside the loop may be taken over by a neighbouring connection pair
         if self.touches_conn(functor, a, b) {
-            self.idle_skip.mark_grid_real(a as u32, b as u32);
+            self.idle_skip.gained_grid_real(a as u32, b as u32);
         }
         Ok(k)
     }
@@ -1321,9 +1321,6 @@ impl Scene {
             None => *ctx0,
         };
         let touches_conn = self.touches_conn(functor, id1, id2);
-        if touches_conn && was_real {
-            self.idle_skip.mark_grid_real(id1 as u32, id2 as u32);
-        }
         // fast path for the common sphere-sphere contact; every other functor goes through
         // `geometry`
         let created = match (functor, &self.bodies.shape[id1], &self.bodies.shape[id2]) {
@@ -1369,6 +1366,7 @@ impl Scene {
                     cell_dist,
                     idle: true,
                     idle_gc: false,
+                    gen: 0,
                     deadline: f64::NEG_INFINITY,
                 };
             } else if functor == GeomFunctor::SphereGridConnection {
@@ -1376,8 +1374,8 @@ impl Scene {
             }
             return Ok(());
         }
-        if touches_conn {
-            self.idle_skip.mark_grid_real(id1 as u32, id2 as u32);
+        if touches_conn && !was_real {
+            self.idle_skip.gained_grid_real(id1 as u32, id2 as u32);
         }
         // A plain contact (ScGeom + FrictPhys, no extension) already has its physics: the
         // FrictPhys Ip2 would return at once and the law is Cundall-Strack; skip both dispatches.
@@ -1457,12 +1455,28 @@ impl Scene {
             .map_or(f64::NEG_INFINITY, |(p1, p2, reach)| {
                 skip.deadline(&p1, &p2, reach)
             });
+        // and by the take-over tests of the sphere's real neighbour contacts
+        let mut deadline = deadline;
+        if deadline > f64::NEG_INFINITY {
+            let found = geom::grid::takeover_operands(
+                &self.interactions,
+                &self.bodies,
+                id1,
+                id2,
+                shift2,
+                |a, b| deadline = deadline.min(skip.behind_deadline(a, b)),
+            );
+            if found.is_none() {
+                deadline = f64::NEG_INFINITY;
+            }
+        }
         self.interactions.scan[k] = crate::interaction::ScanEntry {
             id1,
             id2,
             cell_dist,
             idle: false,
             idle_gc: true,
+            gen: skip.grid_gen(id1),
             deadline,
         };
     }

@@ -123,10 +123,10 @@ fn a_teleported_sphere_is_checked_at_once() {
 /// loop (the skip's state cloned and advanced by the same `prepare`) are checked against the
 /// geometry itself: every potential pair it would skip must be beyond contact on the positions the
 /// loop will see (the distance from the sphere's centre to the segment above r + R) and its sphere
-/// must have no real contact with a connection sharing a node with it (the functor's take-over,
-/// which needs no distance check). Fails when the marks are ignored (a pair skipped beside a real
-/// contact of its sphere) or the bound is cut to 0.3 of itself (a pair skipped in contact); both
-/// checked by hand.
+/// must not be behind any connection sharing a node with it that it has a real contact with (the
+/// functor's take-over, which needs no distance check). Pairs are skipped beside real contacts too.
+/// Fails when the gains are ignored (a pair skipped behind a neighbour contact made since), the
+/// take-over bound is cut to 0.3 of itself, or the distance bound is (a pair skipped in contact).
 #[test]
 fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
     use ryade::io::scene_json;
@@ -167,7 +167,7 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
             _ => None,
         })
         .unwrap();
-    let mut skipped = 0;
+    let (mut skipped, mut skipped_beside) = (0, 0);
     let mut ever = std::collections::BTreeSet::new();
     for step in 0..3000 {
         let (mut skip, mut scan) = (s.idle_skip.clone(), s.interactions.scan.clone());
@@ -181,7 +181,7 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
                 !s.interactions.list[k].is_real(),
                 "step {step}: a real pair is idle"
             );
-            let Shape::GridConnection(c) = &s.bodies.shape[e.id2 as usize] else {
+            let Shape::GridConnection(_) = &s.bodies.shape[e.id2 as usize] else {
                 panic!("step {step}: #{} is no connection", e.id2)
             };
             let r = s.bodies.shape[e.id1 as usize].sphere_radius().unwrap();
@@ -200,22 +200,26 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
                 e.id1,
                 e.id2
             );
-            for node in [c.node1, c.node2] {
-                let Shape::GridNode(n) = &s.bodies.shape[node as usize] else {
-                    panic!("#{node} is no node")
-                };
-                for &nb in &n.conn_list {
-                    let real = s
-                        .interactions
-                        .find(e.id1, nb)
-                        .is_some_and(|j| s.interactions.list[j].is_real());
+            // no take-over: behind no neighbour (at either node) it has a real contact with
+            let mut beside = 0;
+            ryade::geom::grid::takeover_operands(
+                &s.interactions,
+                &s.bodies,
+                e.id1,
+                e.id2,
+                &Vec3::zeros(),
+                |a, b| {
+                    beside += 1;
                     assert!(
-                        !real,
-                        "step {step}: #{}+#{} skipped beside the real #{}+#{nb}",
-                        e.id1, e.id2, e.id1
+                        ryade::math::dot(a, b) > 0.0,
+                        "step {step}: #{}+#{} skipped behind a real neighbour contact",
+                        e.id1,
+                        e.id2
                     );
-                }
-            }
+                },
+            )
+            .unwrap();
+            skipped_beside += (beside > 0) as usize;
         }
         s.step().unwrap();
         for it in &s.interactions.list {
@@ -225,8 +229,8 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
         }
     }
     assert!(
-        skipped > 1000,
-        "the skip was exercised ({skipped} pair-steps)"
+        skipped > 1000 && skipped_beside > 30,
+        "the skip was exercised ({skipped} pair-steps, {skipped_beside} beside a real contact)"
     );
     // contacts made, and handed from rib to rib
     let spheres: std::collections::BTreeSet<u32> = ever.iter().map(|p| p.0).collect();

@@ -151,6 +151,63 @@ fn zero_tiny(v: &mut Vec3) {
     }
 }
 
+/// The sphere's branch from a node as the hand-over reads it (tiny components zeroed).
+#[inline(always)]
+fn branch_from(sphere_pos: &Vec3, node_pos: &Vec3) -> Vec3 {
+    let mut b = sphere_pos - node_pos;
+    zero_tiny(&mut b);
+    b
+}
+
+/// Neighbour `nb`'s direction away from the node at `node_pos` as the hand-over reads it: the
+/// longer of its two node vectors from there (tiny components zeroed). The longer is chosen on
+/// |c|² unless both are non-zero (then on |c| as YADE, since two squared norms can differ where
+/// their square roots round to the same value).
+fn nb_direction(bodies: &Bodies, nb: u32, node_pos: &Vec3) -> Result<Vec3, String> {
+    let c = conn(bodies, nb)?;
+    let cand1 = bodies.pos[c.node1 as usize] - node_pos;
+    let cand2 = bodies.pos[c.node2 as usize] - node_pos;
+    let (a2, b2) = (norm2(&cand1), norm2(&cand2));
+    let first = if a2 == 0.0 || b2 == 0.0 {
+        a2 > b2
+    } else {
+        a2.sqrt() > b2.sqrt()
+    };
+    let mut s = if first { cand1 } else { cand2 };
+    zero_tiny(&mut s);
+    Ok(s)
+}
+
+/// For the idle skip (`crate::idle_skip`): the operands of every hand-over test by which the
+/// potential pair of sphere `s` (centre shifted by `shift2`) and connection `c` could take over a
+/// contact. `sphere_gridco` takes over the contact of a neighbour (a connection at the nearer node
+/// of `c`) only when the sphere has a real interaction with it and is behind it: the dot product
+/// of the sphere's branch from the node and the neighbour's direction is <= 0 (and the direction
+/// not zero). `f` gets (branch, direction) for every such neighbour at either node, whatever the
+/// sphere's position along `c`. None when `c` or a node is not what it should be.
+pub fn takeover_operands(
+    intrs: &Interactions,
+    bodies: &Bodies,
+    s: u32,
+    c: u32,
+    shift2: &Vec3,
+    mut f: impl FnMut(&Vec3, &Vec3),
+) -> Option<()> {
+    let gc = conn(bodies, c).ok()?;
+    let sphere_pos = bodies.pos[s as usize] - shift2;
+    for node in [gc.node1, gc.node2] {
+        let node_pos = bodies.pos[node as usize];
+        let br = branch_from(&sphere_pos, &node_pos);
+        for &nb in node_conns(bodies, node).ok()? {
+            if nb == c || !intrs.find(s, nb).is_some_and(|j| intrs.list[j].is_real()) {
+                continue;
+            }
+            f(&br, &nb_direction(bodies, nb, &node_pos).ok()?);
+        }
+    }
+    Some(())
+}
+
 /// Where the sphere-connection functor writes: its own geometry, a fresh one (new contact) or the
 /// geometry object of another interaction it took over.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -198,10 +255,8 @@ pub fn sphere_gridco(
     let p_n1 = bodies.pos[n1 as usize];
     let p_n2 = bodies.pos[n2 as usize];
     let sphere_pos = bodies.pos[id1 as usize] - shift2;
-    let mut branch = sphere_pos - p_n1;
-    let mut branch_n = sphere_pos - p_n2;
-    zero_tiny(&mut branch);
-    zero_tiny(&mut branch_n);
+    let branch = branch_from(&sphere_pos, &p_n1);
+    let branch_n = branch_from(&sphere_pos, &p_n2);
     let mut rel_pos = dot(&branch, &segt) / (len * len);
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
@@ -214,21 +269,9 @@ pub fn sphere_gridco(
     // YADE's `relPos = (br·s)/(|s|·|s|) <= 0`, s the neighbour's segment from `node`. Only the
     // sign is used, and it is the sign of br·s: after zero_tiny every non-zero component is at
     // least 1e-14, so |s|² >= 1e-28 never rounds to zero and br·s, when not zero, is far above
-    // the underflow of the quotient; s = 0 gives 0/0 = NaN, which is not <= 0. The longer
-    // candidate is chosen on |c|² unless both are non-zero (then on |c| as YADE, since two
-    // squared norms can differ where their square roots round to the same value).
+    // the underflow of the quotient; s = 0 gives 0/0 = NaN, which is not <= 0.
     let nb_behind = |nb: u32, node_pos: &Vec3, br: &Vec3| -> Result<bool, String> {
-        let c = conn(bodies, nb)?;
-        let cand1 = bodies.pos[c.node1 as usize] - node_pos;
-        let cand2 = bodies.pos[c.node2 as usize] - node_pos;
-        let (a2, b2) = (norm2(&cand1), norm2(&cand2));
-        let first = if a2 == 0.0 || b2 == 0.0 {
-            a2 > b2
-        } else {
-            a2.sqrt() > b2.sqrt()
-        };
-        let mut s = if first { cand1 } else { cand2 };
-        zero_tiny(&mut s);
+        let s = nb_direction(bodies, nb, node_pos)?;
         Ok(norm2(&s) != 0.0 && dot(br, &s) <= 0.0)
     };
     let neighbour_is_duplicate = |intrs: &Interactions, j: usize| -> i32 {
