@@ -168,7 +168,8 @@ impl IdleSkip {
         let s = na + nb;
         // rounding of the dot product, and the later test's zeroing of components below 1e-14
         let m = dot(a, b) - (1e-9 * na * nb + 1e-12 * s);
-        if !(m > 0.0) {
+        // (NaN operands: no skip)
+        if m.is_nan() || m <= 0.0 {
             return f64::NEG_INFINITY;
         }
         // the positive root of t² + s t - m, without cancellation
