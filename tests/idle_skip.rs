@@ -125,8 +125,9 @@ fn a_teleported_sphere_is_checked_at_once() {
 /// loop will see (the distance from the sphere's centre to the segment above r + R) and its sphere
 /// must not be behind any connection sharing a node with it that it has a real contact with (the
 /// functor's take-over, which needs no distance check). Pairs are skipped beside real contacts too.
-/// Fails when the gains are ignored (a pair skipped behind a neighbour contact made since), the
-/// take-over bound is cut to 0.3 of itself, or the distance bound is (a pair skipped in contact).
+/// Fails when the distance bound is cut to 0.3 of itself (a pair skipped in contact; checked by
+/// hand). On this net a take-over always comes within reach, so the take-over bound and the gains
+/// are guarded by the next test.
 #[test]
 fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
     use ryade::io::scene_json;
@@ -239,4 +240,86 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
         ever.len() > spheres.len(),
         "a contact moved to a neighbouring rib: {ever:?}"
     );
+}
+
+/// The two bounds of a skipped sphere-connection pair that sits beside a real contact, on a corner
+/// of two connections at node N, a thick one along +x (N-O, R = 0.01) and a thin one along +y (N-P,
+/// R = 0.001): a sphere (r = 0.005, moved at constant speed by its blocked DOFs) passes above N
+/// from over N-O to behind it, within reach of the thick one all the time and beyond reach of the
+/// thin one, whose potential pair must take the contact over (`sphere_gridco`: inside the thin
+/// connection, behind the real neighbour) at the first step that starts with the sphere behind.
+/// Run twice: the neighbour contact made before the pair's first check (the take-over test's
+/// deadline holds the skip) and after it (the gained contact ends the skip). Fails, checked by
+/// hand, when `skips_gridco` ignores the gains, or when `behind_deadline` allows 3 times its bound.
+#[test]
+fn skipped_pair_beside_a_real_contact_takes_it_over_on_time() {
+    use ryade::interaction::Interaction;
+    use ryade::io::scene_json;
+    use ryade::scene::Engine;
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
+    let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
+    for thin_first in [false, true] {
+        let mut s = Scene {
+            materials: net.materials.clone(),
+            engines: net.engines.clone(),
+            dt: 1e-5,
+            ..Default::default()
+        };
+        // no collider: the two potential pairs are listed by hand and stay listed
+        s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
+        let mat = net.bodies.material[0];
+        let node = |s: &mut Scene, x: f64, y: f64| {
+            s.bodies
+                .push(utils::grid_node(Vec3::new(x, y, 0.0), 0.001, mat, true))
+        };
+        let (n, o, p) = (
+            node(&mut s, 0.0, 0.0),
+            node(&mut s, 0.05, 0.0),
+            node(&mut s, 0.0, 0.05),
+        );
+        let thick = utils::grid_connection(&mut s, n, o, 0.01, mat, 1, None).unwrap() as u32;
+        let thin = utils::grid_connection(&mut s, n, p, 0.001, mat, 1, None).unwrap() as u32;
+        let mut b = utils::sphere(Vec3::new(0.00202, 0.005, 0.0125), 0.005, mat, 2600.0, false);
+        b.blocked = ryade::body::DOF_ALL;
+        // 0.003 in 60 steps: behind (x < 0) from step 41 on
+        b.vel = Vec3::new(-0.003 / (60.0 * s.dt), 0.0, 0.0);
+        let sid = s.bodies.push(b) as u32;
+        let order = if thin_first {
+            [thin, thick]
+        } else {
+            [thick, thin]
+        };
+        for c in order {
+            s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
+        }
+        let real = |s: &Scene, c: u32| {
+            s.interactions
+                .find(sid, c)
+                .is_some_and(|j| s.interactions.list[j].is_real())
+        };
+        let mut taken = None;
+        for step in 0..60 {
+            let behind = s.bodies.pos[sid as usize][0] < 0.0;
+            s.step().unwrap();
+            if step == 0 {
+                assert!(
+                    real(&s, thick) && !real(&s, thin),
+                    "over the thick one first"
+                );
+            }
+            if real(&s, thin) {
+                assert!(
+                    behind,
+                    "step {step}: taken over before the sphere is behind"
+                );
+                taken = Some(step);
+                break;
+            }
+            assert!(
+                !behind,
+                "step {step}: behind the real neighbour, not taken over"
+            );
+        }
+        assert!(taken.is_some_and(|k| k > 30), "{thin_first}: {taken:?}");
+    }
 }
