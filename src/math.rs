@@ -7,6 +7,7 @@
 //! `a*b + c` on its own, and we never call `mul_add`.
 
 use nalgebra::{Matrix3, Vector3};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 pub type Vec3 = Vector3<f64>;
 pub type Mat3 = Matrix3<f64>;
@@ -272,6 +273,84 @@ impl Quat {
             tyz + twx,
             1.0 - (txx + tyy),
         )
+    }
+}
+
+/// The arithmetic a formula written once runs in: one `f64` (the scalar kernels, the YADE-order
+/// path) or four lanes (`fast::contact_simd::F4`, AVX2). The formula does the same operations in
+/// the same order in either, so a lane's result is the scalar one to the bit.
+pub trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Which lanes a comparison holds in.
+    type Mask: Copy;
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// `f64::max`'s result for a NaN `self` and a number `o`: `o`.
+    fn max(self, o: Self) -> Self;
+    fn gt(self, o: Self) -> Self::Mask;
+    fn lt(self, o: Self) -> Self::Mask;
+    /// The lanes holding NaN.
+    fn is_nan(self) -> Self::Mask;
+    fn abs(self) -> Self;
+    /// libm's `atan2(self, x)`.
+    fn atan2(self, x: Self) -> Self;
+    /// Whether `m` holds in some lane.
+    fn any(m: Self::Mask) -> bool;
+    /// `a` where `m` holds, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn max(self, o: f64) -> f64 {
+        f64::max(self, o)
+    }
+    #[inline(always)]
+    fn gt(self, o: f64) -> bool {
+        self > o
+    }
+    #[inline(always)]
+    fn lt(self, o: f64) -> bool {
+        self < o
+    }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        f64::is_nan(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn atan2(self, x: f64) -> f64 {
+        f64::atan2(self, x)
+    }
+    #[inline(always)]
+    fn any(m: bool) -> bool {
+        m
+    }
+    #[inline(always)]
+    fn select(m: bool, a: f64, b: f64) -> f64 {
+        if m {
+            a
+        } else {
+            b
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! evaluation order is free (reciprocals, regrouped cross products), so results agree with YADE to
 //! round-off, not bit for bit.
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
+pub use crate::math::Real;
 
 pub type V3 = [f64; 3];
 
@@ -25,62 +25,6 @@ pub fn nearest_image(d: f64, l: f64) -> f64 {
         d + l
     } else {
         d
-    }
-}
-
-/// The arithmetic the contact formula is written in: one `f64` (the scalar kernel) or four lanes
-/// (`contact_simd::F4`, AVX2). The formula does the same operations in the same order in either,
-/// so a lane's result is the scalar one to the bit.
-pub trait Real:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// Which lanes a comparison holds in.
-    type Mask: Copy;
-    fn splat(x: f64) -> Self;
-    fn sqrt(self) -> Self;
-    /// `f64::max`'s result for a NaN `self` and a number `o`: `o`.
-    fn max(self, o: Self) -> Self;
-    fn gt(self, o: Self) -> Self::Mask;
-    /// Whether `m` holds in some lane.
-    fn any(m: Self::Mask) -> bool;
-    /// `a` where `m` holds, else `b`.
-    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
-}
-
-impl Real for f64 {
-    type Mask = bool;
-    #[inline(always)]
-    fn splat(x: f64) -> f64 {
-        x
-    }
-    #[inline(always)]
-    fn sqrt(self) -> f64 {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn max(self, o: f64) -> f64 {
-        f64::max(self, o)
-    }
-    #[inline(always)]
-    fn gt(self, o: f64) -> bool {
-        self > o
-    }
-    #[inline(always)]
-    fn any(m: bool) -> bool {
-        m
-    }
-    #[inline(always)]
-    fn select(m: bool, a: f64, b: f64) -> f64 {
-        if m {
-            a
-        } else {
-            b
-        }
     }
 }
 

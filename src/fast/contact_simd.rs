@@ -62,6 +62,30 @@ impl Real for F4 {
         unsafe { _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, o.0) }
     }
     #[inline(always)]
+    fn lt(self, o: F4) -> __m256d {
+        // SAFETY: as in lane_op
+        unsafe { _mm256_cmp_pd::<_CMP_LT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn is_nan(self) -> __m256d {
+        // SAFETY: as in lane_op
+        unsafe { _mm256_cmp_pd::<_CMP_UNORD_Q>(self.0, self.0) }
+    }
+    #[inline(always)]
+    fn abs(self) -> F4 {
+        // SAFETY: as in lane_op; the sign bit cleared, as f64::abs
+        F4(unsafe { _mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0) })
+    }
+    #[inline(always)]
+    fn atan2(self, x: F4) -> F4 {
+        // libm's, lane by lane
+        // SAFETY: as in lane_op
+        let (y, x) = unsafe { (lanes(self), lanes(x)) };
+        let r: [f64; 4] = std::array::from_fn(|l| y[l].atan2(x[l]));
+        // SAFETY: as in lane_op
+        F4(unsafe { _mm256_loadu_pd(r.as_ptr()) })
+    }
+    #[inline(always)]
     fn any(m: __m256d) -> bool {
         // SAFETY: as in lane_op
         unsafe { _mm256_movemask_pd(m) != 0 }
@@ -70,6 +94,22 @@ impl Real for F4 {
     fn select(m: __m256d, a: F4, b: F4) -> F4 {
         // SAFETY: as in lane_op
         F4(unsafe { _mm256_blendv_pd(b.0, a.0, m) })
+    }
+}
+
+impl F4 {
+    /// `a[l]` in lane l.
+    #[inline(always)]
+    pub(super) fn from_lanes(a: [f64; 4]) -> F4 {
+        // SAFETY: as in lane_op
+        F4(unsafe { _mm256_loadu_pd(a.as_ptr()) })
+    }
+
+    /// The four lanes as an array.
+    #[inline(always)]
+    pub(super) fn to_lanes(self) -> [f64; 4] {
+        // SAFETY: as in lane_op
+        unsafe { lanes(self) }
     }
 }
 

@@ -29,6 +29,8 @@ pub mod newton;
 #[cfg(target_arch = "x86_64")]
 pub mod newton_simd;
 mod six;
+#[cfg(target_arch = "x86_64")]
+mod six_simd;
 
 use crate::body::DOF_ALL;
 use crate::geom::ScGeom;
@@ -352,14 +354,15 @@ impl Kernel for Six<'_, '_> {
     }
 }
 
-avx2_dispatch! {
-    /// `chunk_forces` for rolling-resistance contacts.
-    fn chunk_forces6 / chunk_forces6_avx2 => chunk_loop(
-        k: &Six,
-        pairs: &[Pair],
-        cs: &mut [six::C6],
-        acc: Acc,
-    )
+/// `chunk_forces` for rolling-resistance contacts. With AVX2: the contacts' rotations four at a
+/// time (`six_simd`, the same bits).
+fn chunk_forces6(k: &Six, pairs: &[Pair], cs: &mut [six::C6], acc: Acc) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { six_simd::chunk(k, pairs, cs, acc) };
+    }
+    chunk_loop(k, pairs, cs, acc)
 }
 
 /// The pair loop of one chunk (see `chunk_forces`). Per block of pairs, a first pass keeps those
@@ -374,12 +377,7 @@ fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
     let mut work = [0u32; BLOCK];
     let mut bi = None;
     for b0 in (0..np).step_by(BLOCK) {
-        let b1 = (b0 + BLOCK).min(np);
-        let mut nw = 0;
-        for p in b0..b1 {
-            work[nw] = p as u32;
-            nw += !k.idle(&pairs[p], &cs[p]) as usize;
-        }
+        let nw = kept(k, pairs, cs, b0..(b0 + BLOCK).min(np), &mut work);
         for w in 0..nw {
             if w + AHEAD < nw {
                 k.prefetch(&cs[work[w + AHEAD] as usize]);
@@ -397,6 +395,24 @@ fn chunk_loop<K: Kernel>(k: &K, pairs: &[Pair], cs: &mut [K::C], mut acc: Acc) {
         }
     }
     acc.finish();
+}
+
+/// The first pass over a block of pairs: those the kernel may load (`Kernel::idle`: no branch, no
+/// kinematics) into `work`, in order; returns how many.
+#[inline(always)]
+fn kept<K: Kernel>(
+    k: &K,
+    pairs: &[Pair],
+    cs: &[K::C],
+    block: std::ops::Range<usize>,
+    work: &mut [u32],
+) -> usize {
+    let mut nw = 0;
+    for p in block {
+        work[nw] = p as u32;
+        nw += !k.idle(&pairs[p], &cs[p]) as usize;
+    }
+    nw
 }
 
 /// The sums of a chunk's loads into its forces and torques (zeroed by `new`), which cover the

@@ -107,7 +107,7 @@ fn a3(v: &Vec3) -> V3 {
 /// Pair `p` as the Scene sees it: whether its slots swap, body 1 (the lower scene id), body 2 and
 /// body 2's period shift (+sh with j second, -sh with i second).
 #[inline(always)]
-fn oriented(b: &Bodies6, p: &Pair) -> (bool, usize, usize, Vec3) {
+pub(super) fn oriented(b: &Bodies6, p: &Pair) -> (bool, usize, usize, Vec3) {
     let (i, j) = (p.i as usize, p.j as usize);
     let sh = b.shifts[p.img as usize];
     let swap = b.ids[i] > b.ids[j];
@@ -129,52 +129,110 @@ pub(super) fn idle(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &C6) -> bool {
         & !geom::sphere_sphere::within_reach(&cfg.p6.ss, b.rad[k1], b.rad[k2], &p1, &p2, &shift2)
 }
 
-/// Geometry, physics (on creation) and law of one pair (slots `p.i < p.j`). Returns the force on
-/// slot i and the torques on i and j, or None (apart, or erased).
+/// Geometry, physics (on creation) and law of one pair (slots `p.i < p.j`): `geometry`,
+/// `rotations`, `law`. Returns the force on slot i and the torques on i and j, or None (apart, or
+/// erased).
 #[inline(always)]
 pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V3, V3, V3)> {
-    let (swap, k1, k2, shift2) = oriented(b, p);
+    let st = geometry(cfg, b, p, c);
+    if st == Stage::Kept {
+        rotations(cfg, b, p, c);
+    }
+    law(cfg, b, p, c, st)
+}
+
+/// What `geometry` left for `rotations` and `law`: the pair is apart (a potential pair that stays
+/// so, or a contact just erased), a contact that was real, or a new one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) enum Stage {
+    #[default]
+    Apart,
+    Kept,
+    New,
+}
+
+/// Slots `k1`, `k2` (from `oriented`) as `geom::Pair`.
+#[inline(always)]
+fn geom_pair(b: &Bodies6, k1: usize, k2: usize, shift2: Vec3, is_real: bool) -> geom::Pair {
     let kin = |k: usize| Kin {
         pos: v(&b.pos[k]),
         vel: v(&b.vel[k]),
         ang_vel: v(&b.w[k]),
         ori: b.ori[k],
     };
-    let was_real = c.is_real();
-    let pr = geom::Pair {
+    geom::Pair {
         s1: kin(k1),
         s2: kin(k2),
         shift2,
-        is_real: was_real,
+        is_real,
         ctx: GeomCtx {
             dt: b.dt,
             shift_vel: Vec3::zeros(),
         },
-    };
-    let (r1, r2) = (b.rad[k1], b.rad[k2]);
-    // Ig2_Sphere_Sphere_ScGeom6D::go (`geom::grid::six_d`): the sphere-sphere geometry, then, on a
-    // contact, the rotations (reset when new)
-    let is_new = !was_real;
-    if is_new {
-        let mut g = None;
-        if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut g) {
-            return None;
-        }
-        c.0 = Some(Box::new(State6 {
-            geom: g,
-            phys: None,
-            rot: Rot6D::default(),
-            coh: None,
-            made_real: b.iter,
-        }));
-    } else if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut c.0.as_mut().unwrap().geom) {
-        c.0 = None;
-        return None;
     }
+}
+
+/// The first part of `Ig2_Sphere_Sphere_ScGeom6D::go` (`geom::grid::six_d`) on one pair: the
+/// sphere-sphere geometry, and on a new contact its rotations' reset. A contact that was real gets
+/// its rotations from `rotations` (or, four at a time, `six_simd`).
+#[inline(always)]
+pub(super) fn geometry(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Stage {
+    let was_real = c.is_real();
+    let (_, k1, k2, shift2) = oriented(b, p);
+    let pr = geom_pair(b, k1, k2, shift2, was_real);
+    let (r1, r2) = (b.rad[k1], b.rad[k2]);
+    if was_real {
+        if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut c.0.as_mut().unwrap().geom) {
+            c.0 = None;
+            return Stage::Apart;
+        }
+        return Stage::Kept;
+    }
+    let mut g = None;
+    if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut g) {
+        return Stage::Apart;
+    }
+    let mut s = Box::new(State6 {
+        geom: g,
+        phys: None,
+        rot: Rot6D::default(),
+        coh: None,
+        made_real: b.iter,
+    });
+    let n = s.geom.as_ref().unwrap().normal;
+    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, true);
+    c.0 = Some(s);
+    Stage::New
+}
+
+/// The rest of `Ig2_Sphere_Sphere_ScGeom6D::go` on a contact that was real (`Stage::Kept`), after
+/// its `geometry`: the rotations (`geom::grid::six_d_rotations`).
+#[inline(always)]
+pub(super) fn rotations(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) {
+    let (_, k1, k2, shift2) = oriented(b, p);
+    let pr = geom_pair(b, k1, k2, shift2, true);
     let s = c.0.as_deref_mut().unwrap();
     let n = s.geom.as_ref().unwrap().normal;
-    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, is_new);
-    if is_new {
+    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, false);
+}
+
+/// Physics (on a new contact) and law of a pair after `geometry` (and `rotations`): the force on
+/// slot i and the torques on i and j, or None (apart, or erased).
+#[inline(always)]
+pub(super) fn law(
+    cfg: &SixCfg,
+    b: &Bodies6,
+    p: &Pair,
+    c: &mut C6,
+    st: Stage,
+) -> Option<(V3, V3, V3)> {
+    if st == Stage::Apart {
+        return None;
+    }
+    let (swap, k1, k2, shift2) = oriented(b, p);
+    let pr = geom_pair(b, k1, k2, shift2, true);
+    let s = c.0.as_deref_mut().unwrap();
+    if st == Stage::New {
         // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys on the new contact (setCohesionNow is refused
         // by `FastSim::from_scene`, so the functor's own state does not change here)
         let mut ip2 = cfg.ip2.clone();

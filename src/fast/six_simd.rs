@@ -1,0 +1,252 @@
+//! The rolling-resistance pair loop with the contacts' rotations four at a time (AVX2). Per group
+//! of four kept pairs: each pair's geometry (`six::geometry`), then the rotations of those that
+//! were contacts in four lanes (`geom::six_d::relative_delta`, `angle_axis_of`, `twist_bending`:
+//! the formulas the YADE-order path runs in `f64`, the same operations in the same order, libm's
+//! `atan2` lane by lane), then each pair's law (`six::law`), its loads added in the scalar loop's
+//! order (`Acc`). So every state and sum is the scalar loop's to the bit
+//! (`tests::groups_are_the_scalar_pair_loop_to_the_bit`). The rotations are a long chain of
+//! dependent products, square roots, divisions and an arc tangent per contact; the lanes run four
+//! chains side by side.
+
+use super::contact::Pair;
+use super::contact_simd::F4;
+use super::six::{self, Stage, C6};
+use super::{kept, Acc, Kernel, Six};
+use crate::geom::six_d::{angle_axis_of, relative_delta, twist_bending, vec_norm, Q};
+use crate::math::{Quat, Real, Vec3};
+
+/// The pair loop of one chunk (see `super::chunk_loop`, the scalar one).
+#[target_feature(enable = "avx2")]
+pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc) {
+    const BLOCK: usize = 256;
+    let np = pairs.len();
+    let cs = &mut cs[..np];
+    let mut work = [0u32; BLOCK];
+    for b0 in (0..np).step_by(BLOCK) {
+        let nw = kept(k, pairs, cs, b0..(b0 + BLOCK).min(np), &mut work);
+        for g in (0..nw).step_by(4) {
+            let ws = &work[g..(g + 4).min(nw)];
+            // the next group's states, out of line
+            for &p in work[(g + 4).min(nw)..(g + 8).min(nw)].iter() {
+                k.prefetch(&cs[p as usize]);
+            }
+            let mut st = [Stage::Apart; 4];
+            for (q, &p) in ws.iter().enumerate() {
+                st[q] = six::geometry(k.cfg, k.b, &pairs[p as usize], &mut cs[p as usize]);
+            }
+            rotations4(k, pairs, cs, ws, &st);
+            for (q, &p) in ws.iter().enumerate() {
+                let pr = pairs[p as usize];
+                acc.open(pr.i as usize);
+                if let Some((lf, lti, ltj)) = six::law(k.cfg, k.b, &pr, &mut cs[p as usize], st[q])
+                {
+                    acc.add(pr.j as usize, lf, lti, ltj);
+                }
+            }
+        }
+    }
+    acc.finish();
+}
+
+/// `six::rotations` of the group's contacts that were real (`Stage::Kept`), in four lanes (lanes
+/// without one repeat the first's, their results dropped); in `f64` one by one when a relative
+/// rotation's vector part is shorter than machine epsilon (Eigen's stable norm, `angle_axis`).
+#[inline(always)]
+fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4]) {
+    if !k.cfg.p6.update_rotations {
+        return;
+    }
+    let mut live = [0usize; 4];
+    let mut n = 0;
+    for (q, &p) in ws.iter().enumerate() {
+        if st[q] == Stage::Kept {
+            live[n] = p as usize;
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return;
+    }
+    let lane = |l: usize| live[if l < n { l } else { 0 }];
+    let q4 = |f: &dyn Fn(usize) -> Quat| -> Q<F4> {
+        let qs: [Quat; 4] = std::array::from_fn(|l| f(lane(l)));
+        [
+            F4::from_lanes(qs.map(|q| q.w)),
+            F4::from_lanes(qs.map(|q| q.x)),
+            F4::from_lanes(qs.map(|q| q.y)),
+            F4::from_lanes(qs.map(|q| q.z)),
+        ]
+    };
+    let ori = |p: usize, second: bool| {
+        let (_, k1, k2, _) = six::oriented(k.b, &pairs[p]);
+        k.b.ori[if second { k2 } else { k1 }]
+    };
+    let state = |p: usize| cs[p].0.as_deref().unwrap();
+    let (o1, o2) = (q4(&|p| ori(p, false)), q4(&|p| ori(p, true)));
+    let i1 = q4(&|p| state(p).rot.initial_orientation1);
+    let i2 = q4(&|p| state(p).rot.initial_orientation2);
+    let creep = k.cfg.p6.creep.then(|| q4(&|p| state(p).rot.twist_creep));
+    let normals: [Vec3; 4] = std::array::from_fn(|l| state(lane(l)).geom.as_ref().unwrap().normal);
+    let normal: [F4; 3] = std::array::from_fn(|c| F4::from_lanes(normals.map(|v| v[c])));
+    let d = relative_delta(&o1, &o2, &i1, &i2, creep.as_ref());
+    let norm = vec_norm(&d);
+    if F4::any(norm.lt(F4::splat(f64::EPSILON))) {
+        for &p in &live[..n] {
+            six::rotations(k.cfg, k.b, &pairs[p], &mut cs[p]);
+        }
+        return;
+    }
+    let (angle, axis) = angle_axis_of(&d, norm);
+    let (twist, bending) = twist_bending(angle, axis, &normal);
+    let (tw, bx, by, bz) = (
+        twist.to_lanes(),
+        bending[0].to_lanes(),
+        bending[1].to_lanes(),
+        bending[2].to_lanes(),
+    );
+    for (l, &p) in live[..n].iter().enumerate() {
+        let r = &mut cs[p].0.as_deref_mut().unwrap().rot;
+        r.twist = tw[l];
+        r.bending = Vec3::new(bx[l], by[l], bz[l]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::contact::V3;
+    use super::super::six::Bodies6;
+    use super::super::{chunk_loop, FastOptions, FastSim, Ghost};
+    use super::*;
+
+    fn turn(q: &Quat, u: &mut impl FnMut() -> f64, s: f64) -> Quat {
+        let axis = Vec3::new(u(), u(), u());
+        let r = Quat::from_angle_axis(s * (0.5 + u()), &(axis / axis.norm().max(1e-300)));
+        let mut q = r.mul(q);
+        q.normalize();
+        q
+    }
+
+    /// rapier's scalar/SIMD parity, to the bit: random rolling-resistance pairs through the scalar
+    /// pair loop and the groups of four, three steps in a row (the functors' parameters of the
+    /// rolling golden): contacts that stay and turn, that open and are erased, that form; pairs
+    /// apart; periodic images; body 1 the lower scene id whichever slot it is in; groups with one to
+    /// four contacts and groups with a contact that did not turn (the stable norm, one by one).
+    /// The same contact states, forces and torques.
+    #[test]
+    fn groups_are_the_scalar_pair_loop_to_the_bit() {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("golden/micro_grid/rolling_inc.scene.json");
+        let scene = crate::io::scene_json::load(&path).unwrap().scene;
+        let sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+        let cfg = sim.six.clone().expect("rolling contacts");
+        let mats = sim.fmats.clone();
+        let mut mt = rand_mt::Mt64::new(5);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let mut seen = [0usize; 3];
+        for n in [9usize, 301] {
+            let rad: Vec<f64> = (0..n).map(|_| 1e-3 * (1.0 + 0.3 * u())).collect();
+            let mut pos: Vec<V3> = (0..n)
+                .map(|i| [0.7e-3 * i as f64 + 4e-4 * u(), 4e-4 * u(), 4e-4 * u()])
+                .collect();
+            let vel: Vec<V3> = (0..n).map(|_| [u(), u(), u()]).collect();
+            let w: Vec<V3> = (0..n).map(|_| [5.0 * u(), 5.0 * u(), 5.0 * u()]).collect();
+            let mut ori: Vec<Quat> = (0..n).map(|_| turn(&Quat::IDENTITY, &mut u, 3.0)).collect();
+            let ids: Vec<u32> = (0..n).map(|i| ((i * 37) % n) as u32).collect();
+            // the material of the golden's spheres (a CohFrictMat)
+            let m = (0..scene.bodies.len())
+                .find(|&id| scene.bodies.shape[id].sphere_radius().is_some())
+                .map(|id| scene.bodies.material[id] as u32)
+                .unwrap();
+            let mat = vec![m; n];
+            let shifts = [[0.0; 3], [-0.7e-3 * n as f64 + 0.7e-3, 0.0, 0.0]];
+            let mut pairs = Vec::new();
+            for i in 0..n {
+                for dj in 1..5 {
+                    if i + dj < n {
+                        pairs.push(Pair {
+                            i: i as u32,
+                            j: (i + dj) as u32,
+                            img: 0,
+                        });
+                    }
+                }
+            }
+            pairs.push(Pair {
+                i: 0,
+                j: n as u32 - 1,
+                img: 1,
+            });
+            let mut cs_a = vec![C6::default(); pairs.len()];
+            let mut prev = 0;
+            for step in 0..4 {
+                let b = Bodies6 {
+                    pos: &pos,
+                    vel: &vel,
+                    w: &w,
+                    ori: &ori,
+                    rad: &rad,
+                    mat: &mat,
+                    ids: &ids,
+                    shifts: &shifts,
+                    mats: &mats,
+                    dt: 1e-6,
+                    iter: 10 + step,
+                };
+                let k = Six { cfg: &cfg, b: &b };
+                let mut cs_b = cs_a.clone();
+                let (mut fa, mut ta, mut ga) =
+                    (vec![[0.0; 3]; n], vec![[0.0; 3]; n], Vec::<Ghost>::new());
+                let (mut fb, mut tb, mut gb) =
+                    (vec![[0.0; 3]; n], vec![[0.0; 3]; n], Vec::<Ghost>::new());
+                chunk_loop(
+                    &k,
+                    &pairs,
+                    &mut cs_a,
+                    Acc::new(&mut fa, &mut ta, 0, &mut ga),
+                );
+                // SAFETY: the CPU has AVX2 (checked above)
+                unsafe {
+                    chunk(
+                        &k,
+                        &pairs,
+                        &mut cs_b,
+                        Acc::new(&mut fb, &mut tb, 0, &mut gb),
+                    )
+                };
+                assert_eq!(
+                    format!("{cs_a:?}"),
+                    format!("{cs_b:?}"),
+                    "n {n} step {step}: states"
+                );
+                let bits = |v: &[V3]| v.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fa), bits(&fb), "n {n} step {step}: forces");
+                assert_eq!(bits(&ta), bits(&tb), "n {n} step {step}: torques");
+                let real = cs_a.iter().filter(|c| c.is_real()).count();
+                seen[0] = seen[0].max(real);
+                seen[1] += (real < prev) as usize;
+                prev = real;
+                // every other body turns, the rest keep their orientation (contacts between two
+                // of them have not turned since they formed: the stable norm); all drift
+                for (i, q) in ori.iter_mut().enumerate() {
+                    if i % 3 != 0 {
+                        *q = turn(q, &mut u, 0.02);
+                    }
+                }
+                for (i, p) in pos.iter_mut().enumerate() {
+                    for x in p.iter_mut() {
+                        *x += 5e-5 * u();
+                    }
+                    // some bodies jump: contacts open (and are erased), others form
+                    if i % 7 == 3 {
+                        p[1] += 8e-4;
+                    }
+                }
+                seen[2] += (step > 0 && real > 0) as usize;
+            }
+        }
+        assert!(seen[0] > 100 && seen[1] > 0 && seen[2] > 0, "{seen:?}");
+    }
+}
