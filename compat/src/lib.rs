@@ -1448,12 +1448,14 @@ impl Sim {
                 return Ok(());
             }
         }
+        let t_setup = std::time::Instant::now();
         py.allow_threads(|| {
             ryade::fast::FastSim::from_scene(scene, opt)
                 .map_err(|e| format!("O.ryadeFastPath: {}", e))
         })
         .map_err(PyRuntimeError::new_err)
         .and_then(|mut f| {
+            let setup_s = t_setup.elapsed().as_secs_f64();
             // in chunks, with Python's signal check between them (the state goes back either way)
             let mut left = n;
             let mut r = Ok(());
@@ -1470,12 +1472,14 @@ impl Sim {
                     break;
                 }
             }
+            let t_back = std::time::Instant::now();
             py.allow_threads(|| f.write_back(scene));
+            let back_s = t_back.elapsed().as_secs_f64();
             if std::env::var_os("RYADE_FAST_STATS").is_some() {
                 // one line per fast run: what it held and where its time went
                 let m = f.memory();
                 eprintln!(
-                    "[ryade] fast run to iteration {}: {} bodies, {} listed pairs, {} contacts, {} grid interactions, {} list builds; memory {:.0} B/particle, {:.0} B/listed pair, {:.0} B/contact; time: lists {:.3} s, contacts {:.3} s (grid {:.3} s), integration {:.3} s",
+                    "[ryade] fast run to iteration {}: {} bodies, {} listed pairs, {} contacts, {} grid interactions, {} list builds; memory {:.0} B/particle, {:.0} B/listed pair, {:.0} B/contact; time: lists {:.3} s, contacts {:.3} s (grid {:.3} s), integration {:.3} s; set-up {:.3} s, state back into the scene {:.3} s",
                     f.iter,
                     f.len(),
                     f.pairs(),
@@ -1488,7 +1492,9 @@ impl Sim {
                     f.timing.rebuild,
                     f.timing.contacts,
                     f.timing.grid,
-                    f.timing.newton
+                    f.timing.newton,
+                    setup_s,
+                    back_s
                 );
             }
             if let Some(e) = f.take_error() {
