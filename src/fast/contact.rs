@@ -229,3 +229,29 @@ pub fn law<R: Real>(s: &Touch<R>, b: &Two<R>, d: [R; 3], dist: R, pen: R, dt: R)
         },
     }
 }
+
+/// Test pairs along a chain of `n` bodies: each with its next four, and (n > 2) body 0 with the
+/// last through image 1 (the chain's far end brought back as a periodic image).
+#[cfg(test)]
+pub fn chain_pairs(n: usize) -> Vec<Pair> {
+    let mut pairs = Vec::new();
+    for i in 0..n {
+        for dj in 1..5 {
+            if i + dj < n {
+                pairs.push(Pair {
+                    i: i as u32,
+                    j: (i + dj) as u32,
+                    img: 0,
+                });
+            }
+        }
+        if i == 0 && n > 2 {
+            pairs.push(Pair {
+                i: 0,
+                j: n as u32 - 1,
+                img: 1,
+            });
+        }
+    }
+    pairs
+}

@@ -396,25 +396,7 @@ mod tests {
             let mat: Vec<u32> = (0..n).map(|i| (i % 3 == 0) as u32).collect();
             // shift 1 brings body j back next to body i (the chain's far end as a periodic image)
             let shifts = [[0.0; 3], [-0.7e-3 * n as f64 + 0.7e-3, 0.0, 0.0]];
-            let mut pairs = Vec::new();
-            for i in 0..n {
-                for dj in 1..5 {
-                    if i + dj < n {
-                        pairs.push(Pair {
-                            i: i as u32,
-                            j: (i + dj) as u32,
-                            img: 0,
-                        });
-                    }
-                }
-                if i == 0 && n > 2 {
-                    pairs.push(Pair {
-                        i: 0,
-                        j: n as u32 - 1,
-                        img: 1,
-                    });
-                }
-            }
+            let pairs = contact::chain_pairs(n);
             // states: contacts with a random normal and shear force (some far over the cap), and
             // pairs that are not contacts
             let cs0: Vec<Contact> = pairs

@@ -162,23 +162,7 @@ mod tests {
                 .unwrap();
             let mat = vec![m; n];
             let shifts = [[0.0; 3], [-0.7e-3 * n as f64 + 0.7e-3, 0.0, 0.0]];
-            let mut pairs = Vec::new();
-            for i in 0..n {
-                for dj in 1..5 {
-                    if i + dj < n {
-                        pairs.push(Pair {
-                            i: i as u32,
-                            j: (i + dj) as u32,
-                            img: 0,
-                        });
-                    }
-                }
-            }
-            pairs.push(Pair {
-                i: 0,
-                j: n as u32 - 1,
-                img: 1,
-            });
+            let pairs = super::super::contact::chain_pairs(n);
             let mut cs_a = vec![C6::default(); pairs.len()];
             let mut prev = 0;
             for step in 0..4 {
