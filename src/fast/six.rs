@@ -134,11 +134,12 @@ pub(super) fn idle(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &C6) -> bool {
 /// erased).
 #[inline(always)]
 pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V3, V3, V3)> {
-    let st = geometry(cfg, b, p, c);
+    let o = orient(b, p, c.is_real());
+    let st = geometry(cfg, b, &o, c);
     if st == Stage::Kept {
-        rotations(cfg, b, p, c);
+        rotations(cfg, &o, c);
     }
-    law(cfg, b, p, c, st)
+    law(cfg, b, &o, c, st)
 }
 
 /// What `geometry` left for `rotations` and `law`: the pair is apart (a potential pair that stays
@@ -151,16 +152,26 @@ pub(super) enum Stage {
     New,
 }
 
-/// Slots `k1`, `k2` (from `oriented`) as `geom::Pair`.
+/// A pair as the Scene sees it (`oriented`), its bodies' kinematics gathered once for the three
+/// parts (`geometry`, `rotations`, `law`).
+pub(super) struct Oriented {
+    pub swap: bool,
+    pub k1: usize,
+    pub k2: usize,
+    pub pr: geom::Pair,
+}
+
+/// Pair `p` oriented, `is_real`: whether it was a contact before this step.
 #[inline(always)]
-fn geom_pair(b: &Bodies6, k1: usize, k2: usize, shift2: Vec3, is_real: bool) -> geom::Pair {
+pub(super) fn orient(b: &Bodies6, p: &Pair, is_real: bool) -> Oriented {
+    let (swap, k1, k2, shift2) = oriented(b, p);
     let kin = |k: usize| Kin {
         pos: v(&b.pos[k]),
         vel: v(&b.vel[k]),
         ang_vel: v(&b.w[k]),
         ori: b.ori[k],
     };
-    geom::Pair {
+    let pr = geom::Pair {
         s1: kin(k1),
         s2: kin(k2),
         shift2,
@@ -169,27 +180,26 @@ fn geom_pair(b: &Bodies6, k1: usize, k2: usize, shift2: Vec3, is_real: bool) -> 
             dt: b.dt,
             shift_vel: Vec3::zeros(),
         },
-    }
+    };
+    Oriented { swap, k1, k2, pr }
 }
 
 /// The first part of `Ig2_Sphere_Sphere_ScGeom6D::go` (`geom::grid::six_d`) on one pair: the
 /// sphere-sphere geometry, and on a new contact its rotations' reset. A contact that was real gets
 /// its rotations from `rotations` (or, four at a time, `six_simd`).
 #[inline(always)]
-pub(super) fn geometry(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Stage {
-    let was_real = c.is_real();
-    let (_, k1, k2, shift2) = oriented(b, p);
-    let pr = geom_pair(b, k1, k2, shift2, was_real);
-    let (r1, r2) = (b.rad[k1], b.rad[k2]);
-    if was_real {
-        if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut c.0.as_mut().unwrap().geom) {
+pub(super) fn geometry(cfg: &SixCfg, b: &Bodies6, o: &Oriented, c: &mut C6) -> Stage {
+    let pr = &o.pr;
+    let (r1, r2) = (b.rad[o.k1], b.rad[o.k2]);
+    if pr.is_real {
+        if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, pr, &mut c.0.as_mut().unwrap().geom) {
             c.0 = None;
             return Stage::Apart;
         }
         return Stage::Kept;
     }
     let mut g = None;
-    if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, &pr, &mut g) {
+    if !geom::sphere_sphere::go(&cfg.p6.ss, r1, r2, pr, &mut g) {
         return Stage::Apart;
     }
     let mut s = Box::new(State6 {
@@ -200,7 +210,7 @@ pub(super) fn geometry(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Stage
         made_real: b.iter,
     });
     let n = s.geom.as_ref().unwrap().normal;
-    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, true);
+    geom::grid::six_d_rotations(&cfg.p6, pr, &n, &mut s.rot, true);
     c.0 = Some(s);
     Stage::New
 }
@@ -208,12 +218,10 @@ pub(super) fn geometry(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Stage
 /// The rest of `Ig2_Sphere_Sphere_ScGeom6D::go` on a contact that was real (`Stage::Kept`), after
 /// its `geometry`: the rotations (`geom::grid::six_d_rotations`).
 #[inline(always)]
-pub(super) fn rotations(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) {
-    let (_, k1, k2, shift2) = oriented(b, p);
-    let pr = geom_pair(b, k1, k2, shift2, true);
+pub(super) fn rotations(cfg: &SixCfg, o: &Oriented, c: &mut C6) {
     let s = c.0.as_deref_mut().unwrap();
     let n = s.geom.as_ref().unwrap().normal;
-    geom::grid::six_d_rotations(&cfg.p6, &pr, &n, &mut s.rot, false);
+    geom::grid::six_d_rotations(&cfg.p6, &o.pr, &n, &mut s.rot, false);
 }
 
 /// Physics (on a new contact) and law of a pair after `geometry` (and `rotations`): the force on
@@ -222,15 +230,14 @@ pub(super) fn rotations(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) {
 pub(super) fn law(
     cfg: &SixCfg,
     b: &Bodies6,
-    p: &Pair,
+    o: &Oriented,
     c: &mut C6,
     st: Stage,
 ) -> Option<(V3, V3, V3)> {
     if st == Stage::Apart {
         return None;
     }
-    let (swap, k1, k2, shift2) = oriented(b, p);
-    let pr = geom_pair(b, k1, k2, shift2, true);
+    let (swap, k1, k2, pr) = (o.swap, o.k1, o.k2, &o.pr);
     let s = c.0.as_deref_mut().unwrap();
     if st == Stage::New {
         // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys on the new contact (setCohesionNow is refused
@@ -250,7 +257,7 @@ pub(super) fn law(
     let cp = s.coh.as_mut().expect("CohFrictPhys");
     let lb = cohesion_moment::Bodies2 {
         pos1: pr.s1.pos,
-        pos2_shifted: pr.s2.pos + shift2,
+        pos2_shifted: pr.s2.pos + pr.shift2,
         ang_vel1: pr.s1.ang_vel,
         ang_vel2: pr.s2.ang_vel,
     };

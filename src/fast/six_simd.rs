@@ -32,14 +32,15 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
             }
             let mut st = [Stage::Apart; 4];
             for (q, &p) in ws.iter().enumerate() {
-                st[q] = six::geometry(k.cfg, k.b, &pairs[p as usize], &mut cs[p as usize]);
+                let o = six::orient(k.b, &pairs[p as usize], cs[p as usize].is_real());
+                st[q] = six::geometry(k.cfg, k.b, &o, &mut cs[p as usize]);
             }
             rotations4(k, pairs, cs, ws, &st);
             for (q, &p) in ws.iter().enumerate() {
                 let pr = pairs[p as usize];
                 acc.open(pr.i as usize);
-                if let Some((lf, lti, ltj)) = six::law(k.cfg, k.b, &pr, &mut cs[p as usize], st[q])
-                {
+                let o = six::orient(k.b, &pr, true);
+                if let Some((lf, lti, ltj)) = six::law(k.cfg, k.b, &o, &mut cs[p as usize], st[q]) {
                     acc.add(pr.j as usize, lf, lti, ltj);
                 }
             }
@@ -92,7 +93,7 @@ fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4
     let norm = vec_norm(&d);
     if F4::any(norm.lt(F4::splat(f64::EPSILON))) {
         for &p in &live[..n] {
-            six::rotations(k.cfg, k.b, &pairs[p], &mut cs[p]);
+            six::rotations(k.cfg, &six::orient(k.b, &pairs[p], true), &mut cs[p]);
         }
         return;
     }
