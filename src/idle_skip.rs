@@ -58,6 +58,8 @@ pub struct IdleSkip {
     grid_gen: Vec<u16>,
     /// Upper bound on how much any pair's gap has shrunk since the last reset.
     pub travel: f64,
+    /// The only bodies that may move or change radius from now on (`watch`); None: any body.
+    watch: Option<Vec<u32>>,
 }
 
 fn radius_of(s: &Shape) -> f64 {
@@ -82,7 +84,7 @@ impl IdleSkip {
         let mut reset = n != self.pos.len() || hsize != self.hsize || factor != self.factor;
         if !reset {
             let (mut d2max, mut drmax, mut nan, mut kind) = (0.0f64, 0.0f64, false, false);
-            for id in 0..n {
+            let mut visit = |id: usize| {
                 let p = bodies.pos[id];
                 let r = radius_of(&bodies.shape[id]);
                 let d2 = norm2(&(p - self.pos[id]));
@@ -93,6 +95,10 @@ impl IdleSkip {
                 drmax = drmax.max(dr);
                 self.pos[id] = p;
                 self.radius[id] = r;
+            };
+            match &self.watch {
+                Some(ids) => ids.iter().for_each(|&id| visit(id as usize)),
+                None => (0..n).for_each(visit),
             }
             let conns_changed =
                 self.conns
@@ -134,6 +140,14 @@ impl IdleSkip {
                 e.deadline = f64::NEG_INFINITY;
             }
         }
+    }
+
+    /// From now on only bodies `ids` move or change radius (None: any may): each step's bound
+    /// then reads these alone. The caller owns the scene and promises it (the fast path's grid
+    /// scene, whose other bodies are in no interaction); a body left out that moves anyway is
+    /// counted with its whole displacement once it is watched again.
+    pub fn watch(&mut self, ids: Option<Vec<u32>>) {
+        self.watch = ids;
     }
 
     /// Bodies `a` and `b` are in an interaction with a `GridConnection` just made real (or may

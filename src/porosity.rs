@@ -242,3 +242,95 @@ pub fn voxel_porosity(
     let total = sf.powf(3.0);
     Ok((total - solid as f64) / total)
 }
+
+/// The study script's box porosity (`yade_ref/study/study.py`, `box_porosity` with
+/// `sphere_box_volume`, `disc_rect_area`, `_quadrant`, `_segment`), bit for bit: the disc-rectangle
+/// area in closed form, integrated over `z = zc + r sin θ` with the script's Gauss-Legendre nodes
+/// `gl_x` and weights `gl_w`, every operation in the script's order with libm's functions (what
+/// Python's `math` calls), so that `--controller native` writes the history the Python code writes.
+/// Spheres and their periodic images in x (`lx`) and y (`ly`), as the script. Not [`box_porosity`]:
+/// that one is exact, this one is the study's definition.
+pub fn study_box_porosity(
+    spheres: &[(Vec3, f64)],
+    lo: &Vec3,
+    hi: &Vec3,
+    (lx, ly): (f64, f64),
+    (gl_x, gl_w): (&[f64], &[f64]),
+) -> f64 {
+    // Python's `r**3` is C pow (kept from being folded into products)
+    let cube = |r: f64| r.powf(std::hint::black_box(3.0));
+    fn segment(b: f64, rho: f64) -> f64 {
+        if b >= rho {
+            return 0.0;
+        }
+        if b <= -rho {
+            return PI * rho * rho;
+        }
+        rho * rho * (b / rho).acos() - b * (rho * rho - b * b).sqrt()
+    }
+    fn quadrant(a: f64, b: f64, rho: f64) -> f64 {
+        if a < 0.0 {
+            return segment(b, rho) - quadrant(-a, b, rho);
+        }
+        if b < 0.0 {
+            return segment(a, rho) - quadrant(a, -b, rho);
+        }
+        if a * a + b * b >= rho * rho {
+            return 0.0;
+        }
+        0.5 * rho * rho * (0.5 * PI - (a / rho).asin() - (b / rho).asin())
+            - 0.5 * (a * (rho * rho - a * a).sqrt() + b * (rho * rho - b * b).sqrt())
+            + a * b
+    }
+    let disc_rect = |rho: f64, x0: f64, x1: f64, y0: f64, y1: f64| -> f64 {
+        quadrant(x0, y0, rho) - quadrant(x1, y0, rho) - quadrant(x0, y1, rho)
+            + quadrant(x1, y1, rho)
+    };
+    let volume = |c: [f64; 3], r: f64| -> f64 {
+        let (x0, x1) = (lo[0] - c[0], hi[0] - c[0]);
+        let (y0, y1) = (lo[1] - c[1], hi[1] - c[1]);
+        let (z0, z1) = (lo[2] - c[2], hi[2] - c[2]);
+        if x0 >= r || x1 <= -r || y0 >= r || y1 <= -r || z0 >= r || z1 <= -r {
+            return 0.0;
+        }
+        if x0 <= -r && x1 >= r && y0 <= -r && y1 >= r && z0 <= -r && z1 >= r {
+            return 4.0 / 3.0 * PI * cube(r);
+        }
+        // Python's max(-1.0, q) / min(1.0, q): q only when strictly beyond the bound
+        let (q0, q1) = (z0 / r, z1 / r);
+        let t0 = (if q0 > -1.0 { q0 } else { -1.0 }).asin();
+        let t1 = (if q1 < 1.0 { q1 } else { 1.0 }).asin();
+        let in_xy = x0 <= -r && x1 >= r && y0 <= -r && y1 >= r;
+        let (h, m) = (0.5 * (t1 - t0), 0.5 * (t1 + t0));
+        let mut v = 0.0;
+        for (&x, &w) in gl_x.iter().zip(gl_w) {
+            let t = m + h * x;
+            let rho = r * t.cos();
+            let area = if in_xy {
+                PI * rho * rho
+            } else {
+                disc_rect(rho, x0, x1, y0, y1)
+            };
+            v += w * area * rho;
+        }
+        v * h
+    };
+    let vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    let mut solid = 0.0;
+    for (c, r) in spheres {
+        let r = *r;
+        if c[2] + r <= lo[2] || c[2] - r >= hi[2] {
+            continue;
+        }
+        let i0 = ((lo[0] - r - c[0]) / lx).ceil() as i64;
+        let i1 = ((hi[0] + r - c[0]) / lx).floor() as i64;
+        let j0 = ((lo[1] - r - c[1]) / ly).ceil() as i64;
+        let j1 = ((hi[1] + r - c[1]) / ly).floor() as i64;
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                solid += volume([c[0] + i as f64 * lx, c[1] + j as f64 * ly, c[2]], r);
+            }
+        }
+    }
+    1.0 - solid / vol
+}

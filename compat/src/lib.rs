@@ -1311,6 +1311,53 @@ impl Sim {
         Ok(engine_get_attr(e, key)?.to_string())
     }
 
+    /// `RyadePistonController.boxPorosity(...)`: the study script's box porosity of spheres `ids`
+    /// as they are in the scene (`ryade::porosity::study_box_porosity`, the same bits as the script).
+    #[allow(clippy::too_many_arguments)]
+    fn study_box_porosity(
+        &self,
+        ids: Vec<i64>,
+        lo: V3,
+        hi: V3,
+        lx: f64,
+        ly: f64,
+        gl_x: Vec<f64>,
+        gl_w: Vec<f64>,
+    ) -> PyResult<f64> {
+        let b = &self.scene.bodies;
+        let spheres = ids
+            .iter()
+            .map(|&id| {
+                let r = usize::try_from(id)
+                    .ok()
+                    .filter(|&i| i < b.len())
+                    .and_then(|i| b.shape[i].sphere_radius().map(|r| (b.pos[i], r)));
+                r.ok_or_else(|| {
+                    PyValueError::new_err(format!(
+                        "boxPorosity: body {} is not a sphere of this scene; pass the ids of spheres",
+                        id
+                    ))
+                })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        if gl_x.len() != gl_w.len() || !(lx > 0.0 && ly > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "boxPorosity: need as many nodes as weights ({} and {}) and positive periods ({}, {})",
+                gl_x.len(),
+                gl_w.len(),
+                lx,
+                ly
+            )));
+        }
+        Ok(ryade::porosity::study_box_porosity(
+            &spheres,
+            &vec(lo),
+            &vec(hi),
+            (lx, ly),
+            (&gl_x, &gl_w),
+        ))
+    }
+
     /// `RyadePistonController.takeSteps()`: the `steps.csv` samples buffered by the piston engine at
     /// slot `idx` since the last call, as (iter, phase, p_kPa, pf_kPa, target_kPa, z_m, v_mps).
     #[allow(clippy::type_complexity)]

@@ -4,6 +4,7 @@
   `--controller pi` (the PyRunner law), on the tiny golden G specimen;
 * the engine's stops (approach contact, rut limit) end `O.run` after the step both when the run stays
   in Rust and when a PyRunner makes it loop in Python;
+* its boxPorosity is the script's porosity to the bit;
 * the Python class: attributes, errors, and that YADE has no such class.
 """
 import os
@@ -65,6 +66,24 @@ def test_native_controller_runs_the_subgrade_with_the_pi_bytes(tmp_path):
     assert 'YADE-order path for this run' not in fast, fast
     rows = (tmp_path / 'fast' / 'history.csv').read_text().splitlines()
     assert len(rows) == len(head) and rows[0] == head[0]
+
+
+@needs_compat
+def test_box_porosity_is_the_scripts_to_the_bit():
+    """boxPorosity (the study's porosity in the Rust core, used by study.py under --controller native)
+    equals the script's own Python box_porosity exactly, on 600 random spheres in a periodic cell
+    whose faces, edges, corners and periodic images cut four boxes, and sphere by sphere in boxes of
+    about its size (where one ulp of a volume shows); a bad id is a clear error."""
+    out = compat_run(os.path.join(SCRIPTS, 'porosity_native.py'), STUDY).splitlines()
+    rows = [ln.split()[1:] for ln in out if ln.startswith('B ')]
+    assert len(rows) == 4
+    for py, native in rows:
+        assert py == native
+        assert 0.5 < float(py) < 1.0
+    single = [ln.split()[1:] for ln in out if ln.startswith('S ')]
+    assert len(single) == 300 and all(py == native for py, native in single)
+    assert sum(1 for py, _ in single if 0.05 < float(py) < 0.95) > 100  # spheres that the box cuts
+    assert any(ln.startswith('E ') and 'body 1000000 is not a sphere' in ln for ln in out)
 
 
 @needs_compat

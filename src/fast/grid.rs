@@ -437,6 +437,13 @@ impl GridPart {
             .collect();
         touched.sort_unstable();
         touched.dedup();
+        // only these bodies move in the companion scene until the next rebuild: the idle skip's
+        // bound reads them alone
+        let moving = touched.iter().map(|&(_, id)| id);
+        let watch = moving
+            .chain(self.nodes.iter().copied())
+            .chain(self.conns.iter().copied());
+        self.sub.idle_skip.watch(Some(watch.collect()));
         self.touched = touched;
     }
 

@@ -383,6 +383,7 @@ class Study:
         self.top = None
         self.piston = []
         self.gridNodes = []
+        self.pc = None  # the native piston engine (--controller native under ryade)
         self.sub = None  # knob --subgrade-k: the spring-bed state, set by load()
 
     # --- engines, materials -------------------------------------------------------------------
@@ -912,6 +913,7 @@ class Study:
         if a.controller == 'servopid':
             servo.ids = self.piston
         pc = self.native_piston()
+        self.pc = pc  # also measures the porosity (boxPorosity, the same bits as box_porosity below)
         self.pf, self.I = 0.0, 0.0
         self.iterSeatEnd = 10**12
         self.steps = []
@@ -997,10 +999,14 @@ class Study:
     def history_row(self, k, c):
         P = self.P
         zb = self.piston_bottom()
-        sph = [(O.bodies[i].state.pos, O.bodies[i].shape.radius) for i in self.spheres]
         zBot = P.Z0 + (self.sub['u'] if self.sub else 0.0)  # the plate top
         lo = (P.cx - P.D / 2, P.cy - P.D / 2, zBot)
         hi = (P.cx + P.D / 2, P.cy + P.D / 2, zb)
+        if self.pc is not None:  # --controller native under ryade: the same formula in the Rust core
+            porosity = self.pc.boxPorosity(self.spheres, lo, hi, P.Lx, P.Ly, GL_X, GL_W)
+        else:
+            sph = [(O.bodies[i].state.pos, O.bodies[i].shape.radius) for i in self.spheres]
+            porosity = box_porosity(sph, lo, hi, P.Lx, P.Ly)
         n = c['n']
         row = {'cycle': k, 'complete': 0 if self.stopped else 1, 'steps': n, 'time_s': (O.iter - self.iterSeatEnd) * P.dt,
                'rut_mm': (self.zRef - zb) * 1e3,
@@ -1009,7 +1015,7 @@ class Study:
                'peak_raw_kPa': c['peakRaw'] / 1e3 if n else float('nan'),
                'tracking_rms_kPa': math.sqrt(c['se'] / n) / 1e3 if n else float('nan'),
                'tracking_rms_raw_kPa': math.sqrt(c['seRaw'] / n) / 1e3 if n else float('nan'),
-               'porosity_box': box_porosity(sph, lo, hi, P.Lx, P.Ly),
+               'porosity_box': porosity,
                'piston_z_m': zb - P.Z0}
         if self.gridNodes:
             zs = [O.bodies[i].state.pos[2] - P.Z0 for i in self.gridNodes]

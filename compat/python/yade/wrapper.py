@@ -1257,6 +1257,17 @@ class RyadePistonController(PartialEngine):
         omega, index = self._owner
         return [list(r) for r in omega._sim.piston_take_rows(index)]
 
+    def boxPorosity(self, ids, lo, hi, Lx, Ly, nodes, weights):
+        """The study script's porosity of the box [lo, hi] (study.py `box_porosity`: spheres `ids` as they
+        are now and their periodic images in x and y, the sphere-box volumes integrated with the
+        Gauss-Legendre `nodes` and `weights`), in the Rust core with the same bits as the script
+        (`ryade::porosity::study_box_porosity`), without reading the spheres into Python."""
+        if self._owner is None:
+            raise RuntimeError('RyadePistonController.boxPorosity: put the engine in O.engines first (it reads that scene)')
+        omega, _ = self._owner
+        return omega._sim.study_box_porosity([int(i) for i in ids], tuple(lo), tuple(hi), float(Lx), float(Ly),
+                                             [float(x) for x in nodes], [float(w) for w in weights])
+
     def resetCycle(self):
         """The per-cycle statistics back to their start values (study.py load(): n 0, peak, peakRaw and
         maxRut -1e300, se and seRaw 0)."""
