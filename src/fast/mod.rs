@@ -130,6 +130,9 @@ pub struct FastSim {
     /// An error of the grid's interaction loop (the run stops; `take_error`).
     error: Option<String>,
     contacts6: Vec<six::C6>,
+    /// With `SixCfg::defer_rotations`: the orientations at the last step's contact phase (the
+    /// operands of its rotations), empty before the first step.
+    ori_prev: Vec<Quat>,
     fmats: Vec<crate::material::FrictMat>,
     pool: Option<rayon::ThreadPool>,
     threads: usize,
@@ -670,11 +673,11 @@ impl FastSim {
                         );
                     }
                     if six_ok {
-                        six_cfg = Some(six::SixCfg {
-                            p6: il.sphere_sphere_6d.unwrap(),
-                            ip2: il.cohfrict_phys.clone().unwrap(),
-                            cm: il.cohesion_moment.unwrap(),
-                        });
+                        six_cfg = Some(six::SixCfg::new(
+                            il.sphere_sphere_6d.unwrap(),
+                            il.cohfrict_phys.clone().unwrap(),
+                            il.cohesion_moment.unwrap(),
+                        ));
                     }
                     il_seen = Some(il.clone());
                 }
@@ -857,6 +860,7 @@ impl FastSim {
             piston,
             stop: false,
             contacts6: vec![],
+            ori_prev: vec![],
             fmats: scene.materials.clone(),
             pool,
             threads,
@@ -1158,6 +1162,7 @@ impl FastSim {
         self.grid_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
+        self.keep_orientations();
         let cfg = self.cfg;
         self.max_disp2 = integrate(
             &cfg,
@@ -1177,6 +1182,15 @@ impl FastSim {
             .max(self.bnd.advance(cfg.dt))
             .max(self.integrate_nodes());
         self.timing.newton += t1.elapsed().as_secs_f64();
+    }
+
+    /// With deferred rotations (`SixCfg::defer_rotations`): the orientations the contact phase just
+    /// used, before the integration moves them, for `write_back`.
+    fn keep_orientations(&mut self) {
+        if self.six.as_ref().is_some_and(|c| c.defer_rotations) {
+            self.ori_prev.clear();
+            self.ori_prev.extend_from_slice(&self.ori);
+        }
     }
 
     /// The grid's loads (serial, after the sphere and boundary contacts; see `grid`). Spheres owned
@@ -1315,6 +1329,7 @@ impl FastSim {
         self.grid_phase();
         let t1 = std::time::Instant::now();
         self.timing.contacts += (t1 - t0).as_secs_f64();
+        self.keep_orientations();
         // integration over each chunk's own bodies (the thread that summed their forces, whose
         // cache holds them), after the queued forces on them, in chunk order (a few hundred: the
         // chunk borders and periodic wraps): the same sums in the same order as adding every
@@ -1441,9 +1456,18 @@ impl FastSim {
             } else {
                 (b, a, [-cd[0], -cd[1], -cd[2]])
             };
-            let Some((g, ph, ext, made_real)) = c.to_interaction_parts() else {
+            let Some((g, ph, mut ext, made_real)) = c.to_interaction_parts() else {
                 continue;
             };
+            if let (Some(cfg), Some(s)) = (&self.six, c.0.as_deref()) {
+                if cfg.defer_rotations && !self.ori_prev.is_empty() {
+                    let (i, j) = (p.i as usize, p.j as usize);
+                    let (k1, k2) = if a < b { (i, j) } else { (j, i) };
+                    let ori = (&self.ori_prev[k1], &self.ori_prev[k2]);
+                    let rot = six::settled_rotations(cfg, s, ori, self.iter - 1);
+                    ext.geom = Some(crate::geom::GeomExt::Sc6D(rot));
+                }
+            }
             let mut it = Interaction::new(id1, id2, cd, made_real);
             it.functor = GeomFunctor::SphereSphere6D;
             it.iter_made_real = made_real;

@@ -27,6 +27,28 @@ pub(super) struct SixCfg {
     pub p6: geom::grid::SixDParams,
     pub ip2: CohFrictIp2,
     pub cm: cohesion_moment::Params,
+    /// The law never reads a contact's twist and bending (`useIncrementalForm`, so no twist
+    /// creep): they are left out of the steps and worked out when the state goes back to the
+    /// scene (`settled_rotations`), from the same operands, so to the same bits.
+    pub defer_rotations: bool,
+}
+
+impl SixCfg {
+    pub fn new(
+        p6: geom::grid::SixDParams,
+        ip2: CohFrictIp2,
+        cm: cohesion_moment::Params,
+    ) -> SixCfg {
+        // Law2_ScGeom6D_CohFrictPhys_CohesionMoment::go reads twist and bending only in the total
+        // form (`cohesion_moment::load`)
+        let defer_rotations = cm.use_incremental_form && !cm.twist_creep;
+        SixCfg {
+            p6,
+            ip2,
+            cm,
+            defer_rotations,
+        }
+    }
 }
 
 /// A real contact's state: the Scene's `ScGeom6D` (ScGeom + rotations) and `CohFrictPhys`
@@ -136,7 +158,7 @@ pub(super) fn idle(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &C6) -> bool {
 pub(super) fn pair(cfg: &SixCfg, b: &Bodies6, p: &Pair, c: &mut C6) -> Option<(V3, V3, V3)> {
     let o = orient(b, p, c.is_real());
     let st = geometry(cfg, b, &o, c);
-    if st == Stage::Kept {
+    if st == Stage::Kept && !cfg.defer_rotations {
         rotations(cfg, &o, c);
     }
     law(cfg, b, &o, c, st)
@@ -222,6 +244,24 @@ pub(super) fn rotations(cfg: &SixCfg, o: &Oriented, c: &mut C6) {
     let s = c.0.as_deref_mut().unwrap();
     let n = s.geom.as_ref().unwrap().normal;
     geom::grid::six_d_rotations(&cfg.p6, &o.pr, &n, &mut s.rot, false);
+}
+
+/// A real contact's rotations as the last step would have left them had it worked them out
+/// (`SixCfg::defer_rotations`): `ScGeom6D::precomputeRotations` on the orientations `ori1`, `ori2`
+/// of bodies 1 and 2 at that step's contact phase and the normal it left; a contact made in that
+/// step (`made_real == last_iter`) keeps the reset its creation gave it.
+pub(super) fn settled_rotations(
+    cfg: &SixCfg,
+    s: &State6,
+    (ori1, ori2): (&Quat, &Quat),
+    last_iter: i64,
+) -> Rot6D {
+    let mut rot = s.rot;
+    if cfg.p6.update_rotations && s.made_real != last_iter {
+        let n = s.geom.as_ref().unwrap().normal;
+        rot.precompute_rotations(ori1, ori2, &n, false, cfg.p6.creep);
+    }
+    rot
 }
 
 /// Physics (on a new contact) and law of a pair after `geometry` (and `rotations`): the force on
