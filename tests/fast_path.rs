@@ -325,8 +325,8 @@ fn fast_path_follows_yade_grid_goldens() {
 /// The rolling contacts' rotations (ScGeom6D twist and bending) against YADE's every-step values
 /// (`*.intrs6d.csv.gz`), for the total form (the law reads them each step) and the incremental
 /// form (the law never reads them: the fast path works them out only when its state goes back to
-/// the scene, `SixCfg::defer_rotations`). Written back every step and every 7th, so that the
-/// deferred ones are checked after steps that left them out. Worst 7e-12 (total form) and 7e-13
+/// the scene, `SixCfg::defer_rotations`). Written back every step and every 7th (one and two
+/// threads), so that the deferred ones are checked after steps that left them out. Worst 7e-12 (total form) and 7e-13
 /// (incremental) of each column's scale; worked out from the orientations after the step's
 /// integration instead of before it they are off by 6e-3, left as they were by 1.
 #[test]
@@ -347,10 +347,14 @@ fn fast_path_rolling_contact_rotations_follow_yade() {
             by_step.entry(r.step).or_default().insert((r.id1, r.id2), v);
         }
         assert!(scale.iter().all(|&s| s > 0.0), "{name}: {scale:?}");
-        for every in [1, 7] {
+        for (every, threads) in [(1, 1), (7, 1), (7, 2)] {
             let sf = scene_json::load(&dir.join(format!("{}.scene.json", name))).unwrap();
             let mut scene = sf.scene;
-            let mut sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+            let opt = FastOptions {
+                threads,
+                ..Default::default()
+            };
+            let mut sim = FastSim::from_scene(&scene, opt).unwrap();
             let (mut worst, mut checked) = (0f64, 0);
             for step in 1..=sf.steps {
                 sim.step();
@@ -371,9 +375,9 @@ fn fast_path_rolling_contact_rotations_follow_yade() {
                     checked += 1;
                 }
             }
-            eprintln!("{name} every {every}: {worst:.3e} over {checked} contacts");
+            eprintln!("{name} every {every} {threads}t: {worst:.3e} over {checked} contacts");
             assert!(checked > 50, "{name}: {checked}");
-            assert!(worst < 1e-9, "{name} every {every}: {worst:.3e}");
+            assert!(worst < 1e-9, "{name} every {every} {threads}t: {worst:.3e}");
         }
     }
 }
