@@ -8,6 +8,8 @@
 //!   This replaces the 24-point Gauss–Legendre integration of study.md, which is only approximate
 //!   where the box edges cut the sphere.
 //! * [`box_porosity`] sums it over spheres and their periodic images in x and y.
+//! * [`study_box_porosity`] is the study script's own porosity (its Gauss–Legendre integration),
+//!   ported operation for operation so that `--controller native` writes the script's bytes.
 //! * [`voxel_porosity`] reproduces YADE 2023.02a `Shop::getVoxelPorosity` bit for bit.
 
 use crate::math::Vec3;
