@@ -58,7 +58,7 @@ pub struct IdleSkip {
     grid_gen: Vec<u16>,
     /// Upper bound on how much any pair's gap has shrunk since the last reset.
     pub travel: f64,
-    /// The only bodies that may move or change radius from now on (`watch`); None: any body.
+    /// The only bodies that may move or change radius (`watch`); None (the default): any body.
     watch: Option<Vec<u32>>,
 }
 
@@ -142,12 +142,12 @@ impl IdleSkip {
         }
     }
 
-    /// From now on only bodies `ids` move or change radius (None: any may): each step's bound
-    /// then reads these alone. The caller owns the scene and promises it (the fast path's grid
-    /// scene, whose other bodies are in no interaction); a body left out that moves anyway is
-    /// counted with its whole displacement once it is watched again.
-    pub fn watch(&mut self, ids: Option<Vec<u32>>) {
-        self.watch = ids;
+    /// From now on only bodies `ids` move or change radius: each step's bound then reads these
+    /// alone. The caller owns the scene and promises it (the fast path's grid scene, whose other
+    /// bodies are in no interaction); a body left out that moves anyway is counted with its whole
+    /// displacement once it is watched again.
+    pub fn watch(&mut self, ids: Vec<u32>) {
+        self.watch = Some(ids);
     }
 
     /// Bodies `a` and `b` are in an interaction with a `GridConnection` just made real (or may

@@ -443,7 +443,7 @@ impl GridPart {
         let watch = moving
             .chain(self.nodes.iter().copied())
             .chain(self.conns.iter().copied());
-        self.sub.idle_skip.watch(Some(watch.collect()));
+        self.sub.idle_skip.watch(watch.collect());
         self.touched = touched;
     }
 

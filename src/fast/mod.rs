@@ -1451,18 +1451,17 @@ impl FastSim {
             let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
             let cd = self.shift_cells[p.img as usize];
             // kept with the lower id as body 1 (six::pair), as YADE orders them
-            let (id1, id2, cd) = if a < b {
-                (a, b, cd)
+            let (i, j) = (p.i as usize, p.j as usize);
+            let (id1, id2, k1, k2, cd) = if a < b {
+                (a, b, i, j, cd)
             } else {
-                (b, a, [-cd[0], -cd[1], -cd[2]])
+                (b, a, j, i, [-cd[0], -cd[1], -cd[2]])
             };
             let Some((g, ph, mut ext, made_real)) = c.to_interaction_parts() else {
                 continue;
             };
             if let (Some(cfg), Some(s)) = (&self.six, c.0.as_deref()) {
                 if cfg.defer_rotations && !self.ori_prev.is_empty() {
-                    let (i, j) = (p.i as usize, p.j as usize);
-                    let (k1, k2) = if a < b { (i, j) } else { (j, i) };
                     let ori = (&self.ori_prev[k1], &self.ori_prev[k2]);
                     let rot = six::settled_rotations(cfg, s, ori, self.iter - 1);
                     ext.geom = Some(crate::geom::GeomExt::Sc6D(rot));
