@@ -282,9 +282,41 @@ impl InteractionLoop {
 
     /// The law functor for a geometry/physics class pair.
     fn law_functor(&self, g: GeomClass, p: PhysClass) -> Result<Option<LawFunctor>, String> {
-        if g == GeomClass::ScGeom && p == PhysClass::FrictPhys && self.cundall_strack.is_some() {
-            return Ok(Some(LawFunctor::CundallStrack));
+        // the common cells, answered as `resolve` would: an exact entry wins; a node bond
+        // (GridNodeGeom6D, CohFrictPhys) has no entry of its own and one candidate at distance 1,
+        // its parent's (ScGeom6D, CohFrictPhys)
+        let exact = match (g, p) {
+            (GeomClass::ScGeom, PhysClass::FrictPhys) if self.cundall_strack.is_some() => {
+                Some(LawFunctor::CundallStrack)
+            }
+            (GeomClass::ScGeom6D | GeomClass::GridNodeGeom6D, PhysClass::CohFrictPhys)
+                if self.cohesion_moment.is_some() =>
+            {
+                Some(LawFunctor::CohesionMoment)
+            }
+            (GeomClass::ScGridCoGeom, PhysClass::FrictPhys) if self.scgridco_frict.is_some() => {
+                Some(LawFunctor::ScGridCoFrict)
+            }
+            (GeomClass::ScGridCoGeom, PhysClass::CohFrictPhys)
+                if self.scgridco_cohfrict.is_some() =>
+            {
+                Some(LawFunctor::ScGridCoCohFrict)
+            }
+            (GeomClass::GridCoGridCoGeom, PhysClass::FrictPhys)
+                if self.gridco_gridco_frict.is_some() =>
+            {
+                Some(LawFunctor::GridCoGridCoFrict)
+            }
+            _ => None,
+        };
+        if exact.is_some() {
+            return Ok(exact);
         }
+        self.law_functor_table(g, p)
+    }
+
+    /// `law_functor` through the whole dispatch table.
+    fn law_functor_table(&self, g: GeomClass, p: PhysClass) -> Result<Option<LawFunctor>, String> {
         // registration order, on the stack (this runs for every contact every step)
         let all = [
             (
@@ -2460,6 +2492,49 @@ mod tests {
         );
         let bare = InteractionLoop::empty();
         assert_eq!(bare.law_functor(G::ScGeom, P::FrictPhys).unwrap(), None);
+        // the shortcut cells answer as the whole table does, whatever laws are registered
+        let gs = [
+            G::IGeom,
+            G::GenericSpheresContact,
+            G::ScGeom,
+            G::ScGeom6D,
+            G::GridNodeGeom6D,
+            G::ScGridCoGeom,
+            G::GridCoGridCoGeom,
+        ];
+        let ps = [
+            P::IPhys,
+            P::NormPhys,
+            P::NormShearPhys,
+            P::FrictPhys,
+            P::RotStiffFrictPhys,
+            P::CohFrictPhys,
+            P::ViscElPhys,
+            P::MindlinPhys,
+            P::LudingPhys,
+            P::BubblePhys,
+            P::CpmPhys,
+        ];
+        let mut shortcut_hits = 0;
+        for bits in 0..32u32 {
+            let on = |i: u32| bits & (1 << i) != 0;
+            let l = InteractionLoop {
+                cundall_strack: on(0).then(|| il.cundall_strack.unwrap()),
+                cohesion_moment: on(1).then(|| il.cohesion_moment.unwrap()),
+                scgridco_frict: on(2).then(|| il.scgridco_frict.unwrap()),
+                scgridco_cohfrict: on(3).then(Default::default),
+                gridco_gridco_frict: on(4).then(Default::default),
+                ..InteractionLoop::empty()
+            };
+            for g in gs {
+                for p in ps {
+                    let fast = l.law_functor(g, p).unwrap();
+                    assert_eq!(fast, l.law_functor_table(g, p).unwrap(), "{bits:b} {g:?} {p:?}");
+                    shortcut_hits += fast.is_some() as usize;
+                }
+            }
+        }
+        assert!(shortcut_hits > 100, "{shortcut_hits}");
         // ViscElMat is a FrictMat: a ViscElMat pair gets its own Ip2 only when given, a mixed pair
         // the FrictMat one; a ViscElPhys without its law falls back to Cundall-Strack (a FrictPhys)
         let ve = InteractionLoop {

@@ -329,13 +329,15 @@ pub fn sphere_gridco(
                 if nb == id2 {
                     continue;
                 }
+                // (whether the sphere has a real interaction with the neighbour first: without
+                // one, where the sphere lies along it does not matter)
+                let Some(j) = intrs.find(id1, nb) else {
+                    continue;
+                };
+                if !intrs.list[j].is_real() {
+                    continue;
+                }
                 if nb_behind(nb, &node_pos, &br)? {
-                    let Some(j) = intrs.find(id1, nb) else {
-                        continue;
-                    };
-                    if !intrs.list[j].is_real() {
-                        continue;
-                    }
                     // take over the neighbour's geometry object
                     if target == Target::Own {
                         write_back(intrs, k, target, &g, &x);
