@@ -236,9 +236,27 @@ impl InteractionLoop {
         a: MatClass,
         b: MatClass,
     ) -> Result<Option<(PhysFunctor, bool)>, String> {
-        if a == MatClass::FrictMat && b == MatClass::FrictMat && self.frict_phys {
-            return Ok(Some((PhysFunctor::Frict, false)));
+        // the common cells, answered as `resolve` would (a frictional pair one step up from a
+        // cohesive material: no rival at that distance; Mindlin's Ip2 takes the FrictMat cell)
+        use MatClass::{CohFrictMat as Coh, FrictMat as Fr};
+        match (a, b) {
+            (Fr, Fr) | (Fr, Coh) | (Coh, Fr) if self.frict_phys && self.mindlin_phys.is_none() => {
+                return Ok(Some((PhysFunctor::Frict, false)))
+            }
+            (Coh, Coh) if self.cohfrict_phys.is_some() => {
+                return Ok(Some((PhysFunctor::CohFrict, false)))
+            }
+            _ => {}
         }
+        self.phys_functor_table(a, b)
+    }
+
+    /// `phys_functor` through the whole dispatch table.
+    fn phys_functor_table(
+        &self,
+        a: MatClass,
+        b: MatClass,
+    ) -> Result<Option<(PhysFunctor, bool)>, String> {
         // registration order, on the stack (this runs for every contact every step)
         let all = [
             (self.frict_phys, MatClass::FrictMat, PhysFunctor::Frict),
@@ -2515,6 +2533,39 @@ mod tests {
             P::BubblePhys,
             P::CpmPhys,
         ];
+        let ms = [
+            MatClass::Material,
+            MatClass::ElastMat,
+            FrictMat,
+            CohFrictMat,
+            ViscElMat,
+            MatClass::LudingMat,
+            MatClass::BubbleMat,
+            MatClass::CpmMat,
+        ];
+        let mut phys_hits = 0;
+        for bits in 0..256u32 {
+            let on = |i: u32| bits & (1 << i) != 0;
+            let l = InteractionLoop {
+                frict_phys: on(0),
+                cohfrict_phys: on(1).then(Default::default),
+                viscel_phys: on(2),
+                luding_phys: on(3),
+                bubble_phys: on(4),
+                mindlin_phys: on(5).then(Default::default),
+                cpm_phys: on(6).then_some(10),
+                frict_cpm_phys: on(7),
+                ..InteractionLoop::empty()
+            };
+            for a in ms {
+                for b in ms {
+                    let (fast, table) = (l.phys_functor(a, b), l.phys_functor_table(a, b));
+                    assert_eq!(fast.ok(), table.ok(), "{bits:b} {a:?} {b:?}");
+                    phys_hits += l.phys_functor(a, b).is_ok_and(|f| f.is_some()) as usize;
+                }
+            }
+        }
+        assert!(phys_hits > 1000, "{phys_hits}");
         let mut shortcut_hits = 0;
         for bits in 0..32u32 {
             let on = |i: u32| bits & (1 << i) != 0;
