@@ -1197,7 +1197,7 @@ impl Scene {
             for ev in runs.iter().flatten() {
                 self.event(il, *ev, &ctx0, energy, &mut geom_entries)?;
             }
-        } else if let Some(cfg) = self.pre_cfg(il)? {
+        } else if let Some(cfg) = self.pre_cfg(il, true)? {
             // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
             let n = self.interactions.list.len();
@@ -1261,6 +1261,12 @@ impl Scene {
                 law::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
             }
             Event::CohLoad(id1, id2, l) => {
+                law::cohesion_moment::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
+            }
+            Event::BondLoad(id1, id2, l, conn_sync) => {
+                if let Some((cb, pos)) = conn_sync {
+                    self.bodies.pos[cb as usize] = pos;
+                }
                 law::cohesion_moment::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
             }
             Event::Erase(k) => self.interactions.list[k as usize].reset(),
@@ -1549,7 +1555,7 @@ impl Scene {
 
     /// What `pre_slot` may evaluate outside the container-order walk this step; None when it
     /// cannot help (energy tracking, or neither steady-contact kind has its functors).
-    fn pre_cfg(&self, il: &InteractionLoop) -> Result<Option<PreCfg>, String> {
+    fn pre_cfg(&self, il: &InteractionLoop, serial: bool) -> Result<Option<PreCfg>, String> {
         if self.energy_wanted(il) {
             return Ok(None);
         }
@@ -1560,31 +1566,44 @@ impl Scene {
         // a steady ScGeom6D + CohFrictPhys contact: the Ip2 is a no-op on existing physics while
         // no `setCohesionNow` is pending (per contact: no `initCohesion`), the law is CohesionMoment
         // and cannot fail (its one error, twist creep with the incremental form, is a parameter check)
-        let six_d = match (il.sphere_sphere_6d, il.cohesion_moment) {
-            (Some(p6), Some(cm))
-                if !(cm.twist_creep && cm.use_incremental_form)
-                    && il
-                        .cohfrict_phys
-                        .as_ref()
-                        .is_some_and(|p| !p.set_cohesion_now)
-                    && il.law_functor(GeomClass::ScGeom6D, PhysClass::CohFrictPhys)?
-                        == Some(LawFunctor::CohesionMoment)
-                    && il
-                        .phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
-                        .map(|(f, _)| f)
-                        == Some(PhysFunctor::CohFrict) =>
-            {
-                Some((p6, cm))
-            }
+        let steady_coh = |g: GeomClass| -> Result<Option<law::cohesion_moment::Params>, String> {
+            Ok(match il.cohesion_moment {
+                Some(cm)
+                    if !(cm.twist_creep && cm.use_incremental_form)
+                        && il
+                            .cohfrict_phys
+                            .as_ref()
+                            .is_some_and(|p| !p.set_cohesion_now)
+                        && il.law_functor(g, PhysClass::CohFrictPhys)?
+                            == Some(LawFunctor::CohesionMoment)
+                        && il
+                            .phys_functor(MatClass::CohFrictMat, MatClass::CohFrictMat)?
+                            .map(|(f, _)| f)
+                            == Some(PhysFunctor::CohFrict) =>
+                {
+                    Some(cm)
+                }
+                _ => None,
+            })
+        };
+        let six_d = match il.sphere_sphere_6d {
+            Some(p6) => steady_coh(GeomClass::ScGeom6D)?.map(|cm| (p6, cm)),
+            None => None,
+        };
+        // a node-node bond likewise, in the serial walk only: its geometry moves the connection
+        // body (`GridNodeGeom6D.connectionBody`), which the event does at its turn
+        let grid_6d = match il.gridnode_gridnode {
+            Some(p6) if serial => steady_coh(GeomClass::GridNodeGeom6D)?.map(|cm| (p6, cm)),
             _ => None,
         };
-        if ss_cs.is_none() && six_d.is_none() {
+        if ss_cs.is_none() && six_d.is_none() && grid_6d.is_none() {
             return Ok(None);
         }
         Ok(Some(PreCfg {
             idle: il.idle_params().copied(),
             ss_cs,
             six_d,
+            grid_6d,
             coh_mat: self
                 .materials
                 .iter()
@@ -1610,7 +1629,7 @@ impl Scene {
         if self.interactions.list.len() < self.par_min_slots || self.threads <= 1 {
             return Ok(None);
         }
-        let Some(cfg) = self.pre_cfg(il)? else {
+        let Some(cfg) = self.pre_cfg(il, false)? else {
             return Ok(None);
         };
         let Some(pool) = self.pool_for_threads() else {
@@ -2181,6 +2200,9 @@ enum Event {
     Load(u32, u32, law::Load),
     /// A steady cohesive-frictional contact evaluated: add this load to bodies `id1`, `id2`.
     CohLoad(u32, u32, law::cohesion_moment::CohLoad),
+    /// A steady node-node bond evaluated: move the connection body to this position (when the
+    /// bond has one), then add the load to nodes `id1`, `id2`.
+    BondLoad(u32, u32, law::cohesion_moment::CohLoad, Option<(u32, Vec3)>),
     /// Slot `k`: a steady contact the law erases.
     Erase(u32),
 }
@@ -2229,6 +2251,9 @@ struct PreCfg {
     ss_cs: Option<(geom::sphere_sphere::Params, law::Params)>,
     /// Steady ScGeom6D + CohFrictPhys contacts: `Ig2_Sphere_Sphere_ScGeom6D`, CohesionMoment.
     six_d: Option<(geom::grid::SixDParams, law::cohesion_moment::Params)>,
+    /// Steady GridNodeGeom6D + CohFrictPhys bonds: `Ig2_GridNode_GridNode_GridNodeGeom6D`,
+    /// CohesionMoment (serial walk only).
+    grid_6d: Option<(geom::grid::SixDParams, law::cohesion_moment::Params)>,
     /// Per material: a CohFrictMat (whose Ip2 leaves existing physics alone this step).
     coh_mat: Vec<bool>,
     dt: f64,
@@ -2258,18 +2283,58 @@ fn pre_slot(
     if sc.idle_gc || !it.is_real() {
         return Some(Event::Visit(k));
     }
+    let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+    let shifts = || {
+        let (shift2, shift_vel) = match cell {
+            Some(c) => (c.shift_pos(&it.cell_dist), c.shift_vel(&it.cell_dist)),
+            None => (Vec3::zeros(), Vec3::zeros()),
+        };
+        let ctx = GeomCtx {
+            dt: cfg.dt,
+            shift_vel,
+        };
+        (shift2, ctx)
+    };
+    if it.functor == GeomFunctor::GridNodeGridNode {
+        return Some(match cfg.grid_6d {
+            Some((p6, cm))
+                if cfg.coh_mat[b.material[id1]]
+                    && cfg.coh_mat[b.material[id2]]
+                    && matches!(it.geom_ext(), Some(geom::GeomExt::GridNode { .. }))
+                    && it.coh().is_some_and(|c| !c.init_cohesion) =>
+            {
+                let (Some(r1), Some(r2)) =
+                    (b.shape[id1].sphere_radius(), b.shape[id2].sphere_radius())
+                else {
+                    return Some(Event::Visit(k));
+                };
+                let (shift2, ctx) = shifts();
+                let pr = Pair::of(b, id1, id2, shift2, true, ctx);
+                let mut conn_sync = None;
+                if !geom::grid::six_d(
+                    &p6,
+                    r1,
+                    r2,
+                    &pr,
+                    &mut it.geom,
+                    &mut it.ext,
+                    true,
+                    &mut conn_sync,
+                ) {
+                    return Some(Event::Erase(k));
+                }
+                match steady_coh_load(&cm, cfg, b, id1, id2, &shift2, it) {
+                    Some(l) => Event::BondLoad(id1 as u32, id2 as u32, l, conn_sync),
+                    None => Event::Erase(k),
+                }
+            }
+            _ => Event::Visit(k),
+        });
+    }
     let Some((r1, r2)) = skip.sphere_radii(it.id1, it.id2) else {
         return Some(Event::Visit(k));
     };
-    let (id1, id2) = (it.id1 as usize, it.id2 as usize);
-    let (shift2, shift_vel) = match cell {
-        Some(c) => (c.shift_pos(&it.cell_dist), c.shift_vel(&it.cell_dist)),
-        None => (Vec3::zeros(), Vec3::zeros()),
-    };
-    let ctx = GeomCtx {
-        dt: cfg.dt,
-        shift_vel,
-    };
+    let (shift2, ctx) = shifts();
     match (it.functor, cfg.ss_cs, cfg.six_d) {
         (GeomFunctor::SphereSphere, Some((ss, cs)), _) if it.ext.is_none() => {
             let pr = Pair::of(b, id1, id2, shift2, true, ctx);
@@ -2306,28 +2371,43 @@ fn pre_slot(
             ) {
                 return Some(Event::Erase(k));
             }
-            let fresh = it.iter_made_real == cfg.iter;
-            let g = *it.geom.as_ref().unwrap();
-            let e = it.ext.as_mut().unwrap();
-            let rot = e.geom.as_mut().and_then(|g| g.rot_mut()).unwrap();
-            let cp = e.coh.as_mut().unwrap();
-            let lb = law::cohesion_moment::Bodies2 {
-                pos1: b.pos[id1],
-                pos2_shifted: b.pos[id2] + shift2,
-                ang_vel1: b.ang_vel[id1],
-                ang_vel2: b.ang_vel[id2],
-            };
-            let ph = it.phys.as_mut().unwrap();
-            Some(
-                match law::cohesion_moment::load(&cm, cfg.dt, fresh, &g, rot, ph, cp, &lb, None) {
-                    Ok(Some(l)) => Event::CohLoad(id1 as u32, id2 as u32, l),
-                    Ok(None) => Event::Erase(k),
-                    // excluded by `pre_cfg` (the law's only error is a parameter check)
-                    Err(_) => unreachable!("CohesionMoment parameter check passed in pre_cfg"),
-                },
-            )
+            Some(match steady_coh_load(&cm, cfg, b, id1, id2, &shift2, it) {
+                Some(l) => Event::CohLoad(id1 as u32, id2 as u32, l),
+                None => Event::Erase(k),
+            })
         }
         _ => Some(Event::Visit(k)),
+    }
+}
+
+/// The CohesionMoment law on a steady cohesive contact whose 6-D geometry was just updated (see
+/// `pre_slot`): its load, or None when the law erases it.
+#[inline(always)]
+fn steady_coh_load(
+    cm: &law::cohesion_moment::Params,
+    cfg: &PreCfg,
+    b: &Bodies,
+    id1: usize,
+    id2: usize,
+    shift2: &Vec3,
+    it: &mut crate::interaction::Interaction,
+) -> Option<law::cohesion_moment::CohLoad> {
+    let fresh = it.iter_made_real == cfg.iter;
+    let g = *it.geom.as_ref().unwrap();
+    let e = it.ext.as_mut().unwrap();
+    let rot = e.geom.as_mut().and_then(|g| g.rot_mut()).unwrap();
+    let cp = e.coh.as_mut().unwrap();
+    let lb = law::cohesion_moment::Bodies2 {
+        pos1: b.pos[id1],
+        pos2_shifted: b.pos[id2] + shift2,
+        ang_vel1: b.ang_vel[id1],
+        ang_vel2: b.ang_vel[id2],
+    };
+    let ph = it.phys.as_mut().unwrap();
+    match law::cohesion_moment::load(cm, cfg.dt, fresh, &g, rot, ph, cp, &lb, None) {
+        Ok(l) => l,
+        // excluded by `pre_cfg` (the law's only error is a parameter check)
+        Err(_) => unreachable!("CohesionMoment parameter check passed in pre_cfg"),
     }
 }
 
@@ -2580,7 +2660,11 @@ mod tests {
             for g in gs {
                 for p in ps {
                     let fast = l.law_functor(g, p).unwrap();
-                    assert_eq!(fast, l.law_functor_table(g, p).unwrap(), "{bits:b} {g:?} {p:?}");
+                    assert_eq!(
+                        fast,
+                        l.law_functor_table(g, p).unwrap(),
+                        "{bits:b} {g:?} {p:?}"
+                    );
                     shortcut_hits += fast.is_some() as usize;
                 }
             }
