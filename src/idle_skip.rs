@@ -100,8 +100,10 @@ impl IdleSkip {
                 Some(ids) => ids.iter().for_each(|&id| visit(id as usize)),
                 None => (0..n).for_each(visit),
             }
-            let conns_changed =
-                self.conns
+            // (a watching owner changes no shape: see `watch`)
+            let conns_changed = self.watch.is_none()
+                && (self
+                    .conns
                     .iter()
                     .any(|(id, c)| match &bodies.shape[*id as usize] {
                         Shape::GridConnection(now) => **now != *c,
@@ -113,7 +115,7 @@ impl IdleSkip {
                         .any(|(id, l)| match &bodies.shape[*id as usize] {
                             Shape::GridNode(now) => now.conn_list != *l,
                             _ => true,
-                        });
+                        }));
             // a sphere-connection reach is r + R whatever the detection factor
             let step = 2.0 * (d2max.sqrt() + factor.abs().max(1.0) * drmax) * (1.0 + 1e-9);
             self.travel += step;
@@ -142,10 +144,11 @@ impl IdleSkip {
         }
     }
 
-    /// From now on only bodies `ids` move or change radius: each step's bound then reads these
-    /// alone. The caller owns the scene and promises it (the fast path's grid scene, whose other
-    /// bodies are in no interaction); a body left out that moves anyway is counted with its whole
-    /// displacement once it is watched again.
+    /// From now on only bodies `ids` move or change radius, and no shape changes: each step's
+    /// bound then reads these alone. The caller owns the scene and promises it (the fast path's
+    /// grid scene, whose other bodies are in no interaction and whose shapes are fixed for the
+    /// run); a body left out that moves anyway is counted with its whole displacement once it is
+    /// watched again.
     pub fn watch(&mut self, ids: Vec<u32>) {
         self.watch = Some(ids);
     }
