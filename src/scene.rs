@@ -1995,12 +1995,7 @@ impl Scene {
                     .and_then(|g| g.rot_mut())
                     .ok_or_else(|| bad("ScGeom6D"))?;
                 let cp = e.coh.as_mut().ok_or_else(|| bad("CohFrictPhys"))?;
-                let lb = law::cohesion_moment::Bodies2 {
-                    pos1: b.pos[id1],
-                    pos2_shifted: b.pos[id2] + shift2,
-                    ang_vel1: b.ang_vel[id1],
-                    ang_vel2: b.ang_vel[id2],
-                };
+                let lb = coh_bodies(b, id1, id2, shift2);
                 let p = il.cohesion_moment.as_ref().unwrap();
                 match law::cohesion_moment::load(p, self.dt, fresh, &g, rot, ph, cp, &lb, energy)? {
                     Some(l) => {
@@ -2295,48 +2290,58 @@ fn pre_slot(
         };
         (shift2, ctx)
     };
-    if it.functor == GeomFunctor::GridNodeGridNode {
-        return Some(match cfg.grid_6d {
-            Some((p6, cm))
-                if cfg.coh_mat[b.material[id1]]
-                    && cfg.coh_mat[b.material[id2]]
-                    && matches!(it.geom_ext(), Some(geom::GeomExt::GridNode { .. }))
-                    && it.coh().is_some_and(|c| !c.init_cohesion) =>
-            {
-                let (Some(r1), Some(r2)) =
-                    (b.shape[id1].sphere_radius(), b.shape[id2].sphere_radius())
-                else {
-                    return Some(Event::Visit(k));
-                };
-                let (shift2, ctx) = shifts();
-                let pr = Pair::of(b, id1, id2, shift2, true, ctx);
-                let mut conn_sync = None;
-                if !geom::grid::six_d(
-                    &p6,
-                    r1,
-                    r2,
-                    &pr,
-                    &mut it.geom,
-                    &mut it.ext,
-                    true,
-                    &mut conn_sync,
-                ) {
-                    return Some(Event::Erase(k));
+    // a steady 6-D cohesive contact (plain spheres) or node bond: geometry and law here
+    let six = match (it.functor, it.geom_ext()) {
+        (GeomFunctor::SphereSphere6D, Some(geom::GeomExt::Sc6D(_))) => {
+            cfg.six_d.map(|p| (p, false))
+        }
+        (GeomFunctor::GridNodeGridNode, Some(geom::GeomExt::GridNode { .. })) => {
+            cfg.grid_6d.map(|p| (p, true))
+        }
+        _ => None,
+    };
+    if let Some(((p6, cm), grid_node)) = six {
+        let radii = if grid_node {
+            b.shape[id1]
+                .sphere_radius()
+                .zip(b.shape[id2].sphere_radius())
+        } else {
+            skip.sphere_radii(it.id1, it.id2)
+        };
+        let steady = cfg.coh_mat[b.material[id1]]
+            && cfg.coh_mat[b.material[id2]]
+            && it.coh().is_some_and(|c| !c.init_cohesion);
+        let Some(radii) = radii.filter(|_| steady) else {
+            return Some(Event::Visit(k));
+        };
+        let (shift2, ctx) = shifts();
+        return Some(
+            match steady_six_d(
+                &p6,
+                &cm,
+                cfg,
+                b,
+                (id1, id2),
+                radii,
+                shift2,
+                ctx,
+                it,
+                grid_node,
+            ) {
+                Some((l, conn_sync)) if grid_node => {
+                    Event::BondLoad(id1 as u32, id2 as u32, l, conn_sync)
                 }
-                match steady_coh_load(&cm, cfg, b, id1, id2, &shift2, it) {
-                    Some(l) => Event::BondLoad(id1 as u32, id2 as u32, l, conn_sync),
-                    None => Event::Erase(k),
-                }
-            }
-            _ => Event::Visit(k),
-        });
+                Some((l, _)) => Event::CohLoad(id1 as u32, id2 as u32, l),
+                None => Event::Erase(k),
+            },
+        );
     }
     let Some((r1, r2)) = skip.sphere_radii(it.id1, it.id2) else {
         return Some(Event::Visit(k));
     };
     let (shift2, ctx) = shifts();
-    match (it.functor, cfg.ss_cs, cfg.six_d) {
-        (GeomFunctor::SphereSphere, Some((ss, cs)), _) if it.ext.is_none() => {
+    match (it.functor, cfg.ss_cs) {
+        (GeomFunctor::SphereSphere, Some((ss, cs))) if it.ext.is_none() => {
             let pr = Pair::of(b, id1, id2, shift2, true, ctx);
             geom::sphere_sphere::go(&ss, r1, r2, &pr, &mut it.geom);
             let lb = LawBodies {
@@ -2351,63 +2356,62 @@ fn pre_slot(
                 },
             )
         }
-        (GeomFunctor::SphereSphere6D, _, Some((p6, cm)))
-            if cfg.coh_mat[b.material[id1]]
-                && cfg.coh_mat[b.material[id2]]
-                && matches!(it.geom_ext(), Some(geom::GeomExt::Sc6D(_)))
-                && it.coh().is_some_and(|c| !c.init_cohesion) =>
-        {
-            let pr = Pair::of(b, id1, id2, shift2, true, ctx);
-            let mut conn_sync = None;
-            if !geom::grid::six_d(
-                &p6,
-                r1,
-                r2,
-                &pr,
-                &mut it.geom,
-                &mut it.ext,
-                false,
-                &mut conn_sync,
-            ) {
-                return Some(Event::Erase(k));
-            }
-            Some(match steady_coh_load(&cm, cfg, b, id1, id2, &shift2, it) {
-                Some(l) => Event::CohLoad(id1 as u32, id2 as u32, l),
-                None => Event::Erase(k),
-            })
-        }
         _ => Some(Event::Visit(k)),
     }
 }
 
-/// The CohesionMoment law on a steady cohesive contact whose 6-D geometry was just updated (see
-/// `pre_slot`): its load, or None when the law erases it.
+/// A steady 6-D cohesive contact or node bond (`grid_node`; see `pre_slot`): its geometry, then
+/// CohesionMoment's load with the connection body's move (a bond's), or None when either erases it.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn steady_coh_load(
+fn steady_six_d(
+    p6: &geom::grid::SixDParams,
     cm: &law::cohesion_moment::Params,
     cfg: &PreCfg,
     b: &Bodies,
-    id1: usize,
-    id2: usize,
-    shift2: &Vec3,
+    (id1, id2): (usize, usize),
+    (r1, r2): (f64, f64),
+    shift2: Vec3,
+    ctx: GeomCtx,
     it: &mut crate::interaction::Interaction,
-) -> Option<law::cohesion_moment::CohLoad> {
+    grid_node: bool,
+) -> Option<(law::cohesion_moment::CohLoad, Option<(u32, Vec3)>)> {
+    let pr = Pair::of(b, id1, id2, shift2, true, ctx);
+    let mut conn_sync = None;
+    if !geom::grid::six_d(
+        p6,
+        r1,
+        r2,
+        &pr,
+        &mut it.geom,
+        &mut it.ext,
+        grid_node,
+        &mut conn_sync,
+    ) {
+        return None;
+    }
     let fresh = it.iter_made_real == cfg.iter;
     let g = *it.geom.as_ref().unwrap();
     let e = it.ext.as_mut().unwrap();
     let rot = e.geom.as_mut().and_then(|g| g.rot_mut()).unwrap();
     let cp = e.coh.as_mut().unwrap();
-    let lb = law::cohesion_moment::Bodies2 {
+    let lb = coh_bodies(b, id1, id2, &shift2);
+    let ph = it.phys.as_mut().unwrap();
+    match law::cohesion_moment::load(cm, cfg.dt, fresh, &g, rot, ph, cp, &lb, None) {
+        Ok(l) => l.map(|l| (l, conn_sync)),
+        // excluded by `pre_cfg` (the law's only error is a parameter check)
+        Err(_) => unreachable!("CohesionMoment parameter check passed in pre_cfg"),
+    }
+}
+
+/// What CohesionMoment reads of the two bodies.
+#[inline(always)]
+fn coh_bodies(b: &Bodies, id1: usize, id2: usize, shift2: &Vec3) -> law::cohesion_moment::Bodies2 {
+    law::cohesion_moment::Bodies2 {
         pos1: b.pos[id1],
         pos2_shifted: b.pos[id2] + shift2,
         ang_vel1: b.ang_vel[id1],
         ang_vel2: b.ang_vel[id2],
-    };
-    let ph = it.phys.as_mut().unwrap();
-    match law::cohesion_moment::load(cm, cfg.dt, fresh, &g, rot, ph, cp, &lb, None) {
-        Ok(l) => l,
-        // excluded by `pre_cfg` (the law's only error is a parameter check)
-        Err(_) => unreachable!("CohesionMoment parameter check passed in pre_cfg"),
     }
 }
 
