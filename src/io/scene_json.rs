@@ -880,7 +880,12 @@ pub fn engine(e: &Value) -> Result<Engine> {
             }
             for p in e.get("phys").and_then(Value::as_array).cloned().unwrap_or_default() {
                 match class(&p)? {
-                    "Ip2_FrictMat_FrictMat_FrictPhys" => il.frict_phys = true,
+                    // this Ip2 and MindlinPhys's claim the same (FrictMat, FrictMat) cell: the
+                    // later in the list replaces the other (`add2DEntry`)
+                    "Ip2_FrictMat_FrictMat_FrictPhys" => {
+                        il.frict_phys = true;
+                        il.mindlin_phys = None;
+                    }
                     "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys" => {
                         for mm in ["normalCohesion", "shearCohesion", "frictAngle"] {
                             if p.get(mm).is_some_and(|x| !x.is_null()) {
@@ -929,6 +934,7 @@ pub fn engine(e: &Value) -> Result<Engine> {
                                 Some(_) => match_maker(&p, k)?,
                             })
                         };
+                        il.frict_phys = false;
                         il.mindlin_phys = Some(crate::phys::MindlinIp2 {
                             gamma: fo(&p, "gamma", 0.0)?,
                             eta: fo(&p, "eta", 0.0)?,
@@ -1900,4 +1906,38 @@ pub fn interaction_to_value(it: &Interaction) -> Value {
     };
     json!({"id1": it.id1, "id2": it.id2, "isReal": it.is_real(), "cellDist": it.cell_dist,
         "iterMadeReal": it.iter_made_real, "iterBorn": it.iter_born, "geom": geom, "phys": phys})
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Ip2_FrictMat_FrictMat_FrictPhys` and `Ip2_FrictMat_FrictMat_MindlinPhys` claim the same
+    /// (FrictMat, FrictMat) cell: the later one in the list takes the FrictMat pairs, as YADE's
+    /// dispatcher (`add2DEntry`) does, whichever comes first.
+    #[test]
+    fn the_later_of_two_ip2s_for_one_cell_wins() {
+        use crate::material::MatClass::{CohFrictMat, FrictMat};
+        use crate::scene::PhysFunctor;
+        let (fr, mi) = (
+            "Ip2_FrictMat_FrictMat_FrictPhys",
+            "Ip2_FrictMat_FrictMat_MindlinPhys",
+        );
+        for (first, second, want) in [(fr, mi, PhysFunctor::Mindlin), (mi, fr, PhysFunctor::Frict)]
+        {
+            let e = serde_json::json!({
+                "class": "InteractionLoop",
+                "geom": [{"class": "Ig2_Sphere_Sphere_ScGeom"}],
+                "phys": [{"class": first}, {"class": second}],
+                "law": [{"class": "Law2_ScGeom_FrictPhys_CundallStrack"}],
+            });
+            let Engine::InteractionLoop(il) = engine(&e).unwrap() else {
+                panic!("not an InteractionLoop")
+            };
+            for (a, b) in [(FrictMat, FrictMat), (FrictMat, CohFrictMat)] {
+                let got = il.phys_functor(a, b).unwrap().map(|(f, _)| f);
+                assert_eq!(got, Some(want), "{first} then {second}: {a:?} + {b:?}");
+            }
+        }
+    }
 }
