@@ -281,17 +281,16 @@ pub fn sphere_gridco(
         }
     };
 
-    // the contact point and distance of the end (clamped relPos, below)
-    let fict = |rel_pos: f64| {
-        let fict_pos = p_n1 + segt * rel_pos.clamp(0.0, 1.0);
-        let branch_f = fict_pos - sphere_pos;
-        (fict_pos, branch_f, norm(&branch_f))
-    };
+    // the contact point and distance (relPos < 0 ? 0 : relPos, then relPos > 1 ? 1 : relPos;
+    // f64::clamp tests in the same order): nothing below moves the sphere or the segment
+    let fict_pos = p_n1 + segt * rel_pos.clamp(0.0, 1.0);
+    let branch_f = fict_pos - sphere_pos;
+    let dist = norm(&branch_f);
     let outside = rel_pos <= 0.0 || rel_pos >= 1.0;
     if outside {
         // a new pair out of reach: every way through the neighbours below ends in `false` for a
         // new pair, without writing anything, as the distance check at the end does
-        if is_new && fict(rel_pos).2 > radius + gc.radius {
+        if is_new && dist > radius + gc.radius {
             return Ok(false);
         }
         let (node, node_pos, br) = if rel_pos <= 0.0 {
@@ -385,8 +384,6 @@ pub fn sphere_gridco(
         }
     }
 
-    // relPos < 0 ? 0 : relPos, then relPos > 1 ? 1 : relPos (f64::clamp tests in the same order)
-    let (fict_pos, branch_f, dist) = fict(rel_pos);
     rel_pos = rel_pos.clamp(0.0, 1.0);
     if is_new && dist > radius + gc.radius {
         return Ok(false);
