@@ -123,7 +123,7 @@ unsafe fn lanes(x: F4) -> [f64; 4] {
 
 /// Element `k[l]` of `a` in lane l, for each of the three components.
 #[inline(always)]
-unsafe fn gather3(a: &[V3], k: [usize; 4]) -> [F4; 3] {
+pub(super) unsafe fn gather3(a: &[V3], k: [usize; 4]) -> [F4; 3] {
     gather_refs([&a[k[0]], &a[k[1]], &a[k[2]], &a[k[3]]])
 }
 
@@ -151,13 +151,13 @@ unsafe fn gather_refs(e: [&V3; 4]) -> [F4; 3] {
 
 /// One scalar per lane.
 #[inline(always)]
-unsafe fn gather1(a: [f64; 4]) -> F4 {
+pub(super) unsafe fn gather1(a: [f64; 4]) -> F4 {
     F4(_mm256_set_pd(a[3], a[2], a[1], a[0]))
 }
 
 /// A lane mask's bits (bit l: lane l).
 #[inline(always)]
-unsafe fn bits(m: __m256d) -> i32 {
+pub(super) unsafe fn bits(m: __m256d) -> i32 {
     _mm256_movemask_pd(m)
 }
 

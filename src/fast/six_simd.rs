@@ -8,10 +8,10 @@
 //! dependent products, square roots, divisions and an arc tangent per contact; the lanes run four
 //! chains side by side.
 
-use super::contact::Pair;
-use super::contact_simd::F4;
+use super::contact::{self, Pair};
+use super::contact_simd::{bits, gather1, gather3, F4};
 use super::six::{self, Stage, C6};
-use super::{kept, Acc, Kernel, Six};
+use super::{Acc, Kernel, Six};
 use crate::geom::six_d::{angle_axis_of, relative_delta, twist_bending, vec_norm, Q};
 use crate::math::{Quat, Real, Vec3};
 
@@ -23,7 +23,7 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
     let cs = &mut cs[..np];
     let mut work = [0u32; BLOCK];
     for b0 in (0..np).step_by(BLOCK) {
-        let nw = kept(k, pairs, cs, b0..(b0 + BLOCK).min(np), &mut work);
+        let nw = kept4(k, pairs, cs, b0..(b0 + BLOCK).min(np), &mut work);
         for g in (0..nw).step_by(4) {
             let ws = &work[g..(g + 4).min(nw)];
             // the next group's states, out of line
@@ -47,6 +47,52 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
         }
     }
     acc.finish();
+}
+
+/// `super::kept` (the first pass: the pairs `Six::idle` does not rule out, in order) four pairs at
+/// a time. A lane keeps its pair when it is a contact, when it has a periodic shift, or when
+/// `sphere_sphere::apart` does not hold for xj - xi. Without a shift that is the scalar test's
+/// decision to the bit: oriented by scene id, the vector is xi + (-0) - xj or xj + 0 - xi, the
+/// same components up to sign (and the sign of a zero), so the same squares in the same sum. A
+/// pair with a shift is kept for the exact test in `six::geometry`, which leaves a potential pair
+/// that does not touch as it was: keeping more pairs than `idle` would change no result. (AVX2:
+/// called from `chunk` only.)
+#[inline(always)]
+unsafe fn kept4(
+    k: &Six,
+    pairs: &[Pair],
+    cs: &[C6],
+    block: std::ops::Range<usize>,
+    work: &mut [u32],
+) -> usize {
+    let b = k.b;
+    let f = F4::splat(k.cfg.p6.ss.interaction_detection_factor);
+    let mut nw = 0;
+    let mut p = block.start;
+    while p + 4 <= block.end {
+        let q = [p, p + 1, p + 2, p + 3];
+        let pr = q.map(|x| pairs[x]);
+        let (ki, kj) = (pr.map(|x| x.i as usize), pr.map(|x| x.j as usize));
+        let d = contact::sub(gather3(b.pos, kj), gather3(b.pos, ki));
+        let reach = f * (gather1(ki.map(|i| b.rad[i])) + gather1(kj.map(|j| b.rad[j])));
+        // `sphere_sphere::apart`: f² - |d|² < 0
+        let apart = bits((reach * reach - contact::dot(d, d)).lt(F4::splat(0.0)));
+        let mut keep = !apart;
+        for (l, &x) in q.iter().enumerate() {
+            keep |= ((cs[x].is_real() | (pr[l].img != 0)) as i32) << l;
+        }
+        for (l, &x) in q.iter().enumerate() {
+            work[nw] = x as u32;
+            nw += ((keep >> l) & 1) as usize;
+        }
+        p += 4;
+    }
+    while p < block.end {
+        work[nw] = p as u32;
+        nw += !k.idle(&pairs[p], &cs[p]) as usize;
+        p += 1;
+    }
+    nw
 }
 
 /// `six::rotations` of the group's contacts that were real (`Stage::Kept`), in four lanes (lanes
