@@ -53,10 +53,11 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
 /// a time. A lane keeps its pair when it is a contact, when it has a periodic shift, or when
 /// `sphere_sphere::apart` does not hold for xj - xi. Without a shift that is the scalar test's
 /// decision to the bit: oriented by scene id, the vector is xi + (-0) - xj or xj + 0 - xi, the
-/// same components up to sign (and the sign of a zero), so the same squares in the same sum. A
-/// pair with a shift is kept for the exact test in `six::geometry`, which leaves a potential pair
-/// that does not touch as it was: keeping more pairs than `idle` would change no result. (AVX2:
-/// called from `chunk` only.)
+/// same components up to sign (and the sign of a zero), so the same squares, summed in
+/// `math::norm2`'s order (Eigen's x² + (y² + z²): another order can round the other way at the
+/// reach and drop a pair that touches). A pair with a shift is kept for the exact test in
+/// `six::geometry`, which leaves a potential pair that does not touch as it was: keeping more
+/// pairs than `idle` would change no result. (AVX2: called from `chunk` only.)
 #[inline(always)]
 unsafe fn kept4(
     k: &Six,
@@ -75,8 +76,9 @@ unsafe fn kept4(
         let (ki, kj) = (pr.map(|x| x.i as usize), pr.map(|x| x.j as usize));
         let d = contact::sub(gather3(b.pos, kj), gather3(b.pos, ki));
         let reach = f * (gather1(ki.map(|i| b.rad[i])) + gather1(kj.map(|j| b.rad[j])));
-        // `sphere_sphere::apart`: f² - |d|² < 0
-        let apart = bits((reach * reach - contact::dot(d, d)).lt(F4::splat(0.0)));
+        // `sphere_sphere::apart`: f² - |d|² < 0, |d|² in `math::norm2`'s order
+        let d2 = d[0] * d[0] + (d[1] * d[1] + d[2] * d[2]);
+        let apart = bits((reach * reach - d2).lt(F4::splat(0.0)));
         let mut keep = !apart;
         for (l, &x) in q.iter().enumerate() {
             keep |= ((cs[x].is_real() | (pr[l].img != 0)) as i32) << l;
@@ -283,5 +285,121 @@ mod tests {
             }
         }
         assert!(seen[0] > 100 && seen[1] > 0 && seen[2] > 0, "{seen:?}");
+    }
+
+    /// `kept4`'s decisions against the scalar first pass (`super::super::kept`, `Six::idle`) pair by
+    /// pair: the same on every pair without a shift, a superset on shifted ones. The pairs sit at
+    /// the detection distance (factor 1.25) where |d|² summed as x² + (y² + z²) and as
+    /// (x² + y²) + z² fall on either side of the reach, the ids ordered either way, with periodic
+    /// pairs apart and touching and a few contacts.
+    #[test]
+    fn kept4_keeps_what_the_scalar_pass_keeps() {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("golden/micro_grid/rolling_inc.scene.json");
+        let scene = crate::io::scene_json::load(&path).unwrap().scene;
+        let sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+        let mut cfg = sim.six.clone().expect("rolling contacts");
+        let f = 1.25;
+        cfg.p6.ss.interaction_detection_factor = f;
+        let mut mt = rand_mt::Mt64::new(9);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let (mut pos, mut rad, mut pairs) = (Vec::new(), Vec::new(), Vec::new());
+        let shift = [0.05, 0.0, 0.0];
+        let (mut split, mut tries) = (0, 0);
+        while pairs.len() < 240 {
+            tries += 1;
+            assert!(tries < 10_000_000, "no pair at the rounding edge");
+            let (ri, rj) = (1e-3 * (1.0 + 0.3 * u()), 1e-3 * (1.0 + 0.3 * u()));
+            let xi = [u(), u(), u()];
+            let dir = [u(), u(), u()];
+            let l = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+            let reach = f * (ri + rj);
+            // every fourth pair periodic: body j's image lies at the reach, j itself a period away
+            let img = (pairs.len() % 4 == 3) as u32;
+            let e = 1.0 + 4e-16 * (2.0 * u()).round();
+            let xj: V3 = std::array::from_fn(|c| {
+                xi[c] + dir[c] / l * reach * e - if img == 1 { shift[c] } else { 0.0 }
+            });
+            let d: V3 = std::array::from_fn(|c| (xj[c] + [0.0, shift[c]][img as usize]) - xi[c]);
+            let (eigen, left) = (
+                d[0] * d[0] + (d[1] * d[1] + d[2] * d[2]),
+                (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2],
+            );
+            let edge = (eigen <= reach * reach) != (left <= reach * reach);
+            // half the plain pairs where the two orders disagree, the rest anywhere near the reach
+            if img == 0 && pairs.len() % 2 == 0 && !edge {
+                continue;
+            }
+            split += (img == 0 && edge) as usize;
+            let i = pos.len() as u32;
+            pos.extend([xi, xj]);
+            rad.extend([ri, rj]);
+            pairs.push(Pair { i, j: i + 1, img });
+        }
+        let n = pos.len();
+        // ids in either order within a pair
+        let ids: Vec<u32> = (0..n as u32)
+            .map(|k| if (k / 2) % 3 == 0 { k ^ 1 } else { k })
+            .collect();
+        let m = (0..scene.bodies.len())
+            .find(|&id| scene.bodies.shape[id].sphere_radius().is_some())
+            .map(|id| scene.bodies.material[id] as u32)
+            .unwrap();
+        let (zero, ori) = (vec![[0.0; 3]; n], vec![Quat::IDENTITY; n]);
+        let mat = vec![m; n];
+        let mats = sim.fmats.clone();
+        let b = Bodies6 {
+            pos: &pos,
+            vel: &zero,
+            w: &zero,
+            ori: &ori,
+            rad: &rad,
+            mat: &mat,
+            ids: &ids,
+            shifts: &[[0.0; 3], shift],
+            mats: &mats,
+            dt: 1e-6,
+            iter: 1,
+        };
+        let k = Six { cfg: &cfg, b: &b };
+        // a few contacts: kept whatever their distance
+        let cs: Vec<C6> = (0..pairs.len())
+            .map(|p| {
+                C6((p % 11 == 5).then(|| {
+                    Box::new(six::State6 {
+                        geom: None,
+                        phys: None,
+                        rot: Default::default(),
+                        coh: None,
+                        made_real: 0,
+                    })
+                }))
+            })
+            .collect();
+        let (mut w1, mut w4) = ([0u32; 256], [0u32; 256]);
+        let n1 = super::super::kept(&k, &pairs, &cs, 0..pairs.len(), &mut w1);
+        // SAFETY: AVX2 checked above
+        let n4 = unsafe { kept4(&k, &pairs, &cs, 0..pairs.len(), &mut w4) };
+        let (scalar, lanes) = (&w1[..n1], &w4[..n4]);
+        for (p, pr) in pairs.iter().enumerate() {
+            let (a, b) = (scalar.contains(&(p as u32)), lanes.contains(&(p as u32)));
+            if pr.img == 0 {
+                assert_eq!(a, b, "pair {p}: scalar {a}, lanes {b}");
+            } else {
+                assert!(b || !a, "pair {p}: shifted pair dropped");
+            }
+        }
+        // what the test means to reach was reached: pairs at the rounding edge, plain pairs kept
+        // and dropped, shifted pairs apart
+        let apart = |p: &u32| !scalar.contains(p);
+        let plain = |p: &u32| pairs[*p as usize].img == 0;
+        let all: Vec<u32> = (0..pairs.len() as u32).collect();
+        assert!(split >= 60, "{split}");
+        assert!(all.iter().filter(|p| plain(p) && apart(p)).count() > 20);
+        assert!(all.iter().filter(|p| plain(p) && !apart(p)).count() > 20);
+        assert!(all.iter().filter(|p| !plain(p) && apart(p)).count() > 5);
     }
 }
