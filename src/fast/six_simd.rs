@@ -175,6 +175,15 @@ mod tests {
         q
     }
 
+    /// The rolling golden's scene and its fast run, whose rolling-contact functors the tests use.
+    fn rolling_golden() -> (crate::scene::Scene, FastSim) {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("golden/micro_grid/rolling_inc.scene.json");
+        let scene = crate::io::scene_json::load(&path).unwrap().scene;
+        let sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+        (scene, sim)
+    }
+
     /// rapier's scalar/SIMD parity, to the bit: random rolling-resistance pairs through the scalar
     /// pair loop and the groups of four, three steps in a row (the functors' parameters of the
     /// rolling golden): contacts that stay and turn, that open and are erased, that form; pairs
@@ -186,10 +195,7 @@ mod tests {
         if !std::is_x86_feature_detected!("avx2") {
             return;
         }
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("golden/micro_grid/rolling_inc.scene.json");
-        let scene = crate::io::scene_json::load(&path).unwrap().scene;
-        let sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+        let (scene, sim) = rolling_golden();
         let mut cfg = sim.six.clone().expect("rolling contacts");
         // the incremental form's law does not read the rotations (they are deferred to the
         // write-back): work them out every step here, as the total form does
@@ -297,10 +303,7 @@ mod tests {
         if !std::is_x86_feature_detected!("avx2") {
             return;
         }
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("golden/micro_grid/rolling_inc.scene.json");
-        let scene = crate::io::scene_json::load(&path).unwrap().scene;
-        let sim = FastSim::from_scene(&scene, FastOptions::default()).unwrap();
+        let (scene, sim) = rolling_golden();
         let mut cfg = sim.six.clone().expect("rolling contacts");
         let f = 1.25;
         cfg.p6.ss.interaction_detection_factor = f;
