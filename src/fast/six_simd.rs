@@ -13,6 +13,7 @@ use super::contact_simd::{bits, gather1, gather3, F4};
 use super::six::{self, Stage, C6};
 use super::{Acc, Kernel, Six};
 use crate::geom::six_d::{angle_axis_of, relative_delta, twist_bending, vec_norm, Q};
+use crate::geom::sphere_sphere;
 use crate::math::{Quat, Real, Vec3};
 
 /// The pair loop of one chunk (see `super::chunk_loop`, the scalar one).
@@ -53,8 +54,8 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
 /// a time. A lane keeps its pair when it is a contact, when it has a periodic shift, or when
 /// `sphere_sphere::apart` does not hold for xj - xi. Without a shift that is the scalar test's
 /// decision to the bit: oriented by scene id, the vector is xi + (-0) - xj or xj + 0 - xi, the
-/// same components up to sign (and the sign of a zero), so the same squares, summed in
-/// `math::norm2`'s order (Eigen's x² + (y² + z²): another order can round the other way at the
+/// same components up to sign (and the sign of a zero), so the same squares through the same
+/// test (`sphere_sphere::apart_of`: another order of the sum could round the other way at the
 /// reach and drop a pair that touches). A pair with a shift is kept for the exact test in
 /// `six::geometry`, which leaves a potential pair that does not touch as it was: keeping more
 /// pairs than `idle` would change no result. (AVX2: called from `chunk` only.)
@@ -75,10 +76,8 @@ unsafe fn kept4(
         let pr = q.map(|x| pairs[x]);
         let (ki, kj) = (pr.map(|x| x.i as usize), pr.map(|x| x.j as usize));
         let d = contact::sub(gather3(b.pos, kj), gather3(b.pos, ki));
-        let reach = f * (gather1(ki.map(|i| b.rad[i])) + gather1(kj.map(|j| b.rad[j])));
-        // `sphere_sphere::apart`: f² - |d|² < 0, |d|² in `math::norm2`'s order
-        let d2 = d[0] * d[0] + (d[1] * d[1] + d[2] * d[2]);
-        let apart = bits((reach * reach - d2).lt(F4::splat(0.0)));
+        let (ri, rj) = (gather1(ki.map(|i| b.rad[i])), gather1(kj.map(|j| b.rad[j])));
+        let apart = bits(sphere_sphere::apart_of(f, ri, rj, d));
         let mut keep = !apart;
         for (l, &x) in q.iter().enumerate() {
             keep |= ((cs[x].is_real() | (pr[l].img != 0)) as i32) << l;

@@ -1,7 +1,7 @@
 //! `Ig2_Sphere_Sphere_ScGeom` (pkg/dem/Ig2_Sphere_Sphere_ScGeom.cpp).
 
 use super::{Pair, ScGeom};
-use crate::math::{norm, norm2, Vec3};
+use crate::math::{norm, Real, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
@@ -29,9 +29,16 @@ pub fn within_reach(p: &Params, r1: f64, r2: f64, pos1: &Vec3, pos2: &Vec3, shif
 /// detection distance (NaN: not apart, as `go` goes on).
 #[inline(always)]
 pub fn apart(p: &Params, r1: f64, r2: f64, d: &Vec3) -> bool {
-    let f = p.interaction_detection_factor * (r1 + r2);
-    // pow(x, 2) is x*x in glibc for every finite x
-    f * f - norm2(d) < 0.0
+    apart_of(p.interaction_detection_factor, r1, r2, [d[0], d[1], d[2]])
+}
+
+/// `apart` in any arithmetic of the same operations (`f64`, or four pairs in lanes: the fast
+/// path's first pass, `fast::six_simd`), so every caller decides to the same bit.
+#[inline(always)]
+pub fn apart_of<R: Real>(factor: R, r1: R, r2: R, d: [R; 3]) -> R::Mask {
+    let f = factor * (r1 + r2);
+    // pow(x, 2) is x*x in glibc for every finite x; |d|² in `math::norm2`'s (Eigen's) order
+    (f * f - (d[0] * d[0] + (d[1] * d[1] + d[2] * d[2]))).lt(R::splat(0.0))
 }
 
 /// Returns false (no contact) only for a potential interaction whose spheres do not touch; a real
