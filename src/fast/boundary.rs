@@ -411,13 +411,6 @@ impl Boundaries {
         // periodic: offsets of wrapped positions, brought into (-l/2, l/2] below
         let size = self.cell.as_ref().map(|c| c.size());
         let wrap = |x: f64, a: usize| size.map_or(x, |l| super::contact::wrap_into(x, l[a]));
-        // the slots by wrapped height: a boundary's candidates are a range (two across the period)
-        let mut by_z: Vec<(f64, u32)> = wrapped
-            .iter()
-            .enumerate()
-            .map(|(k, w)| (w[2], k as u32))
-            .collect();
-        by_z.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         let mut cand: Vec<u32> = Vec::new();
         let mut out = Vec::new();
         for (bk, (bd, mut kept)) in self.list.iter().zip(known).enumerate() {
@@ -429,29 +422,43 @@ impl Boundaries {
             let half =
                 Self::reach_box(bd, &rot, rmax, skin) + size.map_or(Vec3::zeros(), |l| l * 1e-12);
             let at: V3 = std::array::from_fn(|a| wrap(bd.pos[a], a));
-            cand.clear();
             let (zlo, zhi) = (at[2] - half[2], at[2] + half[2]);
-            let mut take = |lo: f64, hi: f64| {
-                let a = by_z.partition_point(|e| e.0 < lo);
-                let b = by_z.partition_point(|e| e.0 <= hi);
-                cand.extend(by_z[a..b.max(a)].iter().map(|e| e.1));
-            };
-            match size.map(|l| l[2]) {
-                _ if !half[2].is_finite() => take(f64::NEG_INFINITY, f64::INFINITY),
-                Some(l) if 2.0 * half[2] >= l => take(f64::NEG_INFINITY, f64::INFINITY),
+            let all = (f64::NEG_INFINITY, f64::INFINITY);
+            let mut ranges = [all; 3];
+            let nr = match size.map(|l| l[2]) {
+                _ if !half[2].is_finite() => 1,
+                Some(l) if 2.0 * half[2] >= l => 1,
                 Some(l) => {
-                    take(zlo.max(0.0), zhi.min(l));
+                    ranges[0] = (zlo.max(0.0), zhi.min(l));
+                    let mut m = 1;
                     if zlo < 0.0 {
-                        take(zlo + l, l);
+                        ranges[m] = (zlo + l, l);
+                        m += 1;
                     }
                     if zhi > l {
-                        take(0.0, zhi - l);
+                        ranges[m] = (0.0, zhi - l);
+                        m += 1;
                     }
+                    m
                 }
-                None => take(zlo, zhi),
-            }
-            cand.sort_unstable();
-            cand.dedup();
+                None => {
+                    ranges[0] = (zlo, zhi);
+                    1
+                }
+            };
+            let ranges = &ranges[..nr];
+            // the candidates: the spheres of the list build's cells around the box, ascending,
+            // whose wrapped height is in a range (two across the period; a NaN one in none)
+            cand.clear();
+            l.cells.runs_near(&at, &[half[0], half[1], half[2]], |r| {
+                cand.extend(r.filter_map(|k| {
+                    let z = wrapped[k][2];
+                    ranges
+                        .iter()
+                        .any(|&(lo, hi)| z >= lo && z <= hi)
+                        .then_some(k as u32)
+                }))
+            });
             // in slot order: a real contact kept, else a candidate the box and `near` let through
             kept.sort_unstable_by_key(|c| c.k);
             let mut kept = kept.into_iter().peekable();
@@ -787,7 +794,7 @@ mod tests {
         out
     }
 
-    /// The box and height prefilter of `rebuild` drops no pair that `near` accepts (walls,
+    /// The cell, box and height prefilter of `rebuild` drops no pair that `near` accepts (walls,
     /// rotated boxes, facets of every orientation, open and periodic), and adds none.
     #[test]
     fn rebuild_lists_what_the_walk_over_all_spheres_lists() {
@@ -864,25 +871,29 @@ mod tests {
                 ..Boundaries::default()
             };
             let skin = 0.006;
+            // the spheres in a list build's order, with its cells
+            let built = super::super::neighbors::build(
+                &pos,
+                &rad,
+                periodic.then_some([l[0], l[1], l[2]]),
+                skin,
+                false,
+            );
+            let pos: Vec<V3> = built.order.iter().map(|&o| pos[o as usize]).collect();
+            let rad: Vec<f64> = built.order.iter().map(|&o| rad[o as usize]).collect();
+            let ids: Vec<u32> = built.order.iter().map(|&o| ids[o as usize]).collect();
             let want = brute(&bs, &pos, &rad, skin);
-            let wrapped: Vec<V3> = pos
-                .iter()
-                .map(|x| {
-                    std::array::from_fn(|a| {
-                        bs.cell.as_ref().map_or(x[a], |c| {
-                            super::super::contact::wrap_into(x[a], c.size()[a])
-                        })
-                    })
-                })
-                .collect();
             bs.rebuild(
-                &super::super::Listing::new(&ids, &pos, &wrapped, &rad),
+                &super::super::Listing::new(&ids, &pos, &built.wrapped, &rad, &built.cells),
                 skin,
             );
             let got: Vec<(u32, u32, u32, [i32; 3])> = bs
                 .contacts
                 .iter()
-                .map(|c| (c.b, c.sphere - nb, c.k, c.cd))
+                .map(|c| {
+                    assert_eq!(c.sphere, ids[c.k as usize]);
+                    (c.b, c.k, c.k, c.cd)
+                })
                 .collect();
             assert!(want.len() > 2000, "a test that lists pairs: {}", want.len());
             assert_eq!(got, want, "periodic {}", periodic);

@@ -94,18 +94,26 @@ impl HashGrid {
         self.bins.entry(self.key(x)).or_default().push(k);
     }
 
-    /// Every point in the cells around `x` (each cell once: a periodic axis of fewer than three
-    /// cells wraps onto itself).
-    fn near(&self, x: &Vec3, mut f: impl FnMut(u32)) {
+    /// The cells around `x` along each axis, in `near`'s order (each cell once: a periodic axis of
+    /// fewer than three cells wraps onto itself).
+    fn offsets(&self, x: &Vec3) -> [Vec<i64>; 3] {
         let kc = self.key(x);
-        let offs = |a: usize| -> Vec<i64> {
-            match self.dims[a] {
-                Some((_, n)) if n < 3 => (0..n).collect(),
-                Some((_, n)) => vec![(kc[a] + n - 1) % n, kc[a], (kc[a] + 1) % n],
-                None => vec![kc[a] - 1, kc[a], kc[a] + 1],
-            }
-        };
-        let (ox, oy, oz) = (offs(0), offs(1), offs(2));
+        std::array::from_fn(|a| match self.dims[a] {
+            Some((_, n)) if n < 3 => (0..n).collect(),
+            Some((_, n)) => vec![(kc[a] + n - 1) % n, kc[a], (kc[a] + 1) % n],
+            None => vec![kc[a] - 1, kc[a], kc[a] + 1],
+        })
+    }
+
+    /// A cell key's place in `near`'s order around `x`, per axis (3: not around).
+    fn around(&self, x: &Vec3) -> impl Fn(&[i64; 3]) -> [u8; 3] {
+        let o = self.offsets(x);
+        move |k| std::array::from_fn(|a| o[a].iter().position(|&c| c == k[a]).unwrap_or(3) as u8)
+    }
+
+    /// Every point in the cells around `x`, cell by cell in the order of `offsets`.
+    fn near(&self, x: &Vec3, mut f: impl FnMut(u32)) {
+        let [ox, oy, oz] = self.offsets(x);
         for &x in &ox {
             for &y in &oy {
                 for &z in &oz {
@@ -304,12 +312,11 @@ impl GridPart {
             let mid = self.sub.bodies.pos[gc.node1 as usize] + seg * 0.5;
             let rho = 0.5 * seg.norm() + gc.radius + self.rmax + skin;
             h = h.max(rho);
-            balls.push((c, mid, rho, gc.radius));
+            balls.push((c, mid, rho, gc.radius, seg));
         }
-        let mut spheres = HashGrid::new(h, size);
-        for (k, p) in pos.iter().enumerate() {
-            spheres.add(&v(p), k as u32);
-        }
+        // the bins of a hash grid of cells `h` wide: the order the candidates were listed in before
+        // the list build's cells found them (kept: it is the companion scene's interaction order)
+        let bins = HashGrid::new(h, size);
         let mut want: FxHashSet<(u32, u32)> = FxHashSet::default();
         let iter = self.sub.iter;
         let (bodies, intrs) = (&self.sub.bodies, &mut self.sub.interactions);
@@ -347,41 +354,66 @@ impl GridPart {
             })
         };
         let wrapped = listing.wrapped;
-        for &(c, mid, rho, _) in &balls {
+        let mut near: Vec<([u8; 3], u32, [i32; 3])> = Vec::new();
+        for &(c, mid, rho, _, seg) in &balls {
             let (midw, rho2) = (wrap(&mid), (rho * (1.0 + 1e-9)).powi(2));
-            spheres.near(&mid, |k| {
-                if !in_ball(&v(&wrapped[k as usize]), &midw, size, rho2) {
-                    return;
+            // the spheres in the ball and within reach + skin of the segment, from the list
+            // build's cells around it (a sphere within reach + skin of the segment is inside its
+            // box widened by that much) ...
+            near.clear();
+            let half = (seg.abs() * 0.5).add_scalar(rho - 0.5 * seg.norm()) * (1.0 + 1e-9);
+            let half = [half[0], half[1], half[2]];
+            listing
+                .cells
+                .runs_near(&[midw[0], midw[1], midw[2]], &half, |r| {
+                    for k in r {
+                        if !in_ball(&v(&wrapped[k]), &midw, size, rho2) {
+                            continue;
+                        }
+                        let sid = ids[k];
+                        if !may_collide(
+                            self.masks[sid as usize],
+                            self.masks[c as usize],
+                            self.avoid_self,
+                        ) {
+                            continue;
+                        }
+                        // (body 1 the sphere, shifted back by body 2's period: `sphere_gridco`)
+                        let cd = image(&v(&pos[k]), &mid);
+                        let Some((sp, q, reach)) = crate::geom::grid::sphere_gridco_reach(
+                            bodies,
+                            cell.as_ref(),
+                            sid,
+                            c,
+                            rad[k],
+                            &shift(&cd),
+                        ) else {
+                            continue;
+                        };
+                        if (sp - q).norm() <= reach + skin {
+                            near.push(([0; 3], k as u32, cd));
+                        }
+                    }
+                });
+            // ... listed in the order of `HashGrid::near` on `bins` (cell by cell around the
+            // midpoint's, by slot in a cell); a sphere outside those cells (a rounding at the
+            // ball's edge) was never listed
+            let around = bins.around(&mid);
+            for e in near.iter_mut() {
+                e.0 = around(&bins.key(&v(&pos[e.1 as usize])));
+            }
+            near.sort_unstable();
+            for &(o, k, cd) in &near {
+                if o.iter().all(|&x| x < 3) {
+                    list(ids[k as usize], c, cd);
                 }
-                let sid = ids[k as usize];
-                if !may_collide(
-                    self.masks[sid as usize],
-                    self.masks[c as usize],
-                    self.avoid_self,
-                ) {
-                    return;
-                }
-                // (body 1 the sphere, shifted back by body 2's period: `sphere_gridco`)
-                let cd = image(&v(&pos[k as usize]), &mid);
-                let Some((sp, q, reach)) = crate::geom::grid::sphere_gridco_reach(
-                    bodies,
-                    cell.as_ref(),
-                    sid,
-                    c,
-                    rad[k as usize],
-                    &shift(&cd),
-                ) else {
-                    return;
-                };
-                if (sp - q).norm() <= reach + skin {
-                    list(sid, c, cd);
-                }
-            });
+            }
         }
         if self.conn_conn {
             // connection pairs whose bounding balls (without the sphere radius) come within the
             // skin; two sharing a node never touch (`gridco_gridco`)
-            let ball = |&(_, _, rho, _): &(u32, Vec3, f64, f64)| rho - self.rmax - 0.5 * skin;
+            let ball =
+                |&(_, _, rho, _, _): &(u32, Vec3, f64, f64, Vec3)| rho - self.rmax - 0.5 * skin;
             let hc = 2.0 * balls.iter().map(ball).fold(0.0, f64::max) + skin;
             let mut cg = HashGrid::new(hc.max(f64::MIN_POSITIVE), size);
             for (j, x) in balls.iter().enumerate() {
@@ -536,6 +568,100 @@ impl GridPart {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The rebuild lists, as the companion scene's interactions, exactly the sphere-connection
+    /// pairs within r + R + skin (brute force over every pair and the images around it), with the
+    /// image: 3,000 spheres scattered around and through the open net and the periodic rib (past
+    /// the cell too), after the first build and after a second one. Fails, checked, with the
+    /// candidates' box not widened by the reach, or without the periodic wrap of their cells.
+    #[test]
+    fn rebuild_lists_the_pairs_within_reach_and_skin() {
+        let mut mt = rand_mt::Mt64::new(17);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
+        for (name, r, lo, hi) in [
+            ("net", 0.006, [-0.02, -0.02, -0.03], [0.14, 0.12, 0.09]),
+            (
+                "periodic_rib",
+                0.008,
+                [-0.05, 0.02, 0.02],
+                [0.23, 0.08, 0.08],
+            ),
+        ] {
+            let sf = crate::io::scene_json::load(&dir.join(format!("{name}.scene.json"))).unwrap();
+            let mut scene = sf.scene;
+            let b = &scene.bodies;
+            let conns: Vec<usize> = (0..b.len())
+                .filter(|&i| matches!(b.shape[i], Shape::GridConnection(_)))
+                .collect();
+            let mat = b.material[conns[0]];
+            for _ in 0..3000 {
+                let x = Vec3::from_fn(|a, _| lo[a] + (hi[a] - lo[a]) * u());
+                let rr = r * (0.7 + 0.6 * u());
+                let id = scene
+                    .bodies
+                    .push(crate::utils::sphere(x, rr, mat, 1000.0, false));
+                scene.bodies.mask[id] = scene.bodies.mask[conns[0]];
+            }
+            let mut sim = super::super::FastSim::from_scene(&scene, Default::default()).unwrap();
+            for pass in 0..2 {
+                if pass == 1 {
+                    let known = sim.known_contacts();
+                    sim.rebuild_with(known, false);
+                }
+                let g = sim.grid.as_ref().unwrap();
+                let (sb, cell) = (&g.sub.bodies, g.sub.cell.as_ref());
+                let mut got: Vec<(u32, u32, [i32; 3])> = g
+                    .sub
+                    .interactions
+                    .list
+                    .iter()
+                    .filter(|it| matches!(sb.shape[it.id1 as usize], Shape::Sphere { .. }))
+                    .map(|it| (it.id1, it.id2, it.cell_dist))
+                    .collect();
+                got.sort_unstable();
+                let imgs: Vec<[i32; 3]> = match cell {
+                    Some(_) => (0..27)
+                        .map(|k| [k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1])
+                        .collect(),
+                    None => vec![[0; 3]],
+                };
+                let mut want = Vec::new();
+                for s in 0..sb.len() {
+                    let Shape::Sphere { radius } = sb.shape[s] else {
+                        continue;
+                    };
+                    for &c in &conns {
+                        let Shape::GridConnection(gc) = &sb.shape[c] else {
+                            unreachable!()
+                        };
+                        let seg = crate::geom::grid::segment(gc, sb, cell);
+                        let p1 = sb.pos[gc.node1 as usize];
+                        for cd in &imgs {
+                            let sp = sb.pos[s] - cell.map_or(Vec3::zeros(), |cl| cl.shift_pos(cd));
+                            let t = ((sp - p1).dot(&seg) / seg.norm_squared()).clamp(0.0, 1.0);
+                            if (sp - (p1 + seg * t)).norm() <= radius + gc.radius + sim.skin {
+                                want.push((s as u32, c as u32, *cd));
+                            }
+                        }
+                    }
+                }
+                want.sort_unstable();
+                assert!(
+                    want.len() > 300,
+                    "{name}: a test that lists pairs ({})",
+                    want.len()
+                );
+                assert_eq!(got, want, "{name}, build {pass}");
+                // the spheres move before the second build
+                for k in 0..sim.pos.len() {
+                    for a in 0..3 {
+                        sim.pos[k][a] += 0.3 * r * (u() - 0.5);
+                    }
+                }
+            }
+        }
+    }
 
     /// `in_ball` on wrapped positions agrees with the distance to the nearest image (YADE's rounded
     /// period) for points anywhere, many periods away included.

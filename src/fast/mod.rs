@@ -153,10 +153,18 @@ pub(super) struct Listing<'a> {
     /// `pos` wrapped into the periodic cell (`neighbors::Built::wrapped`).
     pub wrapped: &'a [V3],
     pub rad: &'a [f64],
+    /// The list build's cells (`neighbors::Built::cells`).
+    pub cells: &'a neighbors::Cells,
 }
 
 impl<'a> Listing<'a> {
-    pub fn new(ids: &'a [u32], pos: &'a [V3], wrapped: &'a [V3], rad: &'a [f64]) -> Listing<'a> {
+    pub fn new(
+        ids: &'a [u32],
+        pos: &'a [V3],
+        wrapped: &'a [V3],
+        rad: &'a [f64],
+        cells: &'a neighbors::Cells,
+    ) -> Listing<'a> {
         let mut slot = vec![u32::MAX; ids.iter().map(|&id| id as usize + 1).max().unwrap_or(0)];
         for (k, &id) in ids.iter().enumerate() {
             slot[id as usize] = k as u32;
@@ -167,6 +175,7 @@ impl<'a> Listing<'a> {
             pos,
             wrapped,
             rad,
+            cells,
         }
     }
 
@@ -1036,7 +1045,13 @@ impl FastSim {
                 self.pairs.iter().map(state).collect()
             };
         }
-        let listing = Listing::new(&self.ids, &self.pos, &built.wrapped, &self.radius);
+        let listing = Listing::new(
+            &self.ids,
+            &self.pos,
+            &built.wrapped,
+            &self.radius,
+            &built.cells,
+        );
         self.bnd.rebuild(&listing, self.skin);
         if let Some(g) = &mut self.grid {
             g.rebuild(&listing, self.skin);

@@ -124,6 +124,76 @@ pub struct Built {
     pub shift_cells: Vec<[i32; 3]>,
     /// The positions in the new order, wrapped into the periodic cell (as given without one).
     pub wrapped: Vec<V3>,
+    /// The cell list of the new order.
+    pub cells: Cells,
+}
+
+/// The cell list of a build: the bodies are numbered in cell order, so the bodies of cell `c` are
+/// `start[c]..start[c + 1]` (positions wrapped into the periodic cell, clamped into the grid).
+pub struct Cells {
+    grid: Grid,
+    start: Vec<usize>,
+}
+
+impl Cells {
+    /// The cells along axis `k` that may hold a body within `half` of `at` on that axis (nearest
+    /// image on a periodic axis): the cells of `at - half` to `at + half`, the interval widened by
+    /// far more than the rounding of wrapped positions and offsets; as two ascending, disjoint
+    /// ranges (the second one past the period's end, where a periodic span wraps).
+    fn span(&self, k: usize, at: f64, half: f64) -> [std::ops::Range<usize>; 2] {
+        let g = &self.grid;
+        let n = g.nc[k];
+        let idx = |x: f64| ((x - g.origin[k]) * g.inv_cs[k]).floor();
+        let eps = 1e-9 * (half + at.abs() + g.origin[k].abs() + 1.0 / g.inv_cs[k]);
+        let (lo, hi) = (idx(at - half - eps), idx(at + half + eps));
+        if !(lo.is_finite() && hi.is_finite()) || (g.period.is_some() && hi - lo + 1.0 >= n as f64)
+        {
+            return [0..n, n..n];
+        }
+        if g.period.is_some() {
+            // fewer than n cells: lo..=hi shifted into the period wraps at most once
+            let (lo, hi) = (lo as i64, hi as i64);
+            let (a, b) = (
+                lo.rem_euclid(n as i64) as usize,
+                hi.rem_euclid(n as i64) as usize,
+            );
+            if a <= b {
+                [a..b + 1, n..n]
+            } else {
+                [0..b + 1, a..n]
+            }
+        } else {
+            let clamp = |x: f64| if x > 0.0 { (x as usize).min(n - 1) } else { 0 };
+            [clamp(lo)..clamp(hi) + 1, n..n]
+        }
+    }
+
+    /// Calls `f` with ascending, disjoint runs of bodies that hold every body whose wrapped position
+    /// is within `half[k]` of `at[k]` on each axis k (nearest image on a periodic axis; an
+    /// infinite `half` takes the whole axis).
+    pub fn runs_near(&self, at: &V3, half: &V3, mut f: impl FnMut(std::ops::Range<usize>)) {
+        let [sx, sy, sz] = std::array::from_fn(|k| self.span(k, at[k], half[k]));
+        let mut run: Option<(usize, usize)> = None;
+        for x in sx.into_iter().flatten() {
+            for y in sy.iter().cloned().flatten() {
+                for z in sz.iter().cloned().flatten() {
+                    let c = self.grid.linear([x, y, z]);
+                    match &mut run {
+                        Some(r) if r.1 == c => r.1 = c + 1,
+                        _ => {
+                            if let Some((c0, c1)) = run {
+                                f(self.start[c0]..self.start[c1]);
+                            }
+                            run = Some((c, c + 1));
+                        }
+                    }
+                }
+            }
+        }
+        if let Some((c0, c1)) = run {
+            f(self.start[c0]..self.start[c1]);
+        }
+    }
 }
 
 /// Sort the bodies by cell and list every pair closer than `r_i + r_j + skin` (minimum image in a
@@ -162,65 +232,87 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
     let search = |b: usize| -> Vec<(Pair, [i32; 3])> {
         let mut out = Vec::with_capacity(BLOCK * 8);
         // the neighbour cells of the current body's cell that hold later bodies (the bodies are
-        // numbered in cell order: cells before its own hold only earlier ones), ascending
-        let mut neigh: Vec<usize> = Vec::with_capacity(27);
+        // numbered in cell order: cells before its own hold only earlier ones), ascending, and
+        // merged into runs of consecutive cells (the bodies of a run are consecutive)
+        let mut runs: Vec<(usize, usize)> = Vec::with_capacity(27);
+        let mut near: Vec<u32> = Vec::new();
         let mut neigh_of = usize::MAX;
         for ni in b * BLOCK..((b + 1) * BLOCK).min(n) {
             let i = order[ni] as usize;
             let own = cells[i];
             if own != neigh_of {
                 let c = grid.cell_of(&wrapped[i]);
-                neigh.clear();
-                let (ax, mx) = grid.around(0, c[0]);
-                let (ay, my) = grid.around(1, c[1]);
-                let (az, mz) = grid.around(2, c[2]);
+                runs.clear();
+                let (mut ax, mx) = grid.around(0, c[0]);
+                let (mut ay, my) = grid.around(1, c[1]);
+                let (mut az, mz) = grid.around(2, c[2]);
+                // (each axis ascending: the linear indices then come out ascending)
+                ax[..mx].sort_unstable();
+                ay[..my].sort_unstable();
+                az[..mz].sort_unstable();
                 for &x in &ax[..mx] {
                     for &y in &ay[..my] {
                         for &z in &az[..mz] {
                             let cell = grid.linear([x, y, z]);
-                            if cell >= own {
-                                neigh.push(cell);
+                            if cell < own {
+                                continue;
+                            }
+                            match runs.last_mut() {
+                                Some(r) if r.1 == cell => r.1 = cell + 1,
+                                _ => runs.push((cell, cell + 1)),
                             }
                         }
                     }
                 }
-                neigh.sort_unstable();
                 neigh_of = own;
             }
-            for &cell in &neigh {
-                // (in its own cell, the bodies after it)
-                let from = if cell == own { ni + 1 } else { start[cell] };
-                for nj in from..start[cell + 1] {
-                    let (wi, wj) = (&ws[ni], &ws[nj]);
-                    let mut d = [wj[0] - wi[0], wj[1] - wi[1], wj[2] - wi[2]];
-                    if let Some(l) = period {
-                        // minimum image of the wrapped difference (|d| < l). At |d| = l/2 either
-                        // image is beyond reach (refused: 2 rmax + skin < l/2), so the plain
-                        // comparison lists the pairs a rounding of d/l would
-                        for k in 0..3 {
-                            d[k] = super::contact::nearest_image(d[k], l[k]);
-                        }
+            // the distance test over the runs (no branch on its outcome: the bodies within reach
+            // are written to `near` and counted), then the listed pairs' periods
+            let minimum_image = |wi: &V3, wj: &V3| {
+                let mut d = [wj[0] - wi[0], wj[1] - wi[1], wj[2] - wi[2]];
+                if let Some(l) = period {
+                    // minimum image of the wrapped difference (|d| < l). At |d| = l/2 either
+                    // image is beyond reach (refused: 2 rmax + skin < l/2), so the plain
+                    // comparison lists the pairs a rounding of d/l would
+                    for k in 0..3 {
+                        d[k] = super::contact::nearest_image(d[k], l[k]);
                     }
-                    let lim = rs[ni] + rs[nj] + skin;
-                    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim {
-                        continue;
-                    }
-                    // the period of the unwrapped difference, for the pairs listed
-                    let mut cd = [0i32; 3];
-                    if let Some(l) = period {
-                        let j = order[nj] as usize;
-                        for k in 0..3 {
-                            let s = d[k] - (pos[j][k] - pos[i][k]);
-                            cd[k] = (s / l[k]).round() as i32;
-                        }
-                    }
-                    let pair = Pair {
-                        i: ni as u32,
-                        j: nj as u32,
-                        img: 0,
-                    };
-                    out.push((pair, cd));
                 }
+                d
+            };
+            let mut m = 0;
+            for &(c0, c1) in &runs {
+                // (in its own cell, the first of the first run, the bodies after it)
+                let from = if c0 == own { ni + 1 } else { start[c0] };
+                let to = start[c1];
+                if near.len() < m + (to - from) {
+                    near.resize(m + (to - from), 0);
+                }
+                for nj in from..to {
+                    let d = minimum_image(&ws[ni], &ws[nj]);
+                    let lim = rs[ni] + rs[nj] + skin;
+                    near[m] = nj as u32;
+                    m += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= lim * lim) as usize;
+                }
+            }
+            for &nj in &near[..m] {
+                let nj = nj as usize;
+                // the period of the unwrapped difference
+                let mut cd = [0i32; 3];
+                if let Some(l) = period {
+                    let d = minimum_image(&ws[ni], &ws[nj]);
+                    let j = order[nj] as usize;
+                    for k in 0..3 {
+                        let s = d[k] - (pos[j][k] - pos[i][k]);
+                        cd[k] = (s / l[k]).round() as i32;
+                    }
+                }
+                let pair = Pair {
+                    i: ni as u32,
+                    j: nj as u32,
+                    img: 0,
+                };
+                out.push((pair, cd));
             }
         }
         out
@@ -257,12 +349,82 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
         shifts,
         shift_cells,
         wrapped: ws,
+        cells: Cells { grid, start },
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `Cells::runs_near` holds every body within the box (nearest image on a periodic axis), in
+    /// ascending, disjoint runs: boxes of every size, centred anywhere (past the cell, at its
+    /// faces, far away), an infinite one, open and periodic, grids of one or two cells per axis.
+    /// Fails, checked, with the two ranges of a wrapped span swapped, or periodic axes taken as open.
+    #[test]
+    fn runs_near_holds_every_body_in_the_box() {
+        let mut mt = rand_mt::Mt64::new(21);
+        let mut rnd = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        for (l, period) in [
+            ([1.0, 0.8, 1.3], true),
+            ([1.0, 0.8, 1.3], false),
+            ([0.09, 0.13, 1.3], true),
+        ] {
+            let n = 3000;
+            // (every third body on a cell boundary of the periodic grid: cells of l / nc)
+            let nc = l.map(|x| (x / 0.045f64).floor().min(128.0));
+            let pos: Vec<V3> = (0..n)
+                .map(|i| {
+                    std::array::from_fn(|k| match i % 3 {
+                        0 => (nc[k] * rnd()).floor() * (l[k] / nc[k]),
+                        _ => l[k] * (1.4 * rnd() - 0.2),
+                    })
+                })
+                .collect();
+            let radius = vec![0.02; n];
+            let b = build(&pos, &radius, period.then_some(l), 0.005, false);
+            let mut seen = 0;
+            for t in 0..600 {
+                let mut half: V3 = std::array::from_fn(|_| 0.02 + 0.2 * rnd());
+                // (a box with a body on one of its faces)
+                let w = b.wrapped[(n as f64 * rnd()) as usize];
+                let at: V3 = std::array::from_fn(|k| match t % 4 {
+                    0 => l[k] * (1.6 * rnd() - 0.3),
+                    1 => [0.0, l[k], -3.0 * l[k]][(3.0 * rnd()) as usize],
+                    2 => [w[k] - half[k], w[k] + half[k]][t / 4 % 2],
+                    _ => l[k] * 7.3,
+                });
+                if t % 50 == 5 {
+                    half[t % 3] = f64::INFINITY;
+                }
+                let mut got = vec![false; n];
+                let mut last = 0;
+                b.cells.runs_near(&at, &half, |r| {
+                    assert!(r.start >= last, "ascending, disjoint");
+                    last = r.end;
+                    for k in r {
+                        got[k] = true;
+                    }
+                });
+                for (k, w) in b.wrapped.iter().enumerate() {
+                    let inside = (0..3).all(|a| {
+                        let d = w[a] - at[a];
+                        let d = if period {
+                            d - l[a] * (d / l[a]).round()
+                        } else {
+                            d
+                        };
+                        d.abs() <= half[a]
+                    });
+                    if inside {
+                        seen += 1;
+                        assert!(got[k], "body {k} at {w:?}, box {at:?} +- {half:?}");
+                    }
+                }
+            }
+            assert!(seen > 1000, "{seen}");
+        }
+    }
 
     /// Every pair closer than r_i + r_j + skin is listed once, with the right image, whatever the
     /// grid (brute force over the 27 images).
