@@ -88,7 +88,7 @@ unsafe fn motion4(
     v: &mut [V3],
     w: &mut [V3],
     x_ref: &[V3],
-) -> [f64; 4] {
+) -> __m256d {
     let im = _mm256_set_pd(b[3].inv_mass, b[2].inv_mass, b[1].inv_mass, b[0].inv_mass);
     let ii = |k: usize| {
         _mm256_set_pd(
@@ -165,9 +165,7 @@ unsafe fn motion4(
     store(&vv, v);
     store(&wv, w);
     store(&xv, x);
-    let mut out = [0.0; 4];
-    _mm256_storeu_pd(out.as_mut_ptr(), d2);
-    out
+    d2
 }
 
 /// `newton::turn` for four bodies; false (nothing written) when a lane's rotation is beyond the
@@ -239,12 +237,18 @@ unsafe fn turn4(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
     let e = sb(n2, splat(1.0));
     let near = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_andnot_pd(splat(-0.0), e), splat(1e-8));
     let pos = _mm256_cmp_pd::<_CMP_GT_OQ>(n2, _mm256_setzero_pd());
-    let far = _mm256_blendv_pd(
-        splat(1.0),
-        _mm256_div_pd(splat(1.0), _mm256_sqrt_pd(n2)),
-        pos,
-    );
-    let inv = _mm256_blendv_pd(far, sb(splat(1.0), m(splat(0.5), e)), near);
+    let newton = sb(splat(1.0), m(splat(0.5), e));
+    // (the square root and division only when a lane needs them)
+    let inv = if _mm256_movemask_pd(near) == 0b1111 {
+        newton
+    } else {
+        let far = _mm256_blendv_pd(
+            splat(1.0),
+            _mm256_div_pd(splat(1.0), _mm256_sqrt_pd(n2)),
+            pos,
+        );
+        _mm256_blendv_pd(far, newton, near)
+    };
     let (ow, ox, oy, oz) = (m(qw, inv), m(qx, inv), m(qy, inv), m(qz, inv));
     let (t0, t1) = (_mm256_unpacklo_pd(ow, ox), _mm256_unpackhi_pd(ow, ox));
     let (t2, t3) = (_mm256_unpacklo_pd(oy, oz), _mm256_unpackhi_pd(oy, oz));
@@ -274,6 +278,9 @@ pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
     } = r;
     let n = x.len();
     let mut md: f64 = 0.0;
+    // the lanes' largest squared displacements (maxpd returns its second operand where the
+    // first is NaN: a NaN is passed over, as f64::max does; the squares are never -0)
+    let mut mdv = _mm256_setzero_pd();
     let mut k = 0;
     while k < n {
         let e = (k + 4).min(n);
@@ -289,9 +296,7 @@ pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
                 &mut w[r.clone()],
                 &x_ref[r.clone()],
             );
-            for dl in d {
-                md = md.max(dl);
-            }
+            mdv = _mm256_max_pd(d, mdv);
             if !turn4(cfg.dt, &w[r.clone()], &mut q[r.clone()]) {
                 for j in r {
                     newton::turn(cfg.dt, &w[j], &mut q[j]);
@@ -308,7 +313,9 @@ pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
         }
         k = e;
     }
-    md
+    let mut l = [0.0; 4];
+    _mm256_storeu_pd(l.as_mut_ptr(), mdv);
+    l.into_iter().fold(md, f64::max)
 }
 
 #[cfg(test)]
