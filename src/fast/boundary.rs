@@ -448,7 +448,8 @@ impl Boundaries {
             };
             let ranges = &ranges[..nr];
             // the candidates: the spheres of the list build's cells around the box, ascending,
-            // whose wrapped height is in a range (two across the period; a NaN one in none)
+            // whose wrapped height is in a range (two across the period; a NaN one in none): the
+            // height filter of the sort this replaced, so that the candidates are the same
             cand.clear();
             l.cells.runs_near(&at, &[half[0], half[1], half[2]], |r| {
                 cand.extend(r.filter_map(|k| {
@@ -772,7 +773,7 @@ mod tests {
         );
     }
 
-    /// The walk over every sphere that `rebuild` replaced: (boundary, sphere, slot, period) of
+    /// The walk over every sphere that `rebuild` replaced: (boundary, slot, slot, period) of
     /// each pair `near` accepts.
     fn brute(
         bs: &Boundaries,

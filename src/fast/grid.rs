@@ -7,7 +7,7 @@
 //! (`Scene::interaction_loop`) on a companion scene that holds the same bodies but only the grid's
 //! interactions: every formula, the hand-over and its shared objects are the Scene's code. What is
 //! the fast path's: the candidate sphere-connection pairs are listed at each Verlet rebuild (a
-//! sphere within `r + R + skin` of a connection, found through a hash grid), the states of the
+//! sphere within `r + R + skin` of a connection, from the list build's cells), the states of the
 //! bodies involved are copied in before each step's grid loop and the loads added to the fast
 //! path's sums after it; the nodes are integrated by the fast path's integrator. The grid is small
 //! next to the packing (the study's full r05 G: 120 nodes, 360 connections, 3,837 spheres), so it
@@ -314,9 +314,9 @@ impl GridPart {
             h = h.max(rho);
             balls.push((c, mid, rho, gc.radius, seg));
         }
-        // the bins of a hash grid of cells `h` wide: the order the candidates were listed in before
-        // the list build's cells found them (kept: it is the companion scene's interaction order)
-        let bins = HashGrid::new(h, size);
+        // the visit order of a hash grid of cells `h` wide, which listed the candidates before the
+        // list build's cells did: kept, it is the companion scene's interaction order
+        let order_grid = HashGrid::new(h, size);
         let mut want: FxHashSet<(u32, u32)> = FxHashSet::default();
         let iter = self.sub.iter;
         let (bodies, intrs) = (&self.sub.bodies, &mut self.sub.interactions);
@@ -395,12 +395,12 @@ impl GridPart {
                         }
                     }
                 });
-            // ... listed in the order of `HashGrid::near` on `bins` (cell by cell around the
+            // ... listed in the order of `HashGrid::near` on `order_grid` (cell by cell around the
             // midpoint's, by slot in a cell); a sphere outside those cells (a rounding at the
             // ball's edge) was never listed
-            let around = bins.around(&mid);
+            let around = order_grid.around(&mid);
             for e in near.iter_mut() {
-                e.0 = around(&bins.key(&v(&pos[e.1 as usize])));
+                e.0 = around(&order_grid.key(&v(&pos[e.1 as usize])));
             }
             near.sort_unstable();
             for &(o, k, cd) in &near {
@@ -572,8 +572,10 @@ mod tests {
     /// The rebuild lists, as the companion scene's interactions, exactly the sphere-connection
     /// pairs within r + R + skin (brute force over every pair and the images around it), with the
     /// image: 3,000 spheres scattered around and through the open net and the periodic rib (past
-    /// the cell too), after the first build and after a second one. Fails, checked, with the
-    /// candidates' box not widened by the reach, or without the periodic wrap of their cells.
+    /// the cell too), after the first build and after a second one; after the first, in the
+    /// order a hash grid of every sphere visits them (the companion scene's interaction order).
+    /// Fails, checked, with the candidates' box not widened by the reach, without the periodic
+    /// wrap of their cells, or in slot order.
     #[test]
     fn rebuild_lists_the_pairs_within_reach_and_skin() {
         let mut mt = rand_mt::Mt64::new(17);
@@ -653,6 +655,72 @@ mod tests {
                     want.len()
                 );
                 assert_eq!(got, want, "{name}, build {pass}");
+                if pass == 0 {
+                    // the order of the new ones: a hash grid of every sphere visited around each
+                    // connection's midpoint (as the rebuild once did), connection by connection
+                    let size = cell.map(|c| c.size());
+                    let wrap = |x: &Vec3| {
+                        size.map_or(*x, |l| {
+                            Vec3::from_fn(|a, _| super::super::contact::wrap_into(x[a], l[a]))
+                        })
+                    };
+                    let ball = |c: u32| {
+                        let Shape::GridConnection(gc) = &sb.shape[c as usize] else {
+                            unreachable!()
+                        };
+                        let seg = crate::geom::grid::segment(gc, sb, cell);
+                        let rho = 0.5 * seg.norm() + gc.radius + g.rmax + sim.skin;
+                        (sb.pos[gc.node1 as usize] + seg * 0.5, rho)
+                    };
+                    let h = g.conns.iter().map(|&c| ball(c).1).fold(0.0, f64::max);
+                    let mut hg = HashGrid::new(h, size);
+                    for (k, p) in sim.pos.iter().enumerate() {
+                        hg.add(&v(p), k as u32);
+                    }
+                    let old = |it: &(u32, u32)| scene.interactions.find(it.0, it.1).is_some();
+                    let mut seq = Vec::new();
+                    for &c in &g.conns {
+                        let (mid, rho) = ball(c);
+                        hg.near(&mid, |k| {
+                            let (k, sid) = (k as usize, sim.ids[k as usize]);
+                            let r2 = (rho * (1.0 + 1e-9)).powi(2);
+                            if !in_ball(&wrap(&v(&sim.pos[k])), &wrap(&mid), size, r2) {
+                                return;
+                            }
+                            let cd: [i32; 3] = match size {
+                                Some(l) => std::array::from_fn(|a| {
+                                    ((sim.pos[k][a] - mid[a]) / l[a]).round() as i32
+                                }),
+                                None => [0; 3],
+                            };
+                            let shift = cell.map_or(Vec3::zeros(), |cl| cl.shift_pos(&cd));
+                            let (sp, q, reach) = crate::geom::grid::sphere_gridco_reach(
+                                sb,
+                                cell,
+                                sid,
+                                c,
+                                sim.radius[k],
+                                &shift,
+                            )
+                            .unwrap();
+                            if (sp - q).norm() <= reach + sim.skin {
+                                seq.push((sid, c));
+                            }
+                        });
+                    }
+                    seq.retain(|p| !old(p));
+                    let mut listed: Vec<(u32, u32)> = g
+                        .sub
+                        .interactions
+                        .list
+                        .iter()
+                        .filter(|it| matches!(sb.shape[it.id1 as usize], Shape::Sphere { .. }))
+                        .map(|it| (it.id1, it.id2))
+                        .collect();
+                    listed.retain(|p| !old(p));
+                    assert!(seq.len() > 300, "{name}: {}", seq.len());
+                    assert_eq!(listed, seq, "{name}: the listing order");
+                }
                 // the spheres move before the second build
                 for k in 0..sim.pos.len() {
                     for a in 0..3 {

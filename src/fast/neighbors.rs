@@ -139,7 +139,7 @@ impl Cells {
     /// The cells along axis `k` that may hold a body within `half` of `at` on that axis (nearest
     /// image on a periodic axis): the cells of `at - half` to `at + half`, the interval widened by
     /// far more than the rounding of wrapped positions and offsets; as two ascending, disjoint
-    /// ranges (the second one past the period's end, where a periodic span wraps).
+    /// ranges (wrapped: `0..=b`, then `a..n`).
     fn span(&self, k: usize, at: f64, half: f64) -> [std::ops::Range<usize>; 2] {
         let g = &self.grid;
         let n = g.nc[k];
@@ -282,7 +282,7 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
             };
             let mut m = 0;
             for &(c0, c1) in &runs {
-                // (in its own cell, the first of the first run, the bodies after it)
+                // (its own cell starts the first run: only the bodies after it)
                 let from = if c0 == own { ni + 1 } else { start[c0] };
                 let to = start[c1];
                 if near.len() < m + (to - from) {
@@ -292,7 +292,9 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
                     let d = minimum_image(&ws[ni], &ws[nj]);
                     let lim = rs[ni] + rs[nj] + skin;
                     near[m] = nj as u32;
-                    m += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= lim * lim) as usize;
+                    // (not beyond reach: a NaN distance is listed, as the kernel meets it)
+                    let beyond = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim;
+                    m += !beyond as usize;
                 }
             }
             for &nj in &near[..m] {
@@ -423,6 +425,19 @@ mod tests {
                 }
             }
             assert!(seen > 1000, "{seen}");
+        }
+    }
+
+    /// A body at a NaN position is listed with the bodies of the cells around its cell (a NaN
+    /// distance is not beyond reach: the kernel then meets it, as it met it before the distance
+    /// test was branch-free). Fails, checked, with the test written as `d² <= lim²`.
+    #[test]
+    fn a_nan_position_is_listed_with_its_neighbours() {
+        for period in [None, Some([1.0, 1.0, 1.0])] {
+            let mut pos: Vec<V3> = (0..4).map(|i| [0.001 * i as f64, 0.0, 0.0]).collect();
+            pos[2] = [f64::NAN, 0.0, 0.0];
+            let b = build(&pos, &[0.01; 4], period, 0.001, false);
+            assert_eq!(b.pairs.len(), 6, "{period:?}");
         }
     }
 
