@@ -312,7 +312,7 @@ impl GridPart {
             let mid = self.sub.bodies.pos[gc.node1 as usize] + seg * 0.5;
             let rho = 0.5 * seg.norm() + gc.radius + self.rmax + skin;
             h = h.max(rho);
-            balls.push((c, mid, rho, gc.radius, seg));
+            balls.push((c, mid, rho, seg));
         }
         // the visit order of a hash grid of cells `h` wide, which listed the candidates before the
         // list build's cells did: kept, it is the companion scene's interaction order
@@ -355,7 +355,7 @@ impl GridPart {
         };
         let wrapped = listing.wrapped;
         let mut near: Vec<([u8; 3], u32, [i32; 3])> = Vec::new();
-        for &(c, mid, rho, _, seg) in &balls {
+        for &(c, mid, rho, seg) in &balls {
             let (midw, rho2) = (wrap(&mid), (rho * (1.0 + 1e-9)).powi(2));
             // the spheres in the ball and within reach + skin of the segment, from the list
             // build's cells around it (a sphere within reach + skin of the segment is inside its
@@ -412,8 +412,7 @@ impl GridPart {
         if self.conn_conn {
             // connection pairs whose bounding balls (without the sphere radius) come within the
             // skin; two sharing a node never touch (`gridco_gridco`)
-            let ball =
-                |&(_, _, rho, _, _): &(u32, Vec3, f64, f64, Vec3)| rho - self.rmax - 0.5 * skin;
+            let ball = |&(_, _, rho, _): &(u32, Vec3, f64, Vec3)| rho - self.rmax - 0.5 * skin;
             let hc = 2.0 * balls.iter().map(ball).fold(0.0, f64::max) + skin;
             let mut cg = HashGrid::new(hc.max(f64::MIN_POSITIVE), size);
             for (j, x) in balls.iter().enumerate() {

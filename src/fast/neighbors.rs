@@ -173,26 +173,26 @@ impl Cells {
     /// infinite `half` takes the whole axis).
     pub fn runs_near(&self, at: &V3, half: &V3, mut f: impl FnMut(std::ops::Range<usize>)) {
         let [sx, sy, sz] = std::array::from_fn(|k| self.span(k, at[k], half[k]));
-        let mut run: Option<(usize, usize)> = None;
+        let mut runs = Vec::with_capacity(9);
         for x in sx.into_iter().flatten() {
             for y in sy.iter().cloned().flatten() {
                 for z in sz.iter().cloned().flatten() {
-                    let c = self.grid.linear([x, y, z]);
-                    match &mut run {
-                        Some(r) if r.1 == c => r.1 = c + 1,
-                        _ => {
-                            if let Some((c0, c1)) = run {
-                                f(self.start[c0]..self.start[c1]);
-                            }
-                            run = Some((c, c + 1));
-                        }
-                    }
+                    add_cell(&mut runs, self.grid.linear([x, y, z]));
                 }
             }
         }
-        if let Some((c0, c1)) = run {
+        for (c0, c1) in runs {
             f(self.start[c0]..self.start[c1]);
         }
+    }
+}
+
+/// Cell `c` (past the last run's cells) added to the runs of consecutive cells.
+#[inline]
+fn add_cell(runs: &mut Vec<(usize, usize)>, c: usize) {
+    match runs.last_mut() {
+        Some(r) if r.1 == c => r.1 = c + 1,
+        _ => runs.push((c, c + 1)),
     }
 }
 
@@ -254,12 +254,8 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
                     for &y in &ay[..my] {
                         for &z in &az[..mz] {
                             let cell = grid.linear([x, y, z]);
-                            if cell < own {
-                                continue;
-                            }
-                            match runs.last_mut() {
-                                Some(r) if r.1 == cell => r.1 = cell + 1,
-                                _ => runs.push((cell, cell + 1)),
+                            if cell >= own {
+                                add_cell(&mut runs, cell);
                             }
                         }
                     }
