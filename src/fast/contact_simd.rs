@@ -121,10 +121,11 @@ unsafe fn lanes(x: F4) -> [f64; 4] {
     a
 }
 
-/// Element `k[l]` of `a` in lane l, for each of the three components.
+/// Element `k[l]` of `a` in lane l, for each of the three components. Safety: AVX2, and every
+/// `k[l] < a.len()` (not checked: the checks were 7 % of the pair loop).
 #[inline(always)]
 pub(super) unsafe fn gather3(a: &[V3], k: [usize; 4]) -> [F4; 3] {
-    gather_refs([&a[k[0]], &a[k[1]], &a[k[2]], &a[k[3]]])
+    gather_refs(k.map(|q| a.get_unchecked(q)))
 }
 
 /// Vector `e[l]` in lane l, for each of the three components.
@@ -165,6 +166,11 @@ pub(super) unsafe fn bits(m: __m256d) -> i32 {
 /// pass over a block of pairs keeps those that are contacts or touch (the scalar kernel's test,
 /// in lanes); the second runs the formula on them four at a time. The pairs left over at the end
 /// go through the scalar kernel.
+///
+/// # Safety
+/// The CPU has AVX2, and every pair's bodies and shift are in `v`: `i` and `j` below the length
+/// of `v.pos`, `v.vel`, `v.w` and `v.rad`, `img` below that of `v.shifts` (the lanes read them
+/// unchecked; `chunk_forces` holds the caller to it).
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     const BLOCK: usize = 256;
@@ -188,7 +194,8 @@ pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Ac
             let idle = _mm256_andnot_pd(g.active(q), contact::apart(x.d2, x.rs));
             let m = !bits(idle);
             for (l, &w) in q.iter().enumerate() {
-                work[nw] = w;
+                // SAFETY: nw < BLOCK + 4 (fewer than 4 carried over, at most BLOCK added)
+                *work.get_unchecked_mut(nw) = w;
                 nw += ((m >> l) & 1) as usize;
             }
             p += 4;
@@ -243,7 +250,7 @@ impl Group<'_, '_> {
     /// Which of pairs `k` are contacts, as a lane mask.
     #[inline(always)]
     unsafe fn active(&self, k: [usize; 4]) -> __m256d {
-        let a = k.map(|q| -(self.cs[q].active as i64));
+        let a = k.map(|q| -(self.cs.get_unchecked(q).active as i64));
         _mm256_castsi256_pd(_mm256_set_epi64x(a[3], a[2], a[1], a[0]))
     }
 
@@ -252,14 +259,17 @@ impl Group<'_, '_> {
     #[inline(always)]
     unsafe fn geometry(&self, k: [usize; 4]) -> Geometry {
         let v = self.v;
-        let pr = k.map(|q| self.pairs[q]);
+        let pr = k.map(|q| *self.pairs.get_unchecked(q));
         let (ki, kj) = (pr.map(|q| q.i as usize), pr.map(|q| q.j as usize));
         let xi = gather3(v.pos, ki);
         let xj = contact::add(
             gather3(v.pos, kj),
             gather3(v.shifts, pr.map(|q| q.img as usize)),
         );
-        let (ri, rj) = (gather1(ki.map(|i| v.rad[i])), gather1(kj.map(|j| v.rad[j])));
+        let (ri, rj) = (
+            gather1(ki.map(|i| *v.rad.get_unchecked(i))),
+            gather1(kj.map(|j| *v.rad.get_unchecked(j))),
+        );
         let (d, d2, rs) = contact::separation(xi, xj, ri, rj);
         Geometry {
             pr,
@@ -296,7 +306,7 @@ impl Group<'_, '_> {
                 );
             }
         }
-        let c = k.map(|q| &self.cs[q]);
+        let c = k.map(|q| self.cs.get_unchecked(q));
         let s = Touch {
             n0: gather_refs(c.map(|c| &c.normal)),
             fs: gather_refs(c.map(|c| &c.fs)),
@@ -330,7 +340,7 @@ impl Group<'_, '_> {
             o.load.tj.map(|x| lanes(x)),
         );
         for l in 0..4 {
-            let c = &mut self.cs[k[l]];
+            let c = self.cs.get_unchecked_mut(k[l]);
             if gone & (1 << l) != 0 {
                 c.active = false;
             } else if load & (1 << l) != 0 {
@@ -358,6 +368,23 @@ mod tests {
     use super::super::Ghost;
     use super::*;
     use crate::phys::FrictConsts;
+
+    /// The lanes read bodies and shifts unchecked; the check after each list build must refuse a
+    /// pair past the bodies or the shifts, or out of order.
+    #[test]
+    fn a_pair_outside_the_bodies_or_shifts_is_refused() {
+        let ok = contact::chain_pairs(10);
+        assert!(super::super::pairs_in_range(&ok, 10, 2));
+        let bad = |f: fn(&mut Pair)| {
+            let mut p = ok.clone();
+            f(&mut p[3]);
+            super::super::pairs_in_range(&p, 10, 2)
+        };
+        assert!(!bad(|p| p.j = 10), "j past the bodies");
+        assert!(!bad(|p| p.img = 2), "img past the shifts");
+        assert!(!bad(|p| p.i = p.j), "i not below j");
+        assert!(!super::super::pairs_in_range(&ok, 9, 2), "one body fewer");
+    }
 
     /// rapier's scalar/SIMD parity, to the bit: random pairs in every state the kernel meets
     /// (contacts that stay, that open and are erased, that slide on the Coulomb cap; pairs apart;

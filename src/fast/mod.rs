@@ -210,13 +210,37 @@ struct View<'a> {
     dt: f64,
 }
 
+impl View<'_> {
+    /// Panics unless every pair's bodies and shift are in the view, as the lanes read them
+    /// unchecked: the body arrays of one length (here, each call), and the pairs' indices below
+    /// it (after each list build, where the pairs are made; in debug builds here too).
+    #[inline(always)]
+    fn check(&self, pairs: &[Pair]) {
+        let n = self.pos.len();
+        assert!(
+            self.vel.len() == n && self.w.len() == n && self.rad.len() == n,
+            "the fast path's body arrays differ in length"
+        );
+        debug_assert!(pairs_in_range(pairs, n, self.shifts.len()));
+    }
+}
+
+/// Whether every pair has `i < j < n` and `img < shifts`.
+fn pairs_in_range(pairs: &[Pair], n: usize, shifts: usize) -> bool {
+    pairs
+        .iter()
+        .all(|p| p.i < p.j && (p.j as usize) < n && (p.img as usize) < shifts)
+}
+
 /// Forces and torques of a run of pairs (sorted by i) into `acc` (see `Acc`). Body i's sums stay
 /// in registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
 /// bits).
 fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
+        v.check(pairs);
+        // SAFETY: the CPU has AVX2, the pairs' bodies and shifts are in `v` (both checked just
+        // above)
         return unsafe { contact_simd::chunk(v, pairs, cs, acc) };
     }
     chunk_loop(&Plain(v), pairs, cs, acc)
@@ -371,7 +395,8 @@ impl Kernel for Six<'_, '_> {
 fn chunk_forces6(k: &Six, pairs: &[Pair], cs: &mut [six::C6], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
+        // SAFETY: the CPU has AVX2 (checked just above); the pairs' bodies, which the first pass
+        // reads unchecked, are in range (checked after each list build)
         return unsafe { six_simd::chunk(k, pairs, cs, acc) };
     }
     chunk_loop(k, pairs, cs, acc)
@@ -436,7 +461,6 @@ struct Acc<'a> {
     f: &'a mut [V3],
     t: &'a mut [V3],
     lo: usize,
-    hi: usize,
     ghosts: &'a mut Vec<Ghost>,
     /// The open body (`usize::MAX`: none).
     i: usize,
@@ -455,12 +479,10 @@ impl<'a> Acc<'a> {
         for x in t.iter_mut() {
             *x = [0.0; 3];
         }
-        let hi = lo + f.len();
         Acc {
             f,
             t,
             lo,
-            hi,
             ghosts,
             i: usize::MAX,
             fi: [0.0; 3],
@@ -487,10 +509,11 @@ impl<'a> Acc<'a> {
     fn add(&mut self, j: usize, lf: V3, lti: V3, ltj: V3) {
         self.fi = contact::add(self.fi, lf);
         self.ti = contact::add(self.ti, lti);
-        if j < self.hi {
-            let jj = j - self.lo;
-            self.f[jj] = contact::sub(self.f[jj], lf);
-            self.t[jj] = contact::add(self.t[jj], ltj);
+        // (j < hi, one test for the range and the index)
+        let jj = j.wrapping_sub(self.lo);
+        if let (Some(fj), Some(tj)) = (self.f.get_mut(jj), self.t.get_mut(jj)) {
+            *fj = contact::sub(*fj, lf);
+            *tj = contact::add(*tj, ltj);
         } else {
             self.ghosts.push(Ghost {
                 j: j as u32,
@@ -1018,6 +1041,11 @@ impl FastSim {
         perm(&mut self.torque, ord);
         self.pairs = built.pairs;
         self.shifts = built.shifts;
+        // the pair loops' lanes read the bodies and shifts of the pairs unchecked
+        assert!(
+            pairs_in_range(&self.pairs, self.pos.len(), self.shifts.len()),
+            "the Verlet list holds a pair outside the bodies or shifts"
+        );
         self.shift_cells = built.shift_cells;
         let ids = &self.ids;
         let state = |p: &Pair| {

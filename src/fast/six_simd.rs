@@ -17,6 +17,10 @@ use crate::geom::sphere_sphere;
 use crate::math::{Quat, Real, Vec3};
 
 /// The pair loop of one chunk (see `super::chunk_loop`, the scalar one).
+///
+/// # Safety
+/// The CPU has AVX2, and every pair's `i` and `j` are below the length of `k.b.pos` (the first
+/// pass gathers positions unchecked).
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc) {
     const BLOCK: usize = 256;
