@@ -395,8 +395,10 @@ impl Kernel for Six<'_, '_> {
 fn chunk_forces6(k: &Six, pairs: &[Pair], cs: &mut [six::C6], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above); the pairs' bodies, which the first pass
-        // reads unchecked, are in range (checked after each list build)
+        assert_eq!(k.b.rad.len(), k.b.pos.len());
+        debug_assert!(pairs_in_range(pairs, k.b.pos.len(), k.b.shifts.len()));
+        // SAFETY: the CPU has AVX2, and the pairs' bodies, which the first pass reads unchecked,
+        // are in range (the pairs checked after each list build, the lengths just above)
         return unsafe { six_simd::chunk(k, pairs, cs, acc) };
     }
     chunk_loop(k, pairs, cs, acc)

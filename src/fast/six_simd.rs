@@ -19,8 +19,8 @@ use crate::math::{Quat, Real, Vec3};
 /// The pair loop of one chunk (see `super::chunk_loop`, the scalar one).
 ///
 /// # Safety
-/// The CPU has AVX2, and every pair's `i` and `j` are below the length of `k.b.pos` (the first
-/// pass gathers positions unchecked).
+/// The CPU has AVX2, and every pair's `i` and `j` are below the lengths of `k.b.pos` and
+/// `k.b.rad` (the first pass reads them unchecked).
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc) {
     const BLOCK: usize = 256;
@@ -77,17 +77,23 @@ unsafe fn kept4(
     let mut p = block.start;
     while p + 4 <= block.end {
         let q = [p, p + 1, p + 2, p + 3];
-        let pr = q.map(|x| pairs[x]);
+        // SAFETY (the unchecked reads): x < block.end <= pairs.len() = cs.len() (`chunk`), and the
+        // pairs' bodies are in range (the caller's contract)
+        let pr = q.map(|x| *pairs.get_unchecked(x));
         let (ki, kj) = (pr.map(|x| x.i as usize), pr.map(|x| x.j as usize));
         let d = contact::sub(gather3(b.pos, kj), gather3(b.pos, ki));
-        let (ri, rj) = (gather1(ki.map(|i| b.rad[i])), gather1(kj.map(|j| b.rad[j])));
+        let (ri, rj) = (
+            gather1(ki.map(|i| *b.rad.get_unchecked(i))),
+            gather1(kj.map(|j| *b.rad.get_unchecked(j))),
+        );
         let apart = bits(sphere_sphere::apart_of(f, ri, rj, d));
         let mut keep = !apart;
         for (l, &x) in q.iter().enumerate() {
-            keep |= ((cs[x].is_real() | (pr[l].img != 0)) as i32) << l;
+            keep |= ((cs.get_unchecked(x).is_real() | (pr[l].img != 0)) as i32) << l;
         }
         for (l, &x) in q.iter().enumerate() {
-            work[nw] = x as u32;
+            // SAFETY: nw < block.len() <= work.len()
+            *work.get_unchecked_mut(nw) = x as u32;
             nw += ((keep >> l) & 1) as usize;
         }
         p += 4;
