@@ -250,9 +250,15 @@ fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
 /// With AVX2: four bodies at a time (`newton_simd`, the same bits).
 fn integrate(cfg: &newton::Cfg, r: newton::Run) -> f64 {
     #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above)
-        return unsafe { newton_simd::integrate(cfg, r) };
+    {
+        if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl") {
+            // SAFETY: the CPU has AVX-512F and VL (checked just above)
+            return unsafe { newton_simd::integrate_evex(cfg, r) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above)
+            return unsafe { newton_simd::integrate(cfg, r) };
+        }
     }
     integrate_impl(cfg, r)
 }
