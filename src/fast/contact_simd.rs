@@ -170,7 +170,8 @@ pub(super) unsafe fn bits(m: __m256d) -> i32 {
 /// # Safety
 /// The CPU has AVX2, and every pair's bodies and shift are in `v`: `i` and `j` below the length
 /// of `v.pos`, `v.vel`, `v.w` and `v.rad`, `img` below that of `v.shifts` (the lanes read them
-/// unchecked; `chunk_forces` holds the caller to it).
+/// unchecked; `FastSim::rebuild_with` checks the list where it is made, `View::check` the
+/// lengths).
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     const BLOCK: usize = 256;
@@ -247,7 +248,9 @@ struct Geometry {
 }
 
 impl Group<'_, '_> {
-    /// Which of pairs `k` are contacts, as a lane mask.
+    /// Which of pairs `k` are contacts, as a lane mask. Safety (this and the next two): AVX2,
+    /// every `k[l] < self.pairs.len() == self.cs.len()`, and the pairs in range of `self.v`
+    /// (`chunk`'s contract).
     #[inline(always)]
     unsafe fn active(&self, k: [usize; 4]) -> __m256d {
         let a = k.map(|q| -(self.cs.get_unchecked(q).active as i64));
@@ -386,6 +389,25 @@ mod tests {
         assert!(!super::super::pairs_in_range(&ok, 9, 2), "one body fewer");
     }
 
+    /// The lanes read the body arrays at the pairs' indices unchecked: a view whose arrays differ
+    /// in length is refused at each call.
+    #[test]
+    #[should_panic(expected = "differ in length")]
+    fn a_view_with_arrays_of_two_lengths_is_refused() {
+        let (pos, vel, w) = (vec![[0.0; 3]; 4], vec![[0.0; 3]; 4], vec![[0.0; 3]; 3]);
+        let view = View {
+            pos: &pos,
+            vel: &vel,
+            w: &w,
+            rad: &[1.0; 4],
+            mats: &[],
+            mat: &[0; 4],
+            shifts: &[[0.0; 3]],
+            dt: 1e-5,
+        };
+        view.check(&[]);
+    }
+
     /// rapier's scalar/SIMD parity, to the bit: random pairs in every state the kernel meets
     /// (contacts that stay, that open and are erased, that slide on the Coulomb cap; pairs apart;
     /// pairs that touch for the first time; periodic images; bodies owned by the next chunk, whose
@@ -464,7 +486,8 @@ mod tests {
                 let scalar = Acc::new(&mut f_s, &mut t_s, 0, &mut g_s);
                 super::super::chunk_loop(&Plain(&view), pairs, &mut cs_s, scalar);
                 let lanes = Acc::new(&mut f_v, &mut t_v, 0, &mut g_v);
-                // SAFETY: AVX2 checked above
+                // SAFETY: AVX2 checked above; the chain's pairs are in range of its n bodies and
+                // two shifts
                 unsafe { chunk(&view, pairs, &mut cs_v, lanes) };
                 for (a, c) in was.iter().zip(&cs_s) {
                     gone += (*a && !c.active) as usize;

@@ -211,9 +211,8 @@ struct View<'a> {
 }
 
 impl View<'_> {
-    /// Panics unless every pair's bodies and shift are in the view, as the lanes read them
-    /// unchecked: the body arrays of one length (here, each call), and the pairs' indices below
-    /// it (after each list build, where the pairs are made; in debug builds here too).
+    /// Panics unless the body arrays have one length; in debug builds also unless every pair's
+    /// bodies and shift are in the view (release builds check the pairs after each list build).
     #[inline(always)]
     fn check(&self, pairs: &[Pair]) {
         let n = self.pos.len();
@@ -235,12 +234,16 @@ fn pairs_in_range(pairs: &[Pair], n: usize, shifts: usize) -> bool {
 /// Forces and torques of a run of pairs (sorted by i) into `acc` (see `Acc`). Body i's sums stay
 /// in registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
 /// bits).
-fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
+///
+/// # Safety
+/// Every pair has `i < j < v.pos.len()` and `img < v.shifts.len()` (the lanes read the bodies and
+/// shifts unchecked; `FastSim::rebuild_with` checks the list where it is made).
+unsafe fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         v.check(pairs);
-        // SAFETY: the CPU has AVX2, the pairs' bodies and shifts are in `v` (both checked just
-        // above)
+        // SAFETY: the CPU has AVX2 (checked just above), the body arrays have one length (checked
+        // by `check`) and the pairs are in range (this function's contract)
         return unsafe { contact_simd::chunk(v, pairs, cs, acc) };
     }
     chunk_loop(&Plain(v), pairs, cs, acc)
@@ -250,15 +253,13 @@ fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
 /// With AVX2: four bodies at a time (`newton_simd`, the same bits).
 fn integrate(cfg: &newton::Cfg, r: newton::Run) -> f64 {
     #[cfg(target_arch = "x86_64")]
-    {
+    if std::is_x86_feature_detected!("avx2") {
         if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl") {
-            // SAFETY: the CPU has AVX-512F and VL (checked just above)
+            // SAFETY: the CPU has AVX2, AVX-512F and AVX-512VL (checked just above)
             return unsafe { newton_simd::integrate_evex(cfg, r) };
         }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above)
-            return unsafe { newton_simd::integrate(cfg, r) };
-        }
+        // SAFETY: the CPU has AVX2 (checked just above)
+        return unsafe { newton_simd::integrate(cfg, r) };
     }
     integrate_impl(cfg, r)
 }
@@ -398,13 +399,17 @@ impl Kernel for Six<'_, '_> {
 
 /// `chunk_forces` for rolling-resistance contacts. With AVX2: the contacts' rotations four at a
 /// time (`six_simd`, the same bits).
-fn chunk_forces6(k: &Six, pairs: &[Pair], cs: &mut [six::C6], acc: Acc) {
+///
+/// # Safety
+/// Every pair has `i < j < k.b.pos.len()` (the first pass reads positions and radii unchecked;
+/// `FastSim::rebuild_with` checks the list where it is made).
+unsafe fn chunk_forces6(k: &Six, pairs: &[Pair], cs: &mut [six::C6], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         assert_eq!(k.b.rad.len(), k.b.pos.len());
         debug_assert!(pairs_in_range(pairs, k.b.pos.len(), k.b.shifts.len()));
-        // SAFETY: the CPU has AVX2, and the pairs' bodies, which the first pass reads unchecked,
-        // are in range (the pairs checked after each list build, the lengths just above)
+        // SAFETY: the CPU has AVX2 (checked just above), the radii are as many as the positions
+        // (asserted just above) and the pairs are in range (this function's contract)
         return unsafe { six_simd::chunk(k, pairs, cs, acc) };
     }
     chunk_loop(k, pairs, cs, acc)
@@ -517,7 +522,7 @@ impl<'a> Acc<'a> {
     fn add(&mut self, j: usize, lf: V3, lti: V3, ltj: V3) {
         self.fi = contact::add(self.fi, lf);
         self.ti = contact::add(self.ti, lti);
-        // (j < hi, one test for the range and the index)
+        // (j below the chunk's end: the length tests of `f` and `t` stand for it)
         let jj = j.wrapping_sub(self.lo);
         if let (Some(fj), Some(tj)) = (self.f.get_mut(jj), self.t.get_mut(jj)) {
             *fj = contact::sub(*fj, lf);
@@ -1314,7 +1319,11 @@ impl FastSim {
                 &mut self.contacts,
                 &mut self.force,
                 &mut self.torque,
-                |r, cs, f, t, lo, g| chunk_forces(&view, &pairs[r], cs, Acc::new(f, t, lo, g)),
+                // SAFETY: `self.pairs` was checked against the bodies and shifts where it was made
+                // (`rebuild_with`); neither it nor they change between list builds
+                |r, cs, f, t, lo, g| unsafe {
+                    chunk_forces(&view, &pairs[r], cs, Acc::new(f, t, lo, g))
+                },
             ),
             Some(cfg) => {
                 let b6 = six::Bodies6 {
@@ -1337,7 +1346,10 @@ impl FastSim {
                     &mut self.contacts6,
                     &mut self.force,
                     &mut self.torque,
-                    |r, cs, f, t, lo, g| chunk_forces6(&k, &pairs[r], cs, Acc::new(f, t, lo, g)),
+                    // SAFETY: as for `chunk_forces` above
+                    |r, cs, f, t, lo, g| unsafe {
+                        chunk_forces6(&k, &pairs[r], cs, Acc::new(f, t, lo, g))
+                    },
                 )
             }
         }

@@ -273,12 +273,14 @@ pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
 /// the spills of the 16 of AVX2: 11 % off the dense script's integration).
 ///
 /// # Safety
-/// The CPU must have AVX-512F and AVX-512VL.
+/// The CPU must have AVX2, AVX-512F and AVX-512VL.
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
 pub unsafe fn integrate_evex(cfg: &Cfg, r: Run) -> f64 {
     integrate_lanes(cfg, r)
 }
 
+/// The body of `integrate` and `integrate_evex`. Safety: the CPU has AVX2; only called from
+/// those two, into which it is inlined.
 #[inline(always)]
 unsafe fn integrate_lanes(cfg: &Cfg, r: Run) -> f64 {
     let Run {

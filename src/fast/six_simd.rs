@@ -62,7 +62,11 @@ pub(super) unsafe fn chunk(k: &Six, pairs: &[Pair], cs: &mut [C6], mut acc: Acc)
 /// test (`sphere_sphere::apart_of`: another order of the sum could round the other way at the
 /// reach and drop a pair that touches). A pair with a shift is kept for the exact test in
 /// `six::geometry`, which leaves a potential pair that does not touch as it was: keeping more
-/// pairs than `idle` would change no result. (AVX2: called from `chunk` only.)
+/// pairs than `idle` would change no result.
+///
+/// # Safety
+/// AVX2, and the pairs' bodies in range of `k.b.pos` and `k.b.rad` (`chunk`'s contract); the block
+/// within `pairs` and `cs` and no longer than `work` is asserted.
 #[inline(always)]
 unsafe fn kept4(
     k: &Six,
@@ -71,6 +75,10 @@ unsafe fn kept4(
     block: std::ops::Range<usize>,
     work: &mut [u32],
 ) -> usize {
+    assert!(
+        block.end <= pairs.len() && block.end <= cs.len() && block.len() <= work.len(),
+        "kept4: a block past its pairs"
+    );
     let b = k.b;
     let f = F4::splat(k.cfg.p6.ss.interaction_detection_factor);
     let mut nw = 0;
@@ -393,7 +401,7 @@ mod tests {
             .collect();
         let (mut w1, mut w4) = ([0u32; 256], [0u32; 256]);
         let n1 = super::super::kept(&k, &pairs, &cs, 0..pairs.len(), &mut w1);
-        // SAFETY: AVX2 checked above
+        // SAFETY: AVX2 checked above; the test's pairs are in range of its bodies
         let n4 = unsafe { kept4(&k, &pairs, &cs, 0..pairs.len(), &mut w4) };
         let (scalar, lanes) = (&w1[..n1], &w4[..n4]);
         for (p, pr) in pairs.iter().enumerate() {
