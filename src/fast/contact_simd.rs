@@ -164,7 +164,9 @@ pub(super) unsafe fn bits(m: __m256d) -> i32 {
 
 /// `chunk_forces` four pairs at a time (see the module): same arguments, same results. A first
 /// pass over a block of pairs keeps those that are contacts or touch (the scalar kernel's test,
-/// in lanes); the second runs the formula on them four at a time. The pairs left over at the end
+/// in lanes, reading whether a pair is a contact from `flags`, the states' `active` as bytes,
+/// which it keeps equal: the contacts' own cache lines are then touched only for the pairs kept);
+/// the second runs the formula on them four at a time. The pairs left over at the end
 /// go through the scalar kernel.
 ///
 /// # Safety
@@ -173,16 +175,25 @@ pub(super) unsafe fn bits(m: __m256d) -> i32 {
 /// unchecked; `FastSim::rebuild_with` checks the list where it is made, `View::check` the
 /// lengths).
 #[target_feature(enable = "avx2")]
-pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
+pub(super) unsafe fn chunk(
+    v: &View,
+    pairs: &[Pair],
+    cs: &mut [Contact],
+    flags: &mut [u8],
+    acc: Acc,
+) {
     const BLOCK: usize = 256;
+    let np = pairs.len();
+    let (cs, fl) = (&mut cs[..np], &mut flags[..np]);
+    debug_assert!(fl.iter().zip(cs.iter()).all(|(f, c)| *f == c.active as u8));
     let mut g = Group {
         v,
         pairs,
-        cs: &mut cs[..pairs.len()],
+        cs,
+        fl,
         acc,
     };
     let k = Plain(v);
-    let np = pairs.len();
     let mut work = [0usize; BLOCK + 4];
     let mut nw = 0;
     let mut p = 0;
@@ -218,18 +229,22 @@ pub(super) unsafe fn chunk(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Ac
         let pr = pairs[q];
         let i = pr.i as usize;
         g.acc.open(i);
-        if let Some((lf, lti, ltj)) = k.pair(&k.body(i), &pr, &mut g.cs[q]) {
+        let loads = k.pair(&k.body(i), &pr, &mut g.cs[q]);
+        g.fl[q] = g.cs[q].active as u8;
+        if let Some((lf, lti, ltj)) = loads {
             g.acc.add(pr.j as usize, lf, lti, ltj);
         }
     }
     g.acc.finish();
 }
 
-/// The second pass's state: the chunk's pairs and contacts, and its sums.
+/// The second pass's state: the chunk's pairs and contacts (with their flags), and its sums.
 struct Group<'a, 'b> {
     v: &'a View<'b>,
     pairs: &'a [Pair],
     cs: &'a mut [Contact],
+    /// `cs[q].active` as bytes (as long as `cs`).
+    fl: &'a mut [u8],
     acc: Acc<'a>,
 }
 
@@ -253,7 +268,7 @@ impl Group<'_, '_> {
     /// (`chunk`'s contract).
     #[inline(always)]
     unsafe fn active(&self, k: [usize; 4]) -> __m256d {
-        let a = k.map(|q| -(self.cs.get_unchecked(q).active as i64));
+        let a = k.map(|q| -(*self.fl.get_unchecked(q) as i64));
         _mm256_castsi256_pd(_mm256_set_epi64x(a[3], a[2], a[1], a[0]))
     }
 
@@ -307,6 +322,7 @@ impl Group<'_, '_> {
                     v.rad[i],
                     v.rad[j],
                 );
+                self.fl[k[l]] = 1;
             }
         }
         let c = k.map(|q| self.cs.get_unchecked(q));
@@ -346,6 +362,7 @@ impl Group<'_, '_> {
             let c = self.cs.get_unchecked_mut(k[l]);
             if gone & (1 << l) != 0 {
                 c.active = false;
+                *self.fl.get_unchecked_mut(k[l]) = 0;
             } else if load & (1 << l) != 0 {
                 c.normal = [n[0][l], n[1][l], n[2][l]];
                 c.fs = [fsn[0][l], fsn[1][l], fsn[2][l]];
@@ -478,6 +495,7 @@ mod tests {
             let cut = pairs.partition_point(|p| (p.i as usize) < hi);
             let pairs = &pairs[..cut];
             let (mut cs_s, mut cs_v) = (cs0[..cut].to_vec(), cs0[..cut].to_vec());
+            let mut fl_v: Vec<u8> = cs_v.iter().map(|c| c.active as u8).collect();
             let (mut f_s, mut t_s, mut g_s) = (vec![[0.0; 3]; hi], vec![[0.0; 3]; hi], Vec::new());
             let (mut f_v, mut t_v, mut g_v) = (vec![[1.0; 3]; hi], vec![[1.0; 3]; hi], Vec::new());
             let (mut loads, mut gone, mut fresh) = (0, 0, 0);
@@ -488,7 +506,9 @@ mod tests {
                 let lanes = Acc::new(&mut f_v, &mut t_v, 0, &mut g_v);
                 // SAFETY: AVX2 checked above; the chain's pairs are in range of its n bodies and
                 // two shifts
-                unsafe { chunk(&view, pairs, &mut cs_v, lanes) };
+                unsafe { chunk(&view, pairs, &mut cs_v, &mut fl_v, lanes) };
+                let fl_s: Vec<u8> = cs_s.iter().map(|c| c.active as u8).collect();
+                assert_eq!(fl_v, fl_s, "the flags follow the states, n {n}");
                 for (a, c) in was.iter().zip(&cs_s) {
                     gone += (*a && !c.active) as usize;
                     fresh += (!*a && c.active) as usize;

@@ -114,6 +114,10 @@ pub struct FastSim {
     mats: Vec<Mat>,
     pairs: Vec<Pair>,
     contacts: Vec<Contact>,
+    /// `contacts[q].active` as a byte: the lanes' first pass reads these 29 kB for the dense
+    /// script's 29,000 pairs instead of one cache line per contact. Set at each list build, kept
+    /// equal by the pair loops (`chunk_forces`).
+    flags: Vec<u8>,
     shifts: Vec<V3>,
     shift_cells: Vec<[i32; 3]>,
     chunks: Vec<Chunk>,
@@ -238,15 +242,19 @@ fn pairs_in_range(pairs: &[Pair], n: usize, shifts: usize) -> bool {
 /// # Safety
 /// Every pair has `i < j < v.pos.len()` and `img < v.shifts.len()` (the lanes read the bodies and
 /// shifts unchecked; `FastSim::rebuild_with` checks the list where it is made).
-unsafe fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], acc: Acc) {
+/// `flags`: the states' `active` as bytes (`FastSim::flags`), read by the lanes and kept equal.
+unsafe fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], flags: &mut [u8], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         v.check(pairs);
         // SAFETY: the CPU has AVX2 (checked just above), the body arrays have one length (checked
         // by `check`) and the pairs are in range (this function's contract)
-        return unsafe { contact_simd::chunk(v, pairs, cs, acc) };
+        return unsafe { contact_simd::chunk(v, pairs, cs, flags, acc) };
     }
-    chunk_loop(&Plain(v), pairs, cs, acc)
+    chunk_loop(&Plain(v), pairs, cs, acc);
+    for (f, c) in flags.iter_mut().zip(cs.iter()) {
+        *f = c.active as u8;
+    }
 }
 
 /// The integrator over a run of bodies; returns the largest squared displacement since `x_ref`.
@@ -556,31 +564,44 @@ impl<'a> Acc<'a> {
 /// The contact phase: the contact states, forces and torques cut at the chunks' bounds, one chunk
 /// per task (`run(pairs range, states, forces, torques, first owned body, ghosts)`); not
 /// `parallel`: the one chunk of one thread, here.
-fn par_contacts<C: Send>(
+/// `fl`: a per-pair companion of the states (the plain contacts' flags; `()` for the rolling ones),
+/// cut alike.
+fn par_contacts<C: Send, F: Send>(
     parallel: bool,
     chunks: &mut [Chunk],
-    cs: &mut [C],
+    (cs, fl): (&mut [C], &mut [F]),
     force: &mut [V3],
     torque: &mut [V3],
-    run: impl Fn(std::ops::Range<usize>, &mut [C], &mut [V3], &mut [V3], usize, &mut Vec<Ghost>) + Sync,
+    run: impl Fn(
+            std::ops::Range<usize>,
+            (&mut [C], &mut [F]),
+            &mut [V3],
+            &mut [V3],
+            usize,
+            &mut Vec<Ghost>,
+        ) + Sync,
 ) {
     if !parallel {
         let ch = &mut chunks[0];
-        return run(ch.pairs.clone(), cs, force, torque, 0, &mut ch.ghosts);
+        return run(ch.pairs.clone(), (cs, fl), force, torque, 0, &mut ch.ghosts);
     }
-    let mut parts: Vec<(&mut [C], &mut [V3], &mut [V3])> = Vec::with_capacity(chunks.len());
-    let (mut rest_c, mut rest_f, mut rest_t) = (cs, force, torque);
+    type Part<'a, C, F> = (&'a mut [C], &'a mut [F], &'a mut [V3], &'a mut [V3]);
+    let mut parts: Vec<Part<C, F>> = Vec::with_capacity(chunks.len());
+    let (mut rest_c, mut rest_l, mut rest_f, mut rest_t) = (cs, fl, force, torque);
     for ch in chunks.iter() {
         let (c, rc) = rest_c.split_at_mut(ch.pairs.len());
+        let (l, rl) = rest_l.split_at_mut(ch.pairs.len());
         let (f, rf) = rest_f.split_at_mut(ch.hi - ch.lo);
         let (t, rt) = rest_t.split_at_mut(ch.hi - ch.lo);
-        parts.push((c, f, t));
-        (rest_c, rest_f, rest_t) = (rc, rf, rt);
+        parts.push((c, l, f, t));
+        (rest_c, rest_l, rest_f, rest_t) = (rc, rl, rf, rt);
     }
     chunks
         .par_iter_mut()
         .zip(parts.into_par_iter())
-        .for_each(|(ch, (cs, f, t))| run(ch.pairs.clone(), cs, f, t, ch.lo, &mut ch.ghosts));
+        .for_each(|(ch, (cs, fl, f, t))| {
+            run(ch.pairs.clone(), (cs, fl), f, t, ch.lo, &mut ch.ghosts)
+        });
 }
 
 /// A contact seen from the other body.
@@ -895,6 +916,7 @@ impl FastSim {
             mats,
             pairs: vec![],
             contacts: vec![],
+            flags: vec![],
             shifts: vec![[0.0; 3]],
             shift_cells: vec![[0; 3]],
             chunks: vec![],
@@ -999,6 +1021,7 @@ impl FastSim {
         let ext6 = self.contacts6.iter().filter(|c| c.is_real()).count() * size_of::<six::State6>();
         let pair_bytes = (self.pairs.capacity() * size_of::<Pair>()
             + self.contacts.capacity() * size_of::<Contact>()
+            + self.flags.capacity()
             + self.contacts6.capacity() * size_of::<six::C6>()
             + ext6) as f64;
         Memory {
@@ -1071,6 +1094,7 @@ impl FastSim {
         };
         if self.six.is_some() {
             self.contacts = vec![];
+            self.flags = vec![];
             self.contacts6 = self
                 .pairs
                 .iter()
@@ -1085,6 +1109,7 @@ impl FastSim {
             } else {
                 self.pairs.iter().map(state).collect()
             };
+            self.flags = self.contacts.iter().map(|c| c.active as u8).collect();
         }
         let listing = Listing::new(
             &self.ids,
@@ -1316,13 +1341,13 @@ impl FastSim {
             None => par_contacts(
                 parallel,
                 &mut self.chunks,
-                &mut self.contacts,
+                (&mut self.contacts, &mut self.flags),
                 &mut self.force,
                 &mut self.torque,
                 // SAFETY: `self.pairs` was checked against the bodies and shifts where it was made
                 // (`rebuild_with`); neither it nor they change between list builds
-                |r, cs, f, t, lo, g| unsafe {
-                    chunk_forces(&view, &pairs[r], cs, Acc::new(f, t, lo, g))
+                |r, (cs, fl), f, t, lo, g| unsafe {
+                    chunk_forces(&view, &pairs[r], cs, fl, Acc::new(f, t, lo, g))
                 },
             ),
             Some(cfg) => {
@@ -1340,14 +1365,15 @@ impl FastSim {
                     iter: self.iter,
                 };
                 let k = Six { cfg, b: &b6 };
+                let n6 = self.contacts6.len();
                 par_contacts(
                     parallel,
                     &mut self.chunks,
-                    &mut self.contacts6,
+                    (&mut self.contacts6, &mut vec![(); n6]),
                     &mut self.force,
                     &mut self.torque,
                     // SAFETY: as for `chunk_forces` above
-                    |r, cs, f, t, lo, g| unsafe {
+                    |r, (cs, _), f, t, lo, g| unsafe {
                         chunk_forces6(&k, &pairs[r], cs, Acc::new(f, t, lo, g))
                     },
                 )
