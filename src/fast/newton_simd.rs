@@ -11,8 +11,9 @@ use crate::math::Quat;
 use std::arch::x86_64::*;
 
 /// `N` bodies' doubles side by side, and the operations the integrator runs on them (each lane
-/// f64's operation, so each lane gives the scalar bits).
-pub trait Lanes: Copy {
+/// f64's operation, so each lane gives the scalar bits). Safety of every method: the CPU has the
+/// lanes' instructions (AVX2 for `L4`, AVX-512F for `L8`); the slices hold at least `N` items.
+trait Lanes: Copy {
     const N: usize;
     type M: Copy;
     unsafe fn splat(x: f64) -> Self;
@@ -51,7 +52,7 @@ pub trait Lanes: Copy {
 
 /// Four doubles (AVX2).
 #[derive(Clone, Copy)]
-pub struct L4(__m256d);
+struct L4(__m256d);
 
 impl Lanes for L4 {
     const N: usize = 4;
@@ -196,7 +197,7 @@ impl Lanes for L4 {
 
 /// Eight doubles (AVX-512F).
 #[derive(Clone, Copy)]
-pub struct L8(__m512d);
+struct L8(__m512d);
 
 /// `_mm512_permutex2var_pd(a, idx, b)`: lane l takes `a[idx[l]]` (idx < 8) or `b[idx[l] - 8]`.
 #[inline]
