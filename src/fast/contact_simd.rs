@@ -11,24 +11,27 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Four doubles, one per lane.
 #[derive(Clone, Copy)]
-pub struct F4(__m256d);
+pub struct F4(pub(super) __m256d);
 
+/// The arithmetic operator `$tr` of the lane type `$t` as the intrinsic `$op`.
 macro_rules! lane_op {
-    ($tr:ident, $f:ident, $op:ident) => {
-        impl $tr for F4 {
-            type Output = F4;
+    ($t:ident, $tr:ident, $f:ident, $op:ident) => {
+        impl $tr for $t {
+            type Output = $t;
             #[inline(always)]
-            fn $f(self, o: F4) -> F4 {
-                // SAFETY: F4 exists only in code that runs after the AVX2 check (`chunk`)
-                F4(unsafe { $op(self.0, o.0) })
+            fn $f(self, o: $t) -> $t {
+                // SAFETY: a lane type exists only in code that runs after the check of its
+                // instructions (AVX2 for F4, AVX-512F for F8)
+                $t(unsafe { $op(self.0, o.0) })
             }
         }
     };
 }
-lane_op!(Add, add, _mm256_add_pd);
-lane_op!(Sub, sub, _mm256_sub_pd);
-lane_op!(Mul, mul, _mm256_mul_pd);
-lane_op!(Div, div, _mm256_div_pd);
+pub(super) use lane_op;
+lane_op!(F4, Add, add, _mm256_add_pd);
+lane_op!(F4, Sub, sub, _mm256_sub_pd);
+lane_op!(F4, Mul, mul, _mm256_mul_pd);
+lane_op!(F4, Div, div, _mm256_div_pd);
 
 impl Neg for F4 {
     type Output = F4;

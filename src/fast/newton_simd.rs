@@ -1,39 +1,29 @@
 //! The fast path's integrator several bodies at a time: `newton::motion` and `newton::turn` with
 //! the same operations in the same order in each lane, so the results are the scalar ones to the
 //! bit (`tests::lanes_are_the_scalar_integrator_to_the_bit`). One generic body (`integrate_lanes`)
-//! over the lanes (`Lanes`): four with AVX2 (`L4`), eight with AVX-512 (`L8`). A block falls back
-//! to the scalar functions where a lane needs a branch they take rarely: a blocked DOF (motion and
-//! turn), a rotation too large for the Taylor series (turn).
+//! over the lanes (`Lanes`, on top of `Real`): four with AVX2 (`F4`, the pair loop's type), eight
+//! with AVX-512 (`F8`). A block falls back to the scalar functions where a lane needs a branch
+//! they take rarely: a blocked DOF (motion and turn), a rotation too large for the Taylor series
+//! (turn).
 
 use super::contact::V3;
+use super::contact_simd::{lane_op, F4};
 use super::newton::{self, Cfg, Inert, Run};
-use crate::math::Quat;
+use crate::math::{Quat, Real};
 use std::arch::x86_64::*;
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// `N` bodies' doubles side by side, and the operations the integrator runs on them (each lane
-/// f64's operation, so each lane gives the scalar bits). Safety of every method: the CPU has the
-/// lanes' instructions (AVX2 for `L4`, AVX-512F for `L8`); the slices hold at least `N` items.
-trait Lanes: Copy {
+/// What the integrator needs of `N` bodies' doubles side by side beyond `Real` (whose operations
+/// run f64's in each lane, so each lane gives the scalar bits): the transposes from and to the
+/// bodies' arrays and a few mask operations. Safety of every method: the CPU has the lanes'
+/// instructions (AVX2 for `F4`, AVX-512F for `F8`); the slices hold at least `N` items.
+trait Lanes: Real {
     const N: usize;
-    type M: Copy;
-    unsafe fn splat(x: f64) -> Self;
-    unsafe fn add(self, o: Self) -> Self;
-    unsafe fn sub(self, o: Self) -> Self;
-    unsafe fn mul(self, o: Self) -> Self;
-    unsafe fn div(self, o: Self) -> Self;
-    unsafe fn sqrt(self) -> Self;
-    /// Ordered `<` and `>`; unordered `!=` (true for NaN).
-    unsafe fn lt(self, o: Self) -> Self::M;
-    unsafe fn gt(self, o: Self) -> Self::M;
-    unsafe fn neq(self, o: Self) -> Self::M;
+    /// Unordered `!=` (true for NaN).
+    unsafe fn neq(self, o: Self) -> Self::Mask;
     /// 1.0 where `m`, else +0.0.
-    unsafe fn one_where(m: Self::M) -> Self;
-    /// `b` where `m`, else `a`.
-    unsafe fn blend(a: Self, b: Self, m: Self::M) -> Self;
-    unsafe fn abs(self) -> Self;
-    unsafe fn all(m: Self::M) -> bool;
-    /// `maxpd(self, o)`: `o` where `self` is NaN.
-    unsafe fn max(self, o: Self) -> Self;
+    unsafe fn one_where(m: Self::Mask) -> Self;
+    unsafe fn all(m: Self::Mask) -> bool;
     /// `N` consecutive vectors, one register per component.
     unsafe fn load3(a: &[V3]) -> [Self; 3];
     /// `load3` backwards.
@@ -45,77 +35,28 @@ trait Lanes: Copy {
     /// `f(l)` in lane l.
     unsafe fn per_lane(f: impl Fn(usize) -> f64) -> Self;
     /// Lane l set where `f(l)`.
-    unsafe fn mask_of(f: impl Fn(usize) -> bool) -> Self::M;
+    unsafe fn mask_of(f: impl Fn(usize) -> bool) -> Self::Mask;
     /// The largest lane and `m`, folded with `f64::max` in lane order.
     unsafe fn fold_max(self, m: f64) -> f64;
 }
 
-/// Four doubles (AVX2).
-#[derive(Clone, Copy)]
-struct L4(__m256d);
-
-impl Lanes for L4 {
+impl Lanes for F4 {
     const N: usize = 4;
-    type M = __m256d;
     #[inline(always)]
-    unsafe fn splat(x: f64) -> L4 {
-        L4(_mm256_set1_pd(x))
-    }
-    #[inline(always)]
-    unsafe fn add(self, o: L4) -> L4 {
-        L4(_mm256_add_pd(self.0, o.0))
-    }
-    #[inline(always)]
-    unsafe fn sub(self, o: L4) -> L4 {
-        L4(_mm256_sub_pd(self.0, o.0))
-    }
-    #[inline(always)]
-    unsafe fn mul(self, o: L4) -> L4 {
-        L4(_mm256_mul_pd(self.0, o.0))
-    }
-    #[inline(always)]
-    unsafe fn div(self, o: L4) -> L4 {
-        L4(_mm256_div_pd(self.0, o.0))
-    }
-    #[inline(always)]
-    unsafe fn sqrt(self) -> L4 {
-        L4(_mm256_sqrt_pd(self.0))
-    }
-    #[inline(always)]
-    unsafe fn lt(self, o: L4) -> __m256d {
-        _mm256_cmp_pd::<_CMP_LT_OQ>(self.0, o.0)
-    }
-    #[inline(always)]
-    unsafe fn gt(self, o: L4) -> __m256d {
-        _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, o.0)
-    }
-    #[inline(always)]
-    unsafe fn neq(self, o: L4) -> __m256d {
+    unsafe fn neq(self, o: F4) -> __m256d {
         _mm256_cmp_pd::<_CMP_NEQ_UQ>(self.0, o.0)
     }
     #[inline(always)]
-    unsafe fn one_where(m: __m256d) -> L4 {
-        L4(_mm256_and_pd(m, _mm256_set1_pd(1.0)))
-    }
-    #[inline(always)]
-    unsafe fn blend(a: L4, b: L4, m: __m256d) -> L4 {
-        L4(_mm256_blendv_pd(a.0, b.0, m))
-    }
-    #[inline(always)]
-    unsafe fn abs(self) -> L4 {
-        L4(_mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0))
+    unsafe fn one_where(m: __m256d) -> F4 {
+        F4(_mm256_and_pd(m, _mm256_set1_pd(1.0)))
     }
     #[inline(always)]
     unsafe fn all(m: __m256d) -> bool {
         _mm256_movemask_pd(m) == 0b1111
     }
-    #[inline(always)]
-    unsafe fn max(self, o: L4) -> L4 {
-        L4(_mm256_max_pd(self.0, o.0))
-    }
     /// 12 doubles, x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3, into lanes.
     #[inline(always)]
-    unsafe fn load3(a: &[V3]) -> [L4; 3] {
+    unsafe fn load3(a: &[V3]) -> [F4; 3] {
         let a = &a[..4];
         let p = a.as_ptr() as *const f64;
         let (m0, m1, m2) = (
@@ -128,13 +69,13 @@ impl Lanes for L4 {
         let bc = _mm256_permute2f128_pd::<0x21>(m0, m2);
         let cd = _mm256_blend_pd::<0b1100>(m1, m2);
         [
-            L4(_mm256_blend_pd::<0b1010>(ab, bc)),
-            L4(_mm256_shuffle_pd::<0b0101>(ab, cd)),
-            L4(_mm256_shuffle_pd::<0b1010>(bc, cd)),
+            F4(_mm256_blend_pd::<0b1010>(ab, bc)),
+            F4(_mm256_shuffle_pd::<0b0101>(ab, cd)),
+            F4(_mm256_shuffle_pd::<0b1010>(bc, cd)),
         ]
     }
     #[inline(always)]
-    unsafe fn store3(v: [L4; 3], a: &mut [V3]) {
+    unsafe fn store3(v: [F4; 3], a: &mut [V3]) {
         let a = &mut a[..4];
         let p = a.as_mut_ptr() as *mut f64;
         let [x, y, z] = v.map(|c| c.0);
@@ -147,7 +88,7 @@ impl Lanes for L4 {
     }
     /// The four quaternions (w, x, y, z each, `repr(C)`) into lanes: a 4x4 transpose.
     #[inline(always)]
-    unsafe fn load_q(q: &[Quat]) -> [L4; 4] {
+    unsafe fn load_q(q: &[Quat]) -> [F4; 4] {
         let q = &q[..4];
         let p = q.as_ptr() as *const f64;
         let r: [__m256d; 4] = std::array::from_fn(|k| _mm256_loadu_pd(p.add(4 * k)));
@@ -160,14 +101,14 @@ impl Lanes for L4 {
             _mm256_unpackhi_pd(r[2], r[3]),
         );
         [
-            L4(_mm256_permute2f128_pd::<0x20>(t0, t2)),
-            L4(_mm256_permute2f128_pd::<0x20>(t1, t3)),
-            L4(_mm256_permute2f128_pd::<0x31>(t0, t2)),
-            L4(_mm256_permute2f128_pd::<0x31>(t1, t3)),
+            F4(_mm256_permute2f128_pd::<0x20>(t0, t2)),
+            F4(_mm256_permute2f128_pd::<0x20>(t1, t3)),
+            F4(_mm256_permute2f128_pd::<0x31>(t0, t2)),
+            F4(_mm256_permute2f128_pd::<0x31>(t1, t3)),
         ]
     }
     #[inline(always)]
-    unsafe fn store_q(v: [L4; 4], q: &mut [Quat]) {
+    unsafe fn store_q(v: [F4; 4], q: &mut [Quat]) {
         let q = &mut q[..4];
         let p = q.as_mut_ptr() as *mut f64;
         let [ow, ox, oy, oz] = v.map(|c| c.0);
@@ -179,8 +120,8 @@ impl Lanes for L4 {
         _mm256_storeu_pd(p.add(12), _mm256_permute2f128_pd::<0x31>(t1, t3));
     }
     #[inline(always)]
-    unsafe fn per_lane(f: impl Fn(usize) -> f64) -> L4 {
-        L4(_mm256_set_pd(f(3), f(2), f(1), f(0)))
+    unsafe fn per_lane(f: impl Fn(usize) -> f64) -> F4 {
+        F4(_mm256_set_pd(f(3), f(2), f(1), f(0)))
     }
     #[inline(always)]
     unsafe fn mask_of(f: impl Fn(usize) -> bool) -> __m256d {
@@ -195,9 +136,88 @@ impl Lanes for L4 {
     }
 }
 
-/// Eight doubles (AVX-512F).
+/// Eight doubles, one per lane (AVX-512F).
 #[derive(Clone, Copy)]
-struct L8(__m512d);
+struct F8(__m512d);
+
+lane_op!(F8, Add, add, _mm512_add_pd);
+lane_op!(F8, Sub, sub, _mm512_sub_pd);
+lane_op!(F8, Mul, mul, _mm512_mul_pd);
+lane_op!(F8, Div, div, _mm512_div_pd);
+
+impl Neg for F8 {
+    type Output = F8;
+    #[inline(always)]
+    fn neg(self) -> F8 {
+        // SAFETY: as in lane_op; a flip of the sign bit, as f64's negation
+        F8(unsafe {
+            _mm512_castsi512_pd(_mm512_xor_si512(
+                _mm512_castpd_si512(self.0),
+                _mm512_set1_epi64(i64::MIN),
+            ))
+        })
+    }
+}
+
+impl Real for F8 {
+    type Mask = __mmask8;
+    #[inline(always)]
+    fn splat(x: f64) -> F8 {
+        // SAFETY: as in lane_op
+        F8(unsafe { _mm512_set1_pd(x) })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F8 {
+        // SAFETY: as in lane_op
+        F8(unsafe { _mm512_sqrt_pd(self.0) })
+    }
+    #[inline(always)]
+    fn max(self, o: F8) -> F8 {
+        // SAFETY: as in lane_op; vmaxpd returns its second operand where the first is NaN
+        F8(unsafe { _mm512_max_pd(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn gt(self, o: F8) -> __mmask8 {
+        // SAFETY: as in lane_op
+        unsafe { _mm512_cmp_pd_mask::<_CMP_GT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn lt(self, o: F8) -> __mmask8 {
+        // SAFETY: as in lane_op
+        unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn is_nan(self) -> __mmask8 {
+        // SAFETY: as in lane_op
+        unsafe { _mm512_cmp_pd_mask::<_CMP_UNORD_Q>(self.0, self.0) }
+    }
+    #[inline(always)]
+    fn abs(self) -> F8 {
+        // SAFETY: as in lane_op; the sign bit cleared, as f64::abs
+        F8(unsafe { _mm512_abs_pd(self.0) })
+    }
+    #[inline(always)]
+    fn atan2(self, x: F8) -> F8 {
+        // libm's, lane by lane
+        // SAFETY: as in lane_op
+        unsafe {
+            let (mut y8, mut x8) = ([0.0; 8], [0.0; 8]);
+            _mm512_storeu_pd(y8.as_mut_ptr(), self.0);
+            _mm512_storeu_pd(x8.as_mut_ptr(), x.0);
+            let r: [f64; 8] = std::array::from_fn(|l| y8[l].atan2(x8[l]));
+            F8(_mm512_loadu_pd(r.as_ptr()))
+        }
+    }
+    #[inline(always)]
+    fn any(m: __mmask8) -> bool {
+        m != 0
+    }
+    #[inline(always)]
+    fn select(m: __mmask8, a: F8, b: F8) -> F8 {
+        // SAFETY: as in lane_op; the blend takes its second operand where the mask holds
+        F8(unsafe { _mm512_mask_blend_pd(m, b.0, a.0) })
+    }
+}
 
 /// `_mm512_permutex2var_pd(a, idx, b)`: lane l takes `a[idx[l]]` (idx < 8) or `b[idx[l] - 8]`.
 #[inline]
@@ -209,84 +229,28 @@ unsafe fn perm2(a: __m512d, idx: [i64; 8], b: __m512d) -> __m512d {
     _mm512_permutex2var_pd(a, i, b)
 }
 
-impl Lanes for L8 {
+impl Lanes for F8 {
     const N: usize = 8;
-    type M = __mmask8;
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn splat(x: f64) -> L8 {
-        L8(_mm512_set1_pd(x))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn add(self, o: L8) -> L8 {
-        L8(_mm512_add_pd(self.0, o.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn sub(self, o: L8) -> L8 {
-        L8(_mm512_sub_pd(self.0, o.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn mul(self, o: L8) -> L8 {
-        L8(_mm512_mul_pd(self.0, o.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn div(self, o: L8) -> L8 {
-        L8(_mm512_div_pd(self.0, o.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn sqrt(self) -> L8 {
-        L8(_mm512_sqrt_pd(self.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn lt(self, o: L8) -> __mmask8 {
-        _mm512_cmp_pd_mask::<_CMP_LT_OQ>(self.0, o.0)
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn gt(self, o: L8) -> __mmask8 {
-        _mm512_cmp_pd_mask::<_CMP_GT_OQ>(self.0, o.0)
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn neq(self, o: L8) -> __mmask8 {
+    unsafe fn neq(self, o: F8) -> __mmask8 {
         _mm512_cmp_pd_mask::<_CMP_NEQ_UQ>(self.0, o.0)
     }
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn one_where(m: __mmask8) -> L8 {
-        L8(_mm512_maskz_mov_pd(m, _mm512_set1_pd(1.0)))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn blend(a: L8, b: L8, m: __mmask8) -> L8 {
-        L8(_mm512_mask_blend_pd(m, a.0, b.0))
-    }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn abs(self) -> L8 {
-        L8(_mm512_abs_pd(self.0))
+    unsafe fn one_where(m: __mmask8) -> F8 {
+        F8(_mm512_maskz_mov_pd(m, _mm512_set1_pd(1.0)))
     }
     #[inline]
     #[target_feature(enable = "avx512f")]
     unsafe fn all(m: __mmask8) -> bool {
         m == 0xff
     }
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn max(self, o: L8) -> L8 {
-        L8(_mm512_max_pd(self.0, o.0))
-    }
     /// 24 doubles: m0 = x0 y0 z0 x1 y1 z1 x2 y2, m1 = z2 x3 y3 z3 x4 y4 z4 x5,
     /// m2 = y5 z5 x6 y6 z6 x7 y7 z7.
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn load3(a: &[V3]) -> [L8; 3] {
+    unsafe fn load3(a: &[V3]) -> [F8; 3] {
         let a = &a[..8];
         let p = a.as_ptr() as *const f64;
         let (m0, m1, m2) = (
@@ -309,11 +273,11 @@ impl Lanes for L8 {
             [0, 1, 2, 3, 4, 9, 12, 15],
             m2,
         );
-        [L8(x), L8(y), L8(z)]
+        [F8(x), F8(y), F8(z)]
     }
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn store3(v: [L8; 3], a: &mut [V3]) {
+    unsafe fn store3(v: [F8; 3], a: &mut [V3]) {
         let a = &mut a[..8];
         let p = a.as_mut_ptr() as *mut f64;
         let [x, y, z] = v.map(|c| c.0);
@@ -339,7 +303,7 @@ impl Lanes for L8 {
     /// 32 doubles, two quaternions per register, into w, x, y, z.
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn load_q(q: &[Quat]) -> [L8; 4] {
+    unsafe fn load_q(q: &[Quat]) -> [F8; 4] {
         let q = &q[..8];
         let p = q.as_ptr() as *const f64;
         let r: [__m512d; 4] = std::array::from_fn(|k| _mm512_loadu_pd(p.add(8 * k)));
@@ -347,12 +311,12 @@ impl Lanes for L8 {
             let c = c as i64;
             let lo = perm2(r[0], [c, c + 4, c + 8, c + 12, 0, 0, 0, 0], r[1]);
             let hi = perm2(r[2], [c, c + 4, c + 8, c + 12, 0, 0, 0, 0], r[3]);
-            L8(perm2(lo, [0, 1, 2, 3, 8, 9, 10, 11], hi))
+            F8(perm2(lo, [0, 1, 2, 3, 8, 9, 10, 11], hi))
         })
     }
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn store_q(v: [L8; 4], q: &mut [Quat]) {
+    unsafe fn store_q(v: [F8; 4], q: &mut [Quat]) {
         let q = &mut q[..8];
         let p = q.as_mut_ptr() as *mut f64;
         let [w, x, y, z] = v.map(|c| c.0);
@@ -374,8 +338,8 @@ impl Lanes for L8 {
     }
     #[inline]
     #[target_feature(enable = "avx512f")]
-    unsafe fn per_lane(f: impl Fn(usize) -> f64) -> L8 {
-        L8(_mm512_set_pd(
+    unsafe fn per_lane(f: impl Fn(usize) -> f64) -> F8 {
+        F8(_mm512_set_pd(
             f(7),
             f(6),
             f(5),
@@ -404,16 +368,16 @@ impl Lanes for L8 {
 #[inline(always)]
 unsafe fn sign<L: Lanes>(x: L) -> L {
     let z = L::splat(0.0);
-    L::one_where(z.lt(x)).sub(L::one_where(x.lt(z)))
+    L::one_where(z.lt(x)) - L::one_where(x.lt(z))
 }
 
 /// `newton::damp` on one component, in the lanes of `damped`.
 #[inline(always)]
-unsafe fn damp<L: Lanes>(c: &Cfg, v: L, a: L, damped: L::M) -> L {
+unsafe fn damp<L: Lanes>(c: &Cfg, v: L, a: L, damped: L::Mask) -> L {
     // a *= 1 - damping * sign(a * (v + 0.5 dt a))
-    let arg = a.mul(v.add(L::splat(0.5 * c.dt).mul(a)));
-    let f = L::splat(1.0).sub(L::splat(c.damping).mul(sign(arg)));
-    L::blend(a, a.mul(f), damped)
+    let arg = a * (v + L::splat(0.5 * c.dt) * a);
+    let f = L::splat(1.0) - L::splat(c.damping) * sign(arg);
+    L::select(damped, a * f, a)
 }
 
 /// `newton::motion` for `L::N` bodies none of which has a blocked DOF; returns each one's squared
@@ -444,10 +408,10 @@ unsafe fn motion_lanes<L: Lanes>(
     let dt = L::splat(c.dt);
     let g = c.gravity.map(|x| L::splat(x));
     // linear: a = f / m (+ g when damped with it), damped, (+ g), v += dt a
-    let mut a = fv.map(|fk| fk.mul(im));
+    let mut a = fv.map(|fk| fk * im);
     if c.damp_gravity {
         for k in 0..3 {
-            a[k] = a[k].add(g[k]);
+            a[k] = a[k] + g[k];
         }
     }
     for k in 0..3 {
@@ -455,23 +419,23 @@ unsafe fn motion_lanes<L: Lanes>(
     }
     if !c.damp_gravity {
         for k in 0..3 {
-            a[k] = a[k].add(g[k]);
+            a[k] = a[k] + g[k];
         }
     }
     for k in 0..3 {
-        vv[k] = vv[k].add(dt.mul(a[k]));
+        vv[k] = vv[k] + dt * a[k];
     }
     // angular: aa = t / I, damped, w += dt aa
     for k in 0..3 {
-        let aa = damp(c, wv[k], tv[k].mul(ii(k)), damped);
-        wv[k] = wv[k].add(dt.mul(aa));
+        let aa = damp(c, wv[k], tv[k] * ii(k), damped);
+        wv[k] = wv[k] + dt * aa;
     }
     // x += v dt; |x - x_ref|² summed left to right
     for k in 0..3 {
-        xv[k] = xv[k].add(vv[k].mul(dt));
+        xv[k] = xv[k] + vv[k] * dt;
     }
-    let d: [L; 3] = std::array::from_fn(|k| xv[k].sub(xr[k]));
-    let d2 = d[0].mul(d[0]).add(d[1].mul(d[1])).add(d[2].mul(d[2]));
+    let d: [L; 3] = std::array::from_fn(|k| xv[k] - xr[k]);
+    let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     L::store3(vv, v);
     L::store3(wv, w);
     L::store3(xv, x);
@@ -484,15 +448,15 @@ unsafe fn motion_lanes<L: Lanes>(
 unsafe fn turn_lanes<L: Lanes>(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
     const _: () = assert!(std::mem::size_of::<Quat>() == 32);
     let wv = L::load3(w);
-    let w2 = wv[0].mul(wv[0]).add(wv[1].mul(wv[1])).add(wv[2].mul(wv[2]));
+    let w2 = wv[0] * wv[0] + wv[1] * wv[1] + wv[2] * wv[2];
     let h = 0.5 * dt;
-    let x2 = w2.mul(L::splat(h * h));
+    let x2 = w2 * L::splat(h * h);
     if !L::all(x2.lt(L::splat(1e-4))) {
         return false;
     }
     // c = 1 + x2 (-1/2 + x2 (1/24 + x2 (-1/720 + x2 (1/40320)))),
     // s = h (1 + x2 (-1/6 + x2 (1/120 + x2 (-1/5040)))), as `newton::rotation`
-    let p = |k: f64, r: L| L::splat(k).add(x2.mul(r));
+    let p = |k: f64, r: L| L::splat(k) + x2 * r;
     let cc = p(
         1.0,
         p(
@@ -500,39 +464,36 @@ unsafe fn turn_lanes<L: Lanes>(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
             p(1.0 / 24.0, p(-1.0 / 720.0, L::splat(1.0 / 40320.0))),
         ),
     );
-    let s = L::splat(h).mul(p(
-        1.0,
-        p(-1.0 / 6.0, p(1.0 / 120.0, L::splat(-1.0 / 5040.0))),
-    ));
-    let (rw, rx, ry, rz) = (cc, s.mul(wv[0]), s.mul(wv[1]), s.mul(wv[2]));
+    let s = L::splat(h) * p(1.0, p(-1.0 / 6.0, p(1.0 / 120.0, L::splat(-1.0 / 5040.0))));
+    let (rw, rx, ry, rz) = (cc, s * wv[0], s * wv[1], s * wv[2]);
     let [bw, bx, by, bz] = L::load_q(q);
     // Quat::mul (rotation first)
-    let nw = rw.mul(bw).sub(rx.mul(bx)).sub(ry.mul(by)).sub(rz.mul(bz));
-    let nx = rw.mul(bx).add(rx.mul(bw)).add(ry.mul(bz)).sub(rz.mul(by));
-    let ny = rw.mul(by).add(ry.mul(bw)).add(rz.mul(bx)).sub(rx.mul(bz));
-    let nz = rw.mul(bz).add(rz.mul(bw)).add(rx.mul(by)).sub(ry.mul(bx));
+    let nw = rw * bw - rx * bx - ry * by - rz * bz;
+    let nx = rw * bx + rx * bw + ry * bz - rz * by;
+    let ny = rw * by + ry * bw + rz * bx - rx * bz;
+    let nz = rw * bz + rz * bw + rx * by - ry * bx;
     // no rotation where ω = 0
     let moving = w2.neq(L::splat(0.0));
     let (qw, qx, qy, qz) = (
-        L::blend(bw, nw, moving),
-        L::blend(bx, nx, moving),
-        L::blend(by, ny, moving),
-        L::blend(bz, nz, moving),
+        L::select(moving, nw, bw),
+        L::select(moving, nx, bx),
+        L::select(moving, ny, by),
+        L::select(moving, nz, bz),
     );
     // renormalise as `turn`: (x²+y²) + (z²+w²); 1 - e/2 near 1, else 1/sqrt(n2) (n2 > 0), else 1
-    let n2 = qx.mul(qx).add(qy.mul(qy)).add(qz.mul(qz).add(qw.mul(qw)));
-    let e = n2.sub(L::splat(1.0));
+    let n2 = (qx * qx + qy * qy) + (qz * qz + qw * qw);
+    let e = n2 - L::splat(1.0);
     let near = e.abs().lt(L::splat(1e-8));
-    let newton = L::splat(1.0).sub(L::splat(0.5).mul(e));
+    let newton = L::splat(1.0) - L::splat(0.5) * e;
     // (the square root and division only when a lane needs them)
     let inv = if L::all(near) {
         newton
     } else {
         let pos = n2.gt(L::splat(0.0));
-        let far = L::blend(L::splat(1.0), L::splat(1.0).div(n2.sqrt()), pos);
-        L::blend(far, newton, near)
+        let far = L::select(pos, L::splat(1.0) / n2.sqrt(), L::splat(1.0));
+        L::select(near, newton, far)
     };
-    L::store_q([qw.mul(inv), qx.mul(inv), qy.mul(inv), qz.mul(inv)], q);
+    L::store_q([qw * inv, qx * inv, qy * inv, qz * inv], q);
     true
 }
 
@@ -543,7 +504,7 @@ unsafe fn turn_lanes<L: Lanes>(dt: f64, w: &[V3], q: &mut [Quat]) -> bool {
 /// The CPU must have AVX2.
 #[target_feature(enable = "avx2")]
 pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
-    integrate_lanes::<L4>(cfg, r)
+    integrate_lanes::<F4>(cfg, r)
 }
 
 /// The integrator eight bodies at a time (AVX-512; the same generic body and bits).
@@ -552,7 +513,7 @@ pub unsafe fn integrate(cfg: &Cfg, r: Run) -> f64 {
 /// The CPU must have AVX2, AVX-512F and AVX-512VL.
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
 pub unsafe fn integrate_evex(cfg: &Cfg, r: Run) -> f64 {
-    integrate_lanes::<L8>(cfg, r)
+    integrate_lanes::<F8>(cfg, r)
 }
 
 /// The body of `integrate` and `integrate_evex`. Safety: the CPU has the lanes' instructions;
