@@ -237,12 +237,12 @@ fn pairs_in_range(pairs: &[Pair], n: usize, shifts: usize) -> bool {
 
 /// Forces and torques of a run of pairs (sorted by i) into `acc` (see `Acc`). Body i's sums stay
 /// in registers while its pairs last. With AVX2: four pairs at a time (`contact_simd`, the same
-/// bits).
+/// bits). `flags`: the states' `active` as bytes (`FastSim::flags`), read by the lanes and kept
+/// equal.
 ///
 /// # Safety
 /// Every pair has `i < j < v.pos.len()` and `img < v.shifts.len()` (the lanes read the bodies and
 /// shifts unchecked; `FastSim::rebuild_with` checks the list where it is made).
-/// `flags`: the states' `active` as bytes (`FastSim::flags`), read by the lanes and kept equal.
 unsafe fn chunk_forces(v: &View, pairs: &[Pair], cs: &mut [Contact], flags: &mut [u8], acc: Acc) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
