@@ -36,7 +36,7 @@
 
 use crate::body::Bodies;
 use crate::cell::Cell;
-use crate::interaction::ScanEntry;
+use crate::interaction::{GeomFunctor, Interaction, ScanEntry};
 use crate::math::{dot, norm2, Mat3, Vec3};
 use crate::shape::{GridConnection, Shape};
 
@@ -60,6 +60,23 @@ pub struct IdleSkip {
     pub travel: f64,
     /// The only bodies that may move or change radius (`watch`); None (the default): any body.
     watch: Option<Vec<u32>>,
+    /// The grid partners noted for the current walk (`note_grid_partners`), if any.
+    partners: Partners,
+}
+
+/// Per sphere, the connections it had a real interaction with when the current walk began, so
+/// that `geom::grid::sphere_gridco_steady` can rule out a neighbour contact without looking it up.
+/// Entries are stamped with the walk they were noted for; a body that gains a connection
+/// interaction during the walk (`gained_grid_real`) loses its entry.
+#[derive(Clone, Debug, Default)]
+struct Partners {
+    /// The walk being noted for (0: none; the stamps below are only valid when equal).
+    walk: u32,
+    noted: bool,
+    /// Per body: (walk, how many, the first three).
+    of: Vec<(u32, u8, [u32; 3])>,
+    /// Per body: the walk in which it last gained a connection interaction.
+    gained: Vec<u32>,
 }
 
 fn radius_of(s: &Shape) -> f64 {
@@ -162,12 +179,74 @@ impl IdleSkip {
             self.grid_gen.resize(hi + 1, 0);
         }
         let ids = [a as usize, b as usize];
+        if self.partners.noted {
+            for &id in &ids {
+                if let Some(g) = self.partners.gained.get_mut(id) {
+                    *g = self.partners.walk;
+                }
+            }
+        }
         for &id in &ids[..if a == b { 1 } else { 2 }] {
             self.grid_gen[id] = self.grid_gen[id].wrapping_add(1);
             if self.grid_gen[id] == 0 {
                 // a count back where it started could match an old deadline: none holds now
                 self.travel = f64::INFINITY;
             }
+        }
+    }
+
+    /// For an owner whose container holds grid interactions (and whose walk is serial): note,
+    /// before the interaction loop, each sphere's real sphere-connection interactions in `list`.
+    /// They hold for that walk only (`end_walk`).
+    pub fn note_grid_partners(&mut self, n_bodies: usize, list: &[Interaction]) {
+        let p = &mut self.partners;
+        p.walk = p.walk.wrapping_add(1).max(1);
+        if p.walk == 1 {
+            // (a wrapped count: no old stamp may match)
+            p.of.clear();
+            p.gained.clear();
+        }
+        p.of.resize(n_bodies, (0, 0, [0; 3]));
+        p.gained.resize(n_bodies, 0);
+        for it in list {
+            if it.functor != GeomFunctor::SphereGridConnection || !it.is_real() {
+                continue;
+            }
+            let e = &mut p.of[it.id1 as usize];
+            if e.0 != p.walk {
+                *e = (p.walk, 0, [0; 3]);
+            }
+            if (e.1 as usize) < e.2.len() {
+                e.2[e.1 as usize] = it.id2;
+            }
+            e.1 = e.1.saturating_add(1);
+        }
+        p.noted = true;
+    }
+
+    /// Whether grid partners are noted for the walk about to run.
+    pub fn grid_partners_noted(&self) -> bool {
+        self.partners.noted
+    }
+
+    /// The walk is over: the noted partners no longer hold.
+    pub fn end_walk(&mut self) {
+        self.partners.noted = false;
+    }
+
+    /// The connections sphere `s` may have a real interaction with during this walk: those it had
+    /// when the walk began, when noted and none gained since (and at most three); else None.
+    #[inline(always)]
+    pub fn grid_partners(&self, s: u32) -> Option<&[u32]> {
+        let p = &self.partners;
+        if !p.noted || p.gained.get(s as usize).is_none_or(|&g| g == p.walk) {
+            return None;
+        }
+        let (w, n, c) = &p.of[s as usize];
+        match (*w == p.walk, *n as usize) {
+            (false, _) => Some(&[]),
+            (true, n) if n <= c.len() => Some(&c[..n]),
+            _ => None,
         }
     }
 

@@ -46,6 +46,19 @@ pub struct IntrExt {
     pub cpm: Option<Box<crate::phys::CpmPhys>>,
 }
 
+impl IntrExt {
+    /// Only a geometry part: the physics is a plain FrictPhys.
+    #[inline(always)]
+    pub fn only_geom(&self) -> bool {
+        self.coh.is_none()
+            && self.viscel.is_none()
+            && self.mindlin.is_none()
+            && self.luding.is_none()
+            && self.bubble.is_none()
+            && self.cpm.is_none()
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Interaction {
     /// After the functor swap, id1 is the facet/wall/box of a mixed pair.

@@ -1201,7 +1201,14 @@ impl Scene {
             // one thread: steady contacts and idle pairs by `pre_slot`, as the threaded pre-pass
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
             let n = self.interactions.list.len();
+            let skip_gc = il.uses_idle_skip();
             for k in 0..n {
+                // an idle sphere-connection pair still apart by the bound: what `visit` would
+                // decide first, without the walk's event
+                let sc = &self.interactions.scan[k];
+                if sc.idle_gc && skip_gc && self.idle_skip.skips_gridco(sc) {
+                    continue;
+                }
                 const AHEAD: usize = 24;
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
                     self.interactions.prefetch(k + AHEAD);
@@ -1218,8 +1225,11 @@ impl Scene {
                     &mut self.interactions.scan[k],
                     &mut self.interactions.list[k],
                 );
-                if let Some(ev) = ev {
-                    self.event(il, ev, &ctx0, energy, &mut geom_entries)?;
+                match ev {
+                    Some(Event::Visit(_))
+                        if self.steady_gridco(&cfg, k) || self.apart_gridco(&cfg, k) => {}
+                    Some(ev) => self.event(il, ev, &ctx0, energy, &mut geom_entries)?,
+                    None => {}
                 }
             }
         } else {
@@ -1235,7 +1245,51 @@ impl Scene {
                 self.visit(il, k, &ctx0, energy, &mut geom_entries)?;
             }
         }
+        self.idle_skip.end_walk();
         Ok(())
+    }
+
+    /// Slot `k` when it is a real sphere-connection contact whose geometry reduces to its own
+    /// (`geom::grid::sphere_gridco_steady`, with the sphere's grid partners noted for this walk)
+    /// and whose physics is a FrictPhys left alone by its Ip2: the geometry, then
+    /// Law2_ScGridCoGeom_FrictPhys_CundallStrack, as `visit` would do them (no share to sync, no
+    /// contact made). False, with nothing done, when that does not hold.
+    #[inline(always)]
+    fn steady_gridco(&mut self, cfg: &PreCfg, k: usize) -> bool {
+        let Some((p, frict)) = cfg.gridco.as_ref() else {
+            return false;
+        };
+        let it = &mut self.interactions.list[k];
+        if it.functor != GeomFunctor::SphereGridConnection || !it.is_real() {
+            return false;
+        }
+        let b = &self.bodies;
+        let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+        let nm = self.materials.len();
+        if !frict[b.material[id1] * nm + b.material[id2]]
+            || it.ext.as_ref().is_some_and(|e| !e.only_geom())
+        {
+            return false;
+        }
+        let Some(partners) = self.idle_skip.grid_partners(it.id1) else {
+            return false;
+        };
+        let (shift2, ctx) = period_shifts(self.cell.as_ref(), &it.cell_dist, cfg.dt);
+        let cell = self.cell.as_ref();
+        if !geom::grid::sphere_gridco_steady(it, b, cell, &ctx, &shift2, partners) {
+            return false;
+        }
+        let (Some(g), Some(ph), Some(geom::GeomExt::ScGridCo(x))) = (
+            it.geom.as_ref(),
+            it.phys.as_mut(),
+            it.ext.as_ref().and_then(|e| e.geom.as_ref()),
+        ) else {
+            unreachable!("a real sphere-connection contact has its ScGridCoGeom")
+        };
+        if !law::grid::scgridco_frict(p, g, x, ph, id1, id2, &mut self.forces, None) {
+            it.reset();
+        }
+        true
     }
 
     /// Whether a law may add to `O.energy` this step: `O.trackEnergy`, or a GridCoGridCo law with
@@ -1472,6 +1526,37 @@ impl Scene {
         Ok(())
     }
 
+    /// Slot `k` when it is a potential sphere-connection pair (its idle bound passed, or checked
+    /// each step) that `geom::grid::sphere_gridco_stays_apart` shows stays potential: what `visit`
+    /// does then, without the functor's working copies (the pair's new idle bound, `idle_gridco`).
+    /// False, with nothing done, when that does not hold.
+    #[inline(always)]
+    fn apart_gridco(&mut self, cfg: &PreCfg, k: usize) -> bool {
+        if cfg.gridco.is_none() {
+            return false;
+        }
+        let it = &self.interactions.list[k];
+        let sc = &self.interactions.scan[k];
+        if it.functor != GeomFunctor::SphereGridConnection
+            || it.geom.is_some()
+            || it.phys.is_some()
+            || sc.idle
+        {
+            return false;
+        }
+        let (id1, id2, cell_dist) = (it.id1, it.id2, it.cell_dist);
+        let Some(partners) = self.idle_skip.grid_partners(id1) else {
+            return false;
+        };
+        let (shift2, _) = period_shifts(self.cell.as_ref(), &cell_dist, cfg.dt);
+        let (b, cell) = (&self.bodies, self.cell.as_ref());
+        if !geom::grid::sphere_gridco_stays_apart(b, cell, (id1, id2), &shift2, partners) {
+            return false;
+        }
+        self.idle_gridco(k, id1, id2, cell_dist, &shift2);
+        true
+    }
+
     /// Whether an interaction of `functor` between `id1` and `id2` involves a `GridConnection`: when
     /// real, its bodies are marked for the idle skip (a neighbouring connection pair of the sphere
     /// may take it over).
@@ -1507,9 +1592,9 @@ impl Scene {
             let found = geom::grid::takeover_operands(
                 &self.interactions,
                 &self.bodies,
-                id1,
-                id2,
+                (id1, id2),
                 shift2,
+                skip.grid_partners(id1),
                 |a, b| deadline = deadline.min(skip.behind_deadline(a, b)),
             );
             if found.is_none() {
@@ -1586,7 +1671,27 @@ impl Scene {
             Some(p6) if serial => steady_coh(GeomClass::GridNodeGeom6D)?.map(|cm| (p6, cm)),
             _ => None,
         };
-        if ss_cs.is_none() && six_d.is_none() && grid_6d.is_none() {
+        let gridco = match il.scgridco_frict {
+            Some(p)
+                if serial
+                    && self.idle_skip.grid_partners_noted()
+                    && il.sphere_gridco.is_some()
+                    && il.law_functor(GeomClass::ScGridCoGeom, PhysClass::FrictPhys)?
+                        == Some(LawFunctor::ScGridCoFrict) =>
+            {
+                let m = &self.materials;
+                let mut frict = Vec::with_capacity(m.len() * m.len());
+                for a in m {
+                    for b in m {
+                        let f = il.phys_functor(a.class(), b.class())?.map(|(f, _)| f);
+                        frict.push(f == Some(PhysFunctor::Frict));
+                    }
+                }
+                Some((p, frict))
+            }
+            _ => None,
+        };
+        if ss_cs.is_none() && six_d.is_none() && grid_6d.is_none() && gridco.is_none() {
             return Ok(None);
         }
         Ok(Some(PreCfg {
@@ -1594,6 +1699,7 @@ impl Scene {
             ss_cs,
             six_d,
             grid_6d,
+            gridco,
             coh_mat: self
                 .materials
                 .iter()
@@ -1694,6 +1800,7 @@ impl Scene {
                 self.cell.as_ref(),
                 ctx,
                 shift2,
+                self.idle_skip.grid_partners(id1 as u32),
             );
         }
         let pr = Pair::of(b, id1, id2, *shift2, was_real, *ctx);
@@ -2241,6 +2348,10 @@ struct PreCfg {
     grid_6d: Option<(geom::grid::SixDParams, law::cohesion_moment::Params)>,
     /// Per material: a CohFrictMat (whose Ip2 leaves existing physics alone this step).
     coh_mat: Vec<bool>,
+    /// Steady sphere-connection contacts (`Scene::steady_gridco`, serial walk with the grid
+    /// partners noted): the law's parameters, and per pair of materials (row-major) whether the
+    /// physics functor is Ip2_FrictMat_FrictMat_FrictPhys (a no-op on existing physics).
+    gridco: Option<(law::grid::ScGridCoParams, Vec<bool>)>,
     dt: f64,
     iter: i64,
 }

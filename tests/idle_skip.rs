@@ -206,9 +206,9 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
             ryade::geom::grid::takeover_operands(
                 &s.interactions,
                 &s.bodies,
-                e.id1,
-                e.id2,
+                (e.id1, e.id2),
                 &Vec3::zeros(),
+                None,
                 |a, b| {
                     beside += 1;
                     assert!(

@@ -46,6 +46,9 @@ pub(super) struct GridPart {
     avoid_self: i32,
     /// Largest sphere radius.
     rmax: f64,
+    /// Note the spheres' grid partners before each walk, for its lean paths (`Scene::steady_gridco`,
+    /// `Scene::apart_gridco`); off only to check that they change nothing.
+    lean: bool,
 }
 
 fn v(a: &V3) -> Vec3 {
@@ -272,6 +275,7 @@ impl GridPart {
             masks: b.mask.clone(),
             avoid_self: avoid,
             rmax,
+            lean: true,
         }))
     }
 
@@ -510,6 +514,10 @@ impl GridPart {
         for &id in self.nodes.iter().chain(&self.conns) {
             sub.forces.ft[id as usize] = zero;
         }
+        if self.lean {
+            let n = sub.bodies.len();
+            sub.idle_skip.note_grid_partners(n, &sub.interactions.list);
+        }
         sub.interaction_loop(&mut self.il)?;
         for &(k, id) in &self.touched {
             let wr = &sub.forces.ft[id as usize];
@@ -728,6 +736,106 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The walk's lean paths for sphere-connection pairs (a steady contact's geometry and law, a
+    /// potential pair that stays apart, the neighbour lookups answered from the noted partners)
+    /// change no bit: 45 spheres on the held net (three sliding along each rib, one on each
+    /// node; gravity across the net's plane), every state after every step equal to a run
+    /// without them (1,500 steps). The spheres slide over the nodes, so that contacts are handed
+    /// over (shared objects) and duplicated. Fails, checked, with the steady path ignoring the
+    /// partners, or with the apart test short of the rib's radius.
+    #[test]
+    fn lean_grid_paths_change_no_bit() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
+        let sf = crate::io::scene_json::load(&dir.join("net.scene.json")).unwrap();
+        let mut scene = sf.scene;
+        let b = &scene.bodies;
+        let conn = (0..b.len())
+            .find(|&i| matches!(b.shape[i], Shape::GridConnection(_)))
+            .unwrap();
+        let (mat, mask) = (b.material[conn], b.mask[conn]);
+        let (r, rr, tilt): (f64, f64, f64) = (0.006, 0.002, 30f64.to_radians());
+        let n = Vec3::new(0.0, -tilt.sin(), tilt.cos());
+        let mut mt = rand_mt::Mt64::new(5);
+        let mut u = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        // a sphere resting on every rib at a quarter, half and three quarters of its length,
+        // sliding along it, and one over every node
+        let mut at = vec![];
+        for c in 0..b.len() {
+            let Shape::GridConnection(gc) = &b.shape[c] else {
+                continue;
+            };
+            let (p1, p2) = (b.pos[gc.node1 as usize], b.pos[gc.node2 as usize]);
+            for t in [0.25, 0.5, 0.75] {
+                let dir = (p2 - p1).normalize() * (if u() < 0.5 { -1.0 } else { 1.0 });
+                at.push((p1 + (p2 - p1) * t, dir * (1.0 + u()), r));
+            }
+        }
+        for k in 0..b.len() {
+            if matches!(b.shape[k], Shape::GridNode(_)) {
+                at.push((b.pos[k], Vec3::zeros(), r));
+            }
+        }
+        // (the net held still: every node's freedoms blocked, so that the spheres rest on it)
+        for k in 0..scene.bodies.len() {
+            scene.bodies.vel[k] = Vec3::zeros();
+            if matches!(scene.bodies.shape[k], Shape::GridNode(_)) {
+                scene.bodies.blocked[k] = 0b11_1111;
+            }
+        }
+        for (p, v, rs) in at {
+            let id = scene.bodies.push(crate::utils::sphere(
+                p + n * (r + rr - 6e-8 * (0.5 + u())),
+                rs,
+                mat,
+                2000.0,
+                false,
+            ));
+            scene.bodies.mask[id] = mask;
+            scene.bodies.vel[id] = v;
+        }
+        let mut lean = super::super::FastSim::from_scene(&scene, Default::default()).unwrap();
+        let mut plain = super::super::FastSim::from_scene(&scene, Default::default()).unwrap();
+        plain.grid.as_mut().unwrap().lean = false;
+        // (damped, so that the spheres stay on the ribs instead of bouncing, and gravity across
+        // the net's plane, so that they slide along them)
+        for s in [&mut lean, &mut plain] {
+            s.cfg.damping = 0.4;
+            s.cfg.gravity = [0.0, 9.81 * tilt.sin(), -9.81 * tilt.cos()];
+        }
+        let bits = |s: &super::super::FastSim| -> Vec<u64> {
+            let g = s.grid.as_ref().unwrap();
+            [
+                &s.pos, &s.vel, &s.ang_vel, &s.force, &g.pos, &g.vel, &g.w, &g.force, &g.torque,
+            ]
+            .iter()
+            .flat_map(|a| a.iter().flatten().map(|x| x.to_bits()))
+            .collect()
+        };
+        let (mut real_sc, mut shared, mut dup) = (0, 0, 0);
+        for step in 0..1500 {
+            lean.step();
+            plain.step();
+            assert!(lean.error.is_none() && plain.error.is_none());
+            assert!(
+                bits(&lean) == bits(&plain),
+                "step {step}: the lean paths changed a bit"
+            );
+            let g = lean.grid.as_ref().unwrap();
+            for it in g.sub.interactions.list.iter().filter(|it| it.is_real()) {
+                if let Some(crate::geom::GeomExt::ScGridCo(x)) = it.geom_ext() {
+                    real_sc += 1;
+                    shared += (x.share != 0) as usize;
+                    dup += (x.is_duplicate != 0) as usize;
+                }
+            }
+        }
+        // (contact-steps over the run)
+        assert!(
+            real_sc > 20_000 && shared > 300 && dup > 20,
+            "{real_sc} {shared} {dup}"
+        );
     }
 
     /// `in_ball` on wrapped positions agrees with the distance to the nearest image (YADE's rounded

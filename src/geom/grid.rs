@@ -6,7 +6,7 @@
 use super::{sphere_sphere, GeomCtx, GeomExt, GridCoGridCo, Kin, Pair, Rot6D, ScGeom, ScGridCo};
 use crate::body::Bodies;
 use crate::cell::Cell;
-use crate::interaction::{Interactions, IntrExt};
+use crate::interaction::{Interaction, Interactions, IntrExt};
 use crate::math::{cross, cxx_max, cxx_min, dot, mat_vec_i, norm, norm2, Vec3};
 use crate::shape::{GridConnection, Shape};
 
@@ -188,9 +188,9 @@ fn nb_direction(bodies: &Bodies, nb: u32, node_pos: &Vec3) -> Result<Vec3, Strin
 pub fn takeover_operands(
     intrs: &Interactions,
     bodies: &Bodies,
-    s: u32,
-    c: u32,
+    (s, c): (u32, u32),
     shift2: &Vec3,
+    partners: Option<&[u32]>,
     mut f: impl FnMut(&Vec3, &Vec3),
 ) -> Option<()> {
     let gc = conn(bodies, c).ok()?;
@@ -199,13 +199,23 @@ pub fn takeover_operands(
         let node_pos = bodies.pos[node as usize];
         let br = branch_from(&sphere_pos, &node_pos);
         for &nb in node_conns(bodies, node).ok()? {
-            if nb == c || !intrs.find(s, nb).is_some_and(|j| intrs.list[j].is_real()) {
+            if nb == c || real_with(intrs, s, nb, partners).is_none() {
                 continue;
             }
             f(&br, &nb_direction(bodies, nb, &node_pos).ok()?);
         }
     }
     Some(())
+}
+
+/// The slot of sphere `s`'s interaction with connection `nb`, when it is real. `partners` (see
+/// `IdleSkip::grid_partners`), when known, answers for every other connection without a lookup.
+#[inline(always)]
+fn real_with(intrs: &Interactions, s: u32, nb: u32, partners: Option<&[u32]>) -> Option<usize> {
+    if partners.is_some_and(|p| !p.contains(&nb)) {
+        return None;
+    }
+    intrs.find(s, nb).filter(|&j| intrs.list[j].is_real())
 }
 
 /// Where the sphere-connection functor writes: its own geometry, a fresh one (new contact) or the
@@ -231,6 +241,7 @@ pub fn sphere_gridco(
     cell: Option<&Cell>,
     ctx: &GeomCtx,
     shift2: &Vec3,
+    partners: Option<&[u32]>,
 ) -> Result<bool, String> {
     let (id1, id2) = (intrs.list[k].id1, intrs.list[k].id2);
     let radius = bodies.shape[id1 as usize]
@@ -250,14 +261,16 @@ pub fn sphere_gridco(
         };
         (*it.geom.as_ref().unwrap(), x, Target::Own)
     };
-    let segt = segment(gc, bodies, cell);
-    let len = norm(&segt);
-    let p_n1 = bodies.pos[n1 as usize];
-    let p_n2 = bodies.pos[n2 as usize];
-    let sphere_pos = bodies.pos[id1 as usize] - shift2;
-    let branch = branch_from(&sphere_pos, &p_n1);
-    let branch_n = branch_from(&sphere_pos, &p_n2);
-    let mut rel_pos = dot(&branch, &segt) / (len * len);
+    let Along {
+        segt,
+        len,
+        p_n1,
+        p_n2,
+        sphere_pos,
+        branch,
+        branch_n,
+        mut rel_pos,
+    } = Along::of(gc, bodies, cell, id1, shift2);
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
         return Ok(true);
@@ -281,11 +294,7 @@ pub fn sphere_gridco(
         }
     };
 
-    // the contact point and distance (relPos < 0 ? 0 : relPos, then relPos > 1 ? 1 : relPos;
-    // f64::clamp tests in the same order): nothing below moves the sphere or the segment
-    let fict_pos = p_n1 + segt * rel_pos.clamp(0.0, 1.0);
-    let branch_f = fict_pos - sphere_pos;
-    let dist = norm(&branch_f);
+    let (fict_pos, branch_f, dist) = contact_point(&p_n1, &segt, &sphere_pos, rel_pos);
     let outside = rel_pos <= 0.0 || rel_pos >= 1.0;
     if outside {
         // a new pair out of reach: every way through the neighbours below ends in `false` for a
@@ -307,8 +316,8 @@ pub fn sphere_gridco(
                 if nb_behind(nb, &node_pos, &br)? {
                     // outside this neighbour too: the first real interaction (not a duplicate)
                     // keeps the contact
-                    if let Some(j) = intrs.find(id1, nb) {
-                        if intrs.list[j].is_real() && neighbour_is_duplicate(intrs, j) != 1 {
+                    if let Some(j) = real_with(intrs, id1, nb, partners) {
+                        if neighbour_is_duplicate(intrs, j) != 1 {
                             if is_new {
                                 return Ok(false);
                             }
@@ -341,12 +350,9 @@ pub fn sphere_gridco(
                 }
                 // (whether the sphere has a real interaction with the neighbour first: without
                 // one, where the sphere lies along it does not matter)
-                let Some(j) = intrs.find(id1, nb) else {
+                let Some(j) = real_with(intrs, id1, nb, partners) else {
                     continue;
                 };
-                if !intrs.list[j].is_real() {
-                    continue;
-                }
                 if nb_behind(nb, &node_pos, &br)? {
                     // take over the neighbour's geometry object
                     if target == Target::Own {
@@ -388,6 +394,106 @@ pub fn sphere_gridco(
     if is_new && dist > radius + gc.radius {
         return Ok(false);
     }
+    let a = Along {
+        segt,
+        len,
+        p_n1,
+        p_n2,
+        sphere_pos,
+        branch,
+        branch_n,
+        rel_pos,
+    };
+    let c = (fict_pos, branch_f, dist);
+    contact(
+        &mut g,
+        &mut x,
+        &a,
+        c,
+        (radius, gc),
+        bodies,
+        id1,
+        ctx,
+        is_new,
+        shift2,
+    );
+    write_back(intrs, k, target, &g, &x);
+    Ok(true)
+}
+
+/// What `sphere_gridco` works out first: the segment (`segt`, its length), the nodes' positions,
+/// the sphere's centre shifted back by the pair's period, its branches from both nodes (tiny
+/// components zeroed) and its position along the segment, `relPos`, not yet clamped.
+struct Along {
+    segt: Vec3,
+    len: f64,
+    p_n1: Vec3,
+    p_n2: Vec3,
+    sphere_pos: Vec3,
+    branch: Vec3,
+    branch_n: Vec3,
+    rel_pos: f64,
+}
+
+impl Along {
+    #[inline(always)]
+    fn of(
+        gc: &GridConnection,
+        bodies: &Bodies,
+        cell: Option<&Cell>,
+        id1: u32,
+        shift2: &Vec3,
+    ) -> Along {
+        let segt = segment(gc, bodies, cell);
+        let len = norm(&segt);
+        let p_n1 = bodies.pos[gc.node1 as usize];
+        let p_n2 = bodies.pos[gc.node2 as usize];
+        let sphere_pos = bodies.pos[id1 as usize] - shift2;
+        let branch = branch_from(&sphere_pos, &p_n1);
+        let branch_n = branch_from(&sphere_pos, &p_n2);
+        let rel_pos = dot(&branch, &segt) / (len * len);
+        Along {
+            segt,
+            len,
+            p_n1,
+            p_n2,
+            sphere_pos,
+            branch,
+            branch_n,
+            rel_pos,
+        }
+    }
+}
+
+/// The contact point on the segment, the branch to it from the sphere and its length (relPos < 0
+/// ? 0 : relPos, then relPos > 1 ? 1 : relPos; f64::clamp tests in the same order).
+#[inline(always)]
+fn contact_point(p_n1: &Vec3, segt: &Vec3, sphere_pos: &Vec3, rel_pos: f64) -> (Vec3, Vec3, f64) {
+    let fict_pos = p_n1 + segt * rel_pos.clamp(0.0, 1.0);
+    let branch_f = fict_pos - sphere_pos;
+    let dist = norm(&branch_f);
+    (fict_pos, branch_f, dist)
+}
+
+/// The end of `Ig2_Sphere_GridConnection_ScGridCoGeom::go`: the geometry `g`, `x` of the contact of
+/// the sphere (`radius`, body `id1`) with connection `gc` at the clamped `a.rel_pos`, from the
+/// contact point, branch and distance `c` (`contact_point`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn contact(
+    g: &mut ScGeom,
+    x: &mut ScGridCo,
+    a: &Along,
+    c: (Vec3, Vec3, f64),
+    (radius, gc): (f64, &GridConnection),
+    bodies: &Bodies,
+    id1: u32,
+    ctx: &GeomCtx,
+    is_new: bool,
+    shift2: &Vec3,
+) {
+    let (fict_pos, branch_f, dist) = c;
+    let (n1, n2, rel_pos, segt, len) = (gc.node1, gc.node2, a.rel_pos, a.segt, a.len);
     g.radius1 = radius;
     g.radius2 = gc.radius;
     x.id3 = n1 as i32;
@@ -396,7 +502,7 @@ pub fn sphere_gridco(
     let normal = Vec3::new(branch_f[0] / dist, branch_f[1] / dist, branch_f[2] / dist);
     g.pen = radius + gc.radius - dist;
     x.fict.pos = fict_pos;
-    g.contact_point = sphere_pos + normal * (g.radius1 - 0.5 * g.pen);
+    g.contact_point = a.sphere_pos + normal * (g.radius1 - 0.5 * g.pen);
     let (v1, v2) = (bodies.vel[n1 as usize], bodies.vel[n2 as usize]);
     let (w1, w2) = (bodies.ang_vel[n1 as usize], bodies.ang_vel[n2 as usize]);
     x.fict.vel = v1 * (1.0 - rel_pos) + v2 * rel_pos;
@@ -408,8 +514,88 @@ pub fn sphere_gridco(
     x.fict.ang_vel = Vec3::new(tws[0] / len, tws[1] / len, tws[2] / len) + cross(&segt, &(v2 - v1));
     let s1 = Kin::of(bodies, id1 as usize);
     g.precompute(&s1, &x.fict.kin(), ctx, &normal, is_new, shift2, true);
-    write_back(intrs, k, target, &g, &x);
-    Ok(true)
+}
+
+/// `sphere_gridco` on real contact `it` (body 1 the sphere) where it reduces to its own geometry:
+/// the sphere strictly inside the connection (0 < relPos < 1), the contact no duplicate and
+/// sharing no object, and none of the connections at the nearer node in `partners` (the
+/// connections the sphere may have a real interaction with: the neighbour loop then finds none).
+/// The geometry is updated in place, with YADE's arithmetic (`Along`, `contact_point`, `contact`
+/// are `sphere_gridco`'s own). False, with nothing written, where those conditions do not hold:
+/// the caller then runs `sphere_gridco`.
+pub fn sphere_gridco_steady(
+    it: &mut Interaction,
+    bodies: &Bodies,
+    cell: Option<&Cell>,
+    ctx: &GeomCtx,
+    shift2: &Vec3,
+    partners: &[u32],
+) -> bool {
+    let (id1, id2) = (it.id1, it.id2);
+    let (Some(radius), Ok(gc)) = (
+        bodies.shape[id1 as usize].sphere_radius(),
+        conn(bodies, id2),
+    ) else {
+        return false;
+    };
+    let Some(g) = it.geom.as_mut() else {
+        return false;
+    };
+    let Some(GeomExt::ScGridCo(x)) = it.ext.as_mut().and_then(|e| e.geom.as_mut()) else {
+        return false;
+    };
+    if x.is_duplicate != 0 || x.share != 0 {
+        return false;
+    }
+    let a = Along::of(gc, bodies, cell, id1, shift2);
+    if !(a.rel_pos > 0.0 && a.rel_pos < 1.0) {
+        return false;
+    }
+    let node = if a.rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
+    let Ok(list) = node_conns(bodies, node) else {
+        return false;
+    };
+    if list.len() > 1 && list.iter().any(|nb| *nb != id2 && partners.contains(nb)) {
+        return false;
+    }
+    x.true_int = -1;
+    let c = contact_point(&a.p_n1, &a.segt, &a.sphere_pos, a.rel_pos);
+    contact(g, x, &a, c, (radius, gc), bodies, id1, ctx, false, shift2);
+    true
+}
+
+/// For a potential pair of sphere `id1` (centre shifted by `shift2`) and connection `id2` (no
+/// geometry yet): true when `sphere_gridco` surely returns false without writing anything, as it
+/// does for a new pair farther apart than r + R, unless the sphere lies inside the connection and
+/// one of the connections at the nearer node is in `partners` (a real contact it could take over).
+/// False when that is not sure (the caller then runs `sphere_gridco`). Same arithmetic.
+pub fn sphere_gridco_stays_apart(
+    bodies: &Bodies,
+    cell: Option<&Cell>,
+    (id1, id2): (u32, u32),
+    shift2: &Vec3,
+    partners: &[u32],
+) -> bool {
+    let (Some(radius), Ok(gc)) = (
+        bodies.shape[id1 as usize].sphere_radius(),
+        conn(bodies, id2),
+    ) else {
+        return false;
+    };
+    let a = Along::of(gc, bodies, cell, id1, shift2);
+    let (_, _, dist) = contact_point(&a.p_n1, &a.segt, &a.sphere_pos, a.rel_pos);
+    // (farther than the reach, NaN not)
+    if dist.partial_cmp(&(radius + gc.radius)) != Some(std::cmp::Ordering::Greater) {
+        return false;
+    }
+    if a.rel_pos <= 0.0 || a.rel_pos >= 1.0 {
+        return true;
+    }
+    let node = if a.rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
+    let Ok(list) = node_conns(bodies, node) else {
+        return false;
+    };
+    list.len() <= 1 || !list.iter().any(|nb| *nb != id2 && partners.contains(nb))
 }
 
 /// Store the working copy of a sphere-connection geometry where YADE's pointer points.
