@@ -36,7 +36,7 @@
 
 use crate::body::Bodies;
 use crate::cell::Cell;
-use crate::interaction::{GeomFunctor, Interaction, ScanEntry};
+use crate::interaction::{GeomFunctor, Interactions, ScanEntry};
 use crate::math::{dot, norm2, Mat3, Vec3};
 use crate::shape::{GridConnection, Shape};
 
@@ -198,7 +198,7 @@ impl IdleSkip {
     /// For an owner whose container holds grid interactions (and whose walk is serial): note,
     /// before the interaction loop, each sphere's real sphere-connection interactions in `list`.
     /// They hold for that walk only (`end_walk`).
-    pub fn note_grid_partners(&mut self, n_bodies: usize, list: &[Interaction]) {
+    pub fn note_grid_partners(&mut self, n_bodies: usize, intrs: &Interactions) {
         let p = &mut self.partners;
         p.walk = p.walk.wrapping_add(1).max(1);
         if p.walk == 1 {
@@ -208,8 +208,10 @@ impl IdleSkip {
         }
         p.of.resize(n_bodies, (0, 0, [0; 3]));
         p.gained.resize(n_bodies, 0);
-        for it in list {
-            if it.functor != GeomFunctor::SphereGridConnection || !it.is_real() {
+        // (an idle pair is potential: its summary tells without reading the interaction)
+        for (k, it) in intrs.list.iter().enumerate() {
+            let idle = intrs.scan.get(k).is_some_and(|sc| sc.is_idle());
+            if idle || it.functor != GeomFunctor::SphereGridConnection || !it.is_real() {
                 continue;
             }
             let e = &mut p.of[it.id1 as usize];

@@ -516,7 +516,7 @@ impl GridPart {
         }
         if self.lean {
             let n = sub.bodies.len();
-            sub.idle_skip.note_grid_partners(n, &sub.interactions.list);
+            sub.idle_skip.note_grid_partners(n, &sub.interactions);
         }
         sub.interaction_loop(&mut self.il)?;
         for &(k, id) in &self.touched {

@@ -86,6 +86,7 @@ pub fn six_d_rotations(p: &SixDParams, pr: &Pair, normal: &Vec3, rot: &mut Rot6D
 
 /// `GridConnection::getSegment`: node 2 minus node 1, node 2 shifted by `hSize*cellDist` when the
 /// connection is periodic.
+#[inline(always)]
 pub fn segment(gc: &GridConnection, bodies: &Bodies, cell: Option<&Cell>) -> Vec3 {
     let p1 = bodies.pos[gc.node1 as usize];
     let p2 = bodies.pos[gc.node2 as usize];
@@ -120,26 +121,36 @@ pub fn sphere_gridco_reach(
     Some((sphere_pos, p_n1 + segt * t, r + gc.radius))
 }
 
+#[inline(always)]
 fn conn(bodies: &Bodies, id: u32) -> Result<&GridConnection, String> {
     match &bodies.shape[id as usize] {
         Shape::GridConnection(g) => Ok(g),
-        s => Err(format!(
-            "body #{} is a {}, not a GridConnection",
-            id,
-            s.class_name()
-        )),
+        s => Err(not_a(id, s, "GridConnection")),
     }
 }
 
+#[inline(always)]
 fn node_conns(bodies: &Bodies, id: u32) -> Result<&[u32], String> {
     match &bodies.shape[id as usize] {
         Shape::GridNode(n) => Ok(&n.conn_list),
-        s => Err(format!(
-            "body #{} is a {}, not a GridNode",
-            id,
-            s.class_name()
-        )),
+        s => Err(not_a(id, s, "GridNode")),
     }
+}
+
+#[cold]
+#[inline(never)]
+fn not_a(id: u32, s: &Shape, what: &str) -> String {
+    format!("body #{} is a {}, not a {}", id, s.class_name(), what)
+}
+
+/// Whether connection `c` is among `partners` (a few at most).
+#[inline(always)]
+fn among(partners: &[u32], c: u32) -> bool {
+    let mut found = false;
+    for &p in partners {
+        found |= p == c;
+    }
+    found
 }
 
 #[inline(always)]
@@ -212,7 +223,7 @@ pub fn takeover_operands(
 /// `IdleSkip::grid_partners`), when known, answers for every other connection without a lookup.
 #[inline(always)]
 fn real_with(intrs: &Interactions, s: u32, nb: u32, partners: Option<&[u32]>) -> Option<usize> {
-    if partners.is_some_and(|p| !p.contains(&nb)) {
+    if partners.is_some_and(|p| !among(p, nb)) {
         return None;
     }
     intrs.find(s, nb).filter(|&j| intrs.list[j].is_real())
@@ -555,7 +566,7 @@ pub fn sphere_gridco_steady(
     let Ok(list) = node_conns(bodies, node) else {
         return false;
     };
-    if list.len() > 1 && list.iter().any(|nb| *nb != id2 && partners.contains(nb)) {
+    if list.len() > 1 && list.iter().any(|&nb| nb != id2 && among(partners, nb)) {
         return false;
     }
     x.true_int = -1;
@@ -595,7 +606,7 @@ pub fn sphere_gridco_stays_apart(
     let Ok(list) = node_conns(bodies, node) else {
         return false;
     };
-    list.len() <= 1 || !list.iter().any(|nb| *nb != id2 && partners.contains(nb))
+    list.len() <= 1 || !list.iter().any(|&nb| nb != id2 && among(partners, nb))
 }
 
 /// Store the working copy of a sphere-connection geometry where YADE's pointer points.
