@@ -36,7 +36,7 @@
 
 use crate::body::Bodies;
 use crate::cell::Cell;
-use crate::interaction::{GeomFunctor, Interactions, ScanEntry};
+use crate::interaction::{Interactions, ScanEntry};
 use crate::math::{dot, norm2, Mat3, Vec3};
 use crate::shape::{GridConnection, Shape};
 
@@ -195,10 +195,11 @@ impl IdleSkip {
         }
     }
 
-    /// For an owner whose container holds grid interactions (and whose walk is serial): note,
-    /// before the interaction loop, each sphere's real sphere-connection interactions in `list`.
-    /// They hold for that walk only (`end_walk`).
-    pub fn note_grid_partners(&mut self, n_bodies: usize, intrs: &Interactions) {
+    /// For an owner whose walk is serial: note, before the interaction loop, each sphere's real
+    /// interactions with a connection in `intrs` (whatever their functor: one loaded from a file
+    /// is resolved only at its first visit). They hold for that walk only (`end_walk`).
+    pub fn note_grid_partners(&mut self, bodies: &Bodies, intrs: &Interactions) {
+        let n_bodies = bodies.len();
         let p = &mut self.partners;
         p.walk = p.walk.wrapping_add(1).max(1);
         if p.walk == 1 {
@@ -211,15 +212,22 @@ impl IdleSkip {
         // (an idle pair is potential: its summary tells without reading the interaction)
         for (k, it) in intrs.list.iter().enumerate() {
             let idle = intrs.scan.get(k).is_some_and(|sc| sc.is_idle());
-            if idle || it.functor != GeomFunctor::SphereGridConnection || !it.is_real() {
+            if idle || !it.is_real() {
                 continue;
             }
-            let e = &mut p.of[it.id1 as usize];
+            let conn = |id: u32| matches!(bodies.shape[id as usize], Shape::GridConnection(_));
+            let sphere = |id: u32| matches!(bodies.shape[id as usize], Shape::Sphere { .. });
+            let (s, c) = match (it.id1, it.id2) {
+                (a, b) if sphere(a) && conn(b) => (a, b),
+                (a, b) if conn(a) && sphere(b) => (b, a),
+                _ => continue,
+            };
+            let e = &mut p.of[s as usize];
             if e.0 != p.walk {
                 *e = (p.walk, 0, [0; 3]);
             }
             if (e.1 as usize) < e.2.len() {
-                e.2[e.1 as usize] = it.id2;
+                e.2[e.1 as usize] = c;
             }
             e.1 = e.1.saturating_add(1);
         }

@@ -1152,6 +1152,8 @@ impl Scene {
             trace: false,
         };
         let r = self.interaction_loop_with(il, &mut energy);
+        // (after an error too: the partners noted for this walk hold for it alone)
+        self.idle_skip.end_walk();
         self.energy = tracker;
         il.energy_caches = caches;
         if !il.sum_intr_forces_cb.is_empty() {
@@ -1245,7 +1247,6 @@ impl Scene {
                 self.visit(il, k, &ctx0, energy, &mut geom_entries)?;
             }
         }
-        self.idle_skip.end_walk();
         Ok(())
     }
 
@@ -1256,7 +1257,7 @@ impl Scene {
     /// contact made). False, with nothing done, when that does not hold.
     #[inline(always)]
     fn steady_gridco(&mut self, cfg: &PreCfg, k: usize) -> bool {
-        let Some((p, frict)) = cfg.gridco.as_ref() else {
+        let Some(gc) = cfg.gridco.as_ref() else {
             return false;
         };
         let it = &mut self.interactions.list[k];
@@ -1266,7 +1267,7 @@ impl Scene {
         let b = &self.bodies;
         let (id1, id2) = (it.id1 as usize, it.id2 as usize);
         let nm = self.materials.len();
-        if !frict[b.material[id1] * nm + b.material[id2]]
+        if !gc.frict[b.material[id1] * nm + b.material[id2]]
             || it.ext.as_ref().is_some_and(|e| !e.only_geom())
         {
             return false;
@@ -1286,7 +1287,7 @@ impl Scene {
         ) else {
             unreachable!("a real sphere-connection contact has its ScGridCoGeom")
         };
-        if !law::grid::scgridco_frict(p, g, x, ph, id1, id2, &mut self.forces, None) {
+        if !law::grid::scgridco_frict(&gc.p, g, x, ph, id1, id2, &mut self.forces, None) {
             it.reset();
         }
         true
@@ -1671,23 +1672,28 @@ impl Scene {
             Some(p6) if serial => steady_coh(GeomClass::GridNodeGeom6D)?.map(|cm| (p6, cm)),
             _ => None,
         };
+        // (a functor lookup that fails here leaves the lean path out: the visit reports it, if
+        // the walk meets such a pair at all)
         let gridco = match il.scgridco_frict {
             Some(p)
                 if serial
                     && self.idle_skip.grid_partners_noted()
                     && il.sphere_gridco.is_some()
-                    && il.law_functor(GeomClass::ScGridCoGeom, PhysClass::FrictPhys)?
+                    && il
+                        .law_functor(GeomClass::ScGridCoGeom, PhysClass::FrictPhys)
+                        .ok()
+                        .flatten()
                         == Some(LawFunctor::ScGridCoFrict) =>
             {
                 let m = &self.materials;
                 let mut frict = Vec::with_capacity(m.len() * m.len());
                 for a in m {
                     for b in m {
-                        let f = il.phys_functor(a.class(), b.class())?.map(|(f, _)| f);
-                        frict.push(f == Some(PhysFunctor::Frict));
+                        let f = il.phys_functor(a.class(), b.class()).ok().flatten();
+                        frict.push(f.is_some_and(|(f, _)| f == PhysFunctor::Frict));
                     }
                 }
-                Some((p, frict))
+                Some(GridcoCfg { p, frict })
             }
             _ => None,
         };
@@ -2335,6 +2341,16 @@ fn idle_apart(
 /// was asked for 24 slots ahead, so the pointer is in cache by then).
 const EXT_AHEAD: usize = 8;
 
+/// What `Scene::steady_gridco` may take: Law2_ScGridCoGeom_FrictPhys_CundallStrack's parameters, and
+/// per pair of materials (row-major) whether their physics functor is
+/// Ip2_FrictMat_FrictMat_FrictPhys, which leaves existing physics alone. (A contact with a
+/// CohFrictPhys is left to the visit: where grids are, CohesionMoment is registered for the bonds,
+/// and it is that contact's law.)
+struct GridcoCfg {
+    p: law::grid::ScGridCoParams,
+    frict: Vec<bool>,
+}
+
 /// What the pre-pass may evaluate (`Scene::pre_cfg`).
 struct PreCfg {
     /// The idle pairs' distance pre-check (`InteractionLoop::idle_params`).
@@ -2349,9 +2365,8 @@ struct PreCfg {
     /// Per material: a CohFrictMat (whose Ip2 leaves existing physics alone this step).
     coh_mat: Vec<bool>,
     /// Steady sphere-connection contacts (`Scene::steady_gridco`, serial walk with the grid
-    /// partners noted): the law's parameters, and per pair of materials (row-major) whether the
-    /// physics functor is Ip2_FrictMat_FrictMat_FrictPhys (a no-op on existing physics).
-    gridco: Option<(law::grid::ScGridCoParams, Vec<bool>)>,
+    /// partners noted).
+    gridco: Option<GridcoCfg>,
     dt: f64,
     iter: i64,
 }
