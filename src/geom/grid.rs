@@ -272,16 +272,17 @@ pub fn sphere_gridco(
         };
         (*it.geom.as_ref().unwrap(), x, Target::Own)
     };
+    let along = Along::of(gc, bodies, cell, id1, shift2);
     let Along {
         segt,
-        len,
         p_n1,
         p_n2,
         sphere_pos,
         branch,
         branch_n,
         mut rel_pos,
-    } = Along::of(gc, bodies, cell, id1, shift2);
+        ..
+    } = along;
     if x.is_duplicate == 2 && x.true_int != id2 as i32 {
         // the law erases this one
         return Ok(true);
@@ -405,16 +406,7 @@ pub fn sphere_gridco(
     if is_new && dist > radius + gc.radius {
         return Ok(false);
     }
-    let a = Along {
-        segt,
-        len,
-        p_n1,
-        p_n2,
-        sphere_pos,
-        branch,
-        branch_n,
-        rel_pos,
-    };
+    let a = Along { rel_pos, ..along };
     let c = (fict_pos, branch_f, dist);
     contact(
         &mut g,
@@ -435,6 +427,7 @@ pub fn sphere_gridco(
 /// What `sphere_gridco` works out first: the segment (`segt`, its length), the nodes' positions,
 /// the sphere's centre shifted back by the pair's period, its branches from both nodes (tiny
 /// components zeroed) and its position along the segment, `relPos`, not yet clamped.
+#[derive(Clone, Copy)]
 struct Along {
     segt: Vec3,
     len: f64,
