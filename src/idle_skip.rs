@@ -65,7 +65,8 @@ pub struct IdleSkip {
 }
 
 /// Per sphere, the connections it had a real interaction with when the current walk began, so
-/// that `geom::grid::sphere_gridco_steady` can rule out a neighbour contact without looking it up.
+/// that the walk's sphere-connection paths (`geom::grid`: the steady contact, the pair that stays
+/// apart, the neighbour lookups) can rule out a neighbour's contact without looking it up.
 /// Entries are stamped with the walk they were noted for; a body that gains a connection
 /// interaction during the walk (`gained_grid_real`) loses its entry.
 #[derive(Clone, Debug, Default)]
