@@ -210,14 +210,14 @@ impl IdleSkip {
         }
         p.of.resize(n_bodies, (0, 0, [0; 3]));
         p.gained.resize(n_bodies, 0);
+        let conn = |id: u32| matches!(bodies.shape[id as usize], Shape::GridConnection(_));
+        let sphere = |id: u32| matches!(bodies.shape[id as usize], Shape::Sphere { .. });
         // (an idle pair is potential: its summary tells without reading the interaction)
         for (k, it) in intrs.list.iter().enumerate() {
             let idle = intrs.scan.get(k).is_some_and(|sc| sc.is_idle());
             if idle || !it.is_real() {
                 continue;
             }
-            let conn = |id: u32| matches!(bodies.shape[id as usize], Shape::GridConnection(_));
-            let sphere = |id: u32| matches!(bodies.shape[id as usize], Shape::Sphere { .. });
             let (s, c) = match (it.id1, it.id2) {
                 (a, b) if sphere(a) && conn(b) => (a, b),
                 (a, b) if conn(a) && sphere(b) => (b, a),

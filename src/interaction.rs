@@ -6,7 +6,9 @@
 //! is replaced by the last one (`swap_remove`). A hash map finds a pair's slot.
 
 use crate::geom::{GeomClass, GeomExt, ScGeom};
-use crate::phys::{BubblePhys, CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, ViscElPhys};
+use crate::phys::{
+    BubblePhys, CohFrictPhys, FrictPhys, LudingPhys, MindlinPhys, PhysClass, ViscElPhys,
+};
 use rustc_hash::FxHashMap;
 
 /// Which geometry functor handles an interaction, resolved once per interaction lifetime as YADE's
@@ -44,19 +46,6 @@ pub struct IntrExt {
     pub bubble: Option<BubblePhys>,
     /// `Some` when the physics is a `CpmPhys` (boxed: it is large).
     pub cpm: Option<Box<crate::phys::CpmPhys>>,
-}
-
-impl IntrExt {
-    /// Only a geometry part: the physics is a plain FrictPhys.
-    #[inline(always)]
-    pub fn only_geom(&self) -> bool {
-        self.coh.is_none()
-            && self.viscel.is_none()
-            && self.mindlin.is_none()
-            && self.luding.is_none()
-            && self.bubble.is_none()
-            && self.cpm.is_none()
-    }
 }
 
 #[derive(Clone, Debug)]
@@ -150,6 +139,30 @@ impl Interaction {
     pub fn geom_class(&self) -> Option<GeomClass> {
         self.geom.as_ref()?;
         Some(self.geom_ext().map_or(GeomClass::ScGeom, |g| g.class()))
+    }
+
+    /// The class of the physics (of a real interaction), from the physics part the extension
+    /// holds: a plain FrictPhys without one.
+    #[inline(always)]
+    pub fn phys_class(&self) -> PhysClass {
+        let Some(e) = self.ext.as_deref() else {
+            return PhysClass::FrictPhys;
+        };
+        if e.coh.is_some() {
+            PhysClass::CohFrictPhys
+        } else if e.viscel.is_some() {
+            PhysClass::ViscElPhys
+        } else if e.mindlin.is_some() {
+            PhysClass::MindlinPhys
+        } else if e.luding.is_some() {
+            PhysClass::LudingPhys
+        } else if e.bubble.is_some() {
+            PhysClass::BubblePhys
+        } else if e.cpm.is_some() {
+            PhysClass::CpmPhys
+        } else {
+            PhysClass::FrictPhys
+        }
     }
 
     /// `Interaction::swapOrder`: swap the ids and negate the period.

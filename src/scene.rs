@@ -1268,7 +1268,7 @@ impl Scene {
         let (id1, id2) = (it.id1 as usize, it.id2 as usize);
         let nm = self.materials.len();
         if !gc.frict[b.material[id1] * nm + b.material[id2]]
-            || it.ext.as_ref().is_some_and(|e| !e.only_geom())
+            || it.phys_class() != PhysClass::FrictPhys
         {
             return false;
         }
@@ -2021,21 +2021,7 @@ impl Scene {
         let b = &self.bodies;
         let it = &mut self.interactions.list[k];
         let gc = it.geom_class().unwrap();
-        let pc = if it.coh().is_some() {
-            PhysClass::CohFrictPhys
-        } else if it.viscel().is_some() {
-            PhysClass::ViscElPhys
-        } else if it.mindlin().is_some() {
-            PhysClass::MindlinPhys
-        } else if it.luding().is_some() {
-            PhysClass::LudingPhys
-        } else if it.ext.as_ref().is_some_and(|e| e.bubble.is_some()) {
-            PhysClass::BubblePhys
-        } else if it.cpm().is_some() {
-            PhysClass::CpmPhys
-        } else {
-            PhysClass::FrictPhys
-        };
+        let pc = it.phys_class();
         let Some(lf) = il.law_functor(gc, pc)? else {
             return Err(format!(
                 "None of the given Law2 functors can handle interaction #{}+#{} ({}, {:?}): add {}",

@@ -555,11 +555,7 @@ pub fn sphere_gridco_steady(
     if !(a.rel_pos > 0.0 && a.rel_pos < 1.0) {
         return false;
     }
-    let node = if a.rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
-    let Ok(list) = node_conns(bodies, node) else {
-        return false;
-    };
-    if list.len() > 1 && list.iter().any(|&nb| nb != id2 && among(partners, nb)) {
+    if partner_at_nearer_node(bodies, gc, id2, a.rel_pos, partners) != Some(false) {
         return false;
     }
     x.true_int = -1;
@@ -595,11 +591,23 @@ pub fn sphere_gridco_stays_apart(
     if a.rel_pos <= 0.0 || a.rel_pos >= 1.0 {
         return true;
     }
-    let node = if a.rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
-    let Ok(list) = node_conns(bodies, node) else {
-        return false;
-    };
-    list.len() <= 1 || !list.iter().any(|&nb| nb != id2 && among(partners, nb))
+    partner_at_nearer_node(bodies, gc, id2, a.rel_pos, partners) == Some(false)
+}
+
+/// Whether a connection other than `id2` at the node nearer the sphere (node 1 for relPos <= 0.5,
+/// as `sphere_gridco`'s inside branch picks it) is among `partners`, when the node has more than
+/// one (the branch looks at none otherwise); None when that node is no GridNode.
+#[inline(always)]
+fn partner_at_nearer_node(
+    bodies: &Bodies,
+    gc: &GridConnection,
+    id2: u32,
+    rel_pos: f64,
+    partners: &[u32],
+) -> Option<bool> {
+    let node = if rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
+    let list = node_conns(bodies, node).ok()?;
+    Some(list.len() > 1 && list.iter().any(|&nb| nb != id2 && among(partners, nb)))
 }
 
 /// Store the working copy of a sphere-connection geometry where YADE's pointer points.
