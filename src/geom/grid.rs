@@ -189,6 +189,17 @@ fn nb_direction(bodies: &Bodies, nb: u32, node_pos: &Vec3) -> Result<Vec3, Strin
     Ok(s)
 }
 
+/// Whether the sphere (branch `br` from the node at `node_pos`) lies at or behind that node along
+/// its neighbour `nb`: YADE's `relPos = (br·s)/(|s|·|s|) <= 0`, s the neighbour's segment from the
+/// node. Only the sign is used, and it is the sign of br·s: after zero_tiny every non-zero
+/// component is at least 1e-14, so |s|² >= 1e-28 never rounds to zero and br·s, when not zero, is
+/// far above the underflow of the quotient; s = 0 gives 0/0 = NaN, which is not <= 0.
+#[inline(always)]
+fn behind(bodies: &Bodies, nb: u32, node_pos: &Vec3, br: &Vec3) -> Result<bool, String> {
+    let s = nb_direction(bodies, nb, node_pos)?;
+    Ok(norm2(&s) != 0.0 && dot(br, &s) <= 0.0)
+}
+
 /// For the idle skip (`crate::idle_skip`): the operands of every hand-over test by which the
 /// potential pair of sphere `s` (centre shifted by `shift2`) and connection `c` could take over a
 /// contact. `sphere_gridco` takes over the contact of a neighbour (a connection at the nearer node
@@ -290,15 +301,7 @@ pub fn sphere_gridco(
     x.is_duplicate = 0;
     x.true_int = -1;
 
-    // Whether the sphere lies at or behind `node` along the neighbour `nb` of this connection:
-    // YADE's `relPos = (br·s)/(|s|·|s|) <= 0`, s the neighbour's segment from `node`. Only the
-    // sign is used, and it is the sign of br·s: after zero_tiny every non-zero component is at
-    // least 1e-14, so |s|² >= 1e-28 never rounds to zero and br·s, when not zero, is far above
-    // the underflow of the quotient; s = 0 gives 0/0 = NaN, which is not <= 0.
-    let nb_behind = |nb: u32, node_pos: &Vec3, br: &Vec3| -> Result<bool, String> {
-        let s = nb_direction(bodies, nb, node_pos)?;
-        Ok(norm2(&s) != 0.0 && dot(br, &s) <= 0.0)
-    };
+    let nb_behind = |nb: u32, node_pos: &Vec3, br: &Vec3| behind(bodies, nb, node_pos, br);
     let neighbour_is_duplicate = |intrs: &Interactions, j: usize| -> i32 {
         match intrs.list[j].geom_ext() {
             Some(GeomExt::ScGridCo(o)) => o.is_duplicate,
@@ -522,8 +525,9 @@ fn contact(
 
 /// `sphere_gridco` on real contact `it` (body 1 the sphere) where it reduces to its own geometry:
 /// the sphere strictly inside the connection (0 < relPos < 1), the contact no duplicate and
-/// sharing no object, and none of the connections at the nearer node in `partners` (the
-/// connections the sphere may have a real interaction with: the neighbour loop then finds none).
+/// sharing no object, and no connection at the nearer node that is in `partners` (the connections
+/// the sphere may have a real interaction with) has the sphere behind it: the neighbour loop then
+/// takes nothing over (`takeover_at_nearer_node`).
 /// The geometry is updated in place, with YADE's arithmetic (`Along`, `contact_point`, `contact`
 /// are `sphere_gridco`'s own). False, with nothing written, where those conditions do not hold:
 /// the caller then runs `sphere_gridco`.
@@ -555,7 +559,7 @@ pub fn sphere_gridco_steady(
     if !(a.rel_pos > 0.0 && a.rel_pos < 1.0) {
         return false;
     }
-    if partner_at_nearer_node(bodies, gc, id2, a.rel_pos, partners) != Some(false) {
+    if takeover_at_nearer_node(bodies, gc, id2, &a, partners) != Some(false) {
         return false;
     }
     x.true_int = -1;
@@ -567,7 +571,7 @@ pub fn sphere_gridco_steady(
 /// For a potential pair of sphere `id1` (centre shifted by `shift2`) and connection `id2` (no
 /// geometry yet): true when `sphere_gridco` surely returns false without writing anything, as it
 /// does for a new pair farther apart than r + R, unless the sphere lies inside the connection and
-/// one of the connections at the nearer node is in `partners` (a real contact it could take over).
+/// may take over the contact of a connection at the nearer node (`takeover_at_nearer_node`).
 /// False when that is not sure (the caller then runs `sphere_gridco`). Same arithmetic.
 pub fn sphere_gridco_stays_apart(
     bodies: &Bodies,
@@ -591,23 +595,38 @@ pub fn sphere_gridco_stays_apart(
     if a.rel_pos <= 0.0 || a.rel_pos >= 1.0 {
         return true;
     }
-    partner_at_nearer_node(bodies, gc, id2, a.rel_pos, partners) == Some(false)
+    takeover_at_nearer_node(bodies, gc, id2, &a, partners) == Some(false)
 }
 
-/// Whether a connection other than `id2` at the node nearer the sphere (node 1 for relPos <= 0.5,
-/// as `sphere_gridco`'s inside branch picks it) is among `partners`, when the node has more than
-/// one (the branch looks at none otherwise); None when that node is no GridNode.
+/// Whether `sphere_gridco`'s inside branch may take over a neighbour's contact: whether a
+/// connection other than `id2` at the node nearer the sphere (node 1 for relPos <= 0.5, as the
+/// branch picks it) is among `partners` and has the sphere behind it (`behind`), when the node has
+/// more than one (the branch looks at none otherwise). Without such a neighbour the branch's loop
+/// changes nothing, whichever of them are real. None when that node or a neighbour is not what it
+/// should be.
 #[inline(always)]
-fn partner_at_nearer_node(
+fn takeover_at_nearer_node(
     bodies: &Bodies,
     gc: &GridConnection,
     id2: u32,
-    rel_pos: f64,
+    a: &Along,
     partners: &[u32],
 ) -> Option<bool> {
-    let node = if rel_pos <= 0.5 { gc.node1 } else { gc.node2 };
+    let (node, node_pos, br) = if a.rel_pos <= 0.5 {
+        (gc.node1, &a.p_n1, &a.branch)
+    } else {
+        (gc.node2, &a.p_n2, &a.branch_n)
+    };
     let list = node_conns(bodies, node).ok()?;
-    Some(list.len() > 1 && list.iter().any(|&nb| nb != id2 && among(partners, nb)))
+    if list.len() <= 1 {
+        return Some(false);
+    }
+    for &nb in list {
+        if nb != id2 && among(partners, nb) && behind(bodies, nb, node_pos, br).ok()? {
+            return Some(true);
+        }
+    }
+    Some(false)
 }
 
 /// Store the working copy of a sphere-connection geometry where YADE's pointer points.
