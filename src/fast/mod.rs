@@ -1033,14 +1033,17 @@ impl FastSim {
 
     /// The active contacts keyed by scene ids (lower id first, state seen from the lower id).
     fn known_contacts(&mut self) -> Known {
-        let mut six = FxHashMap::default();
+        // (each map sized for its contacts: no rehash while it fills)
+        let n6 = self.contacts6.iter().filter(|c| c.is_real()).count();
+        let mut six = FxHashMap::with_capacity_and_hasher(n6, Default::default());
         for (p, c) in self.pairs.iter().zip(self.contacts6.drain(..)) {
             if c.is_real() {
                 let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
                 six.insert((a.min(b), a.max(b)), c);
             }
         }
-        let mut known = FxHashMap::default();
+        let n = self.flags.iter().filter(|&&f| f != 0).count();
+        let mut known = FxHashMap::with_capacity_and_hasher(n, Default::default());
         for (p, c) in self.pairs.iter().zip(&self.contacts) {
             if c.active {
                 let (a, b) = (self.ids[p.i as usize], self.ids[p.j as usize]);
