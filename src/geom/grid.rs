@@ -301,7 +301,6 @@ pub fn sphere_gridco(
     x.is_duplicate = 0;
     x.true_int = -1;
 
-    let nb_behind = |nb: u32, node_pos: &Vec3, br: &Vec3| behind(bodies, nb, node_pos, br);
     let neighbour_is_duplicate = |intrs: &Interactions, j: usize| -> i32 {
         match intrs.list[j].geom_ext() {
             Some(GeomExt::ScGridCo(o)) => o.is_duplicate,
@@ -328,7 +327,7 @@ pub fn sphere_gridco(
                 if nb == id2 {
                     continue;
                 }
-                if nb_behind(nb, &node_pos, &br)? {
+                if behind(bodies, nb, &node_pos, &br)? {
                     // outside this neighbour too: the first real interaction (not a duplicate)
                     // keeps the contact
                     if let Some(j) = real_with(intrs, id1, nb, partners) {
@@ -368,7 +367,7 @@ pub fn sphere_gridco(
                 let Some(j) = real_with(intrs, id1, nb, partners) else {
                     continue;
                 };
-                if nb_behind(nb, &node_pos, &br)? {
+                if behind(bodies, nb, &node_pos, &br)? {
                     // take over the neighbour's geometry object
                     if target == Target::Own {
                         write_back(intrs, k, target, &g, &x);
