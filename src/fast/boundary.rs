@@ -13,7 +13,7 @@ use crate::geom::{self, GeomCtx, Kin, Pair, ScGeom};
 use crate::interaction::{GeomFunctor, Interaction, IntrExt};
 use crate::law;
 use crate::material::FrictMat;
-use crate::math::{mat_t_vec, Quat, Vec3};
+use crate::math::{mat_t_vec, Mat3, Quat, Vec3};
 use crate::phys::FrictPhys;
 use crate::scene::{InteractionLoop, PhysFunctor, Scene};
 use crate::shape::{Facet, Shape};
@@ -48,6 +48,8 @@ struct Boundary {
     pos: Vec3,
     vel: Vec3,
     ori: Quat,
+    /// `ori`'s rotation matrix (`ori` is fixed for the run).
+    rot: Mat3,
     mat: usize,
     x_ref: Vec3,
     force: Vec3,
@@ -256,6 +258,7 @@ impl Boundaries {
                 pos: b.pos[id],
                 vel: b.vel[id],
                 ori: b.ori[id],
+                rot: b.ori[id].to_rotation_matrix(),
                 mat: b.material[id],
                 x_ref: b.pos[id],
                 force: Vec3::zeros(),
@@ -417,7 +420,7 @@ impl Boundaries {
             if !bd.touch {
                 continue;
             }
-            let rot = bd.ori.to_rotation_matrix();
+            let rot = bd.rot;
             // (a margin for the rounding of the wrapped offsets)
             let half =
                 Self::reach_box(bd, &rot, rmax, skin) + size.map_or(Vec3::zeros(), |l| l * 1e-12);
@@ -555,15 +558,16 @@ impl Boundaries {
                 BShape::Wall { axis, sense, p } => {
                     geom::wall_sphere::go(p, *axis, *sense, r, &pr, g)
                 }
-                BShape::Box { ext, p } => geom::box_sphere::go(p, ext, r, &pr, g),
-                BShape::Facet { f, .. } => geom::facet_sphere::go(&mut self.facet_p, f, r, &pr, g),
+                BShape::Box { ext, p } => geom::box_sphere::go_rotated(p, ext, r, &pr, g, &bd.rot),
+                BShape::Facet { f, .. } => {
+                    geom::facet_sphere::go_rotated(&mut self.facet_p, f, r, &pr, g, &bd.rot)
+                }
             };
             if !made {
                 if let (BShape::Facet { f, .. }, true) =
                     (&bd.shape, self.facet_p.shrink_factor == 0.0)
                 {
-                    let cl =
-                        mat_t_vec(&bd.ori.to_rotation_matrix(), &(pr.s2.pos + shift2 - bd.pos));
+                    let cl = mat_t_vec(&bd.rot, &(pr.s2.pos + shift2 - bd.pos));
                     let g = FacetIdle::gap_of(f, &cl, r);
                     // a margin for the round-off of the bound and of `go`'s own arithmetic, which
                     // starts from the absolute positions (and the period's shift)
@@ -852,6 +856,7 @@ mod tests {
                     pos,
                     vel: Vec3::zeros(),
                     ori,
+                    rot: ori.to_rotation_matrix(),
                     mat: 0,
                     x_ref: pos,
                     force: Vec3::zeros(),

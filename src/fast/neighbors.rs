@@ -302,7 +302,9 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
                     let j = order[nj] as usize;
                     for k in 0..3 {
                         let s = d[k] - (pos[j][k] - pos[i][k]);
-                        cd[k] = (s / l[k]).round() as i32;
+                        // (0, what the rounding gives, without its division and libm call: both
+                        // bodies in the cell and no image taken, the common case)
+                        cd[k] = if s == 0.0 { 0 } else { (s / l[k]).round() as i32 };
                     }
                 }
                 let pair = Pair {

@@ -4,7 +4,7 @@
 
 use super::{GeomExt, Pair, Rot6D, ScGeom};
 use crate::interaction::IntrExt;
-use crate::math::{mat_t_vec, mat_vec, norm, normalized, Vec3};
+use crate::math::{mat_t_vec, mat_vec, norm, normalized, Mat3, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
@@ -49,10 +49,22 @@ pub fn go_6d(
 
 /// Body 1 is the box (half sizes `ext`), body 2 the sphere of radius `r`.
 pub fn go(p: &Params, ext: &Vec3, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
+    go_rotated(p, ext, r, pr, geom, &pr.s1.ori.to_rotation_matrix())
+}
+
+/// `go` given the box's rotation matrix `axis_t` (`pr.s1.ori.to_rotation_matrix()`), for a caller
+/// that keeps it while the box does not turn.
+pub fn go_rotated(
+    p: &Params,
+    ext: &Vec3,
+    r: f64,
+    pr: &Pair,
+    geom: &mut Option<ScGeom>,
+    axis_t: &Mat3,
+) -> bool {
     let (bx, sph, shift2, is_real) = (&pr.s1, &pr.s2, &pr.shift2, pr.is_real);
-    let axis_t = bx.ori.to_rotation_matrix();
     let rel = sph.pos + shift2 - bx.pos;
-    let mut c = mat_t_vec(&axis_t, &rel);
+    let mut c = mat_t_vec(axis_t, &rel);
     let mut inside = true;
     for i in 0..3 {
         if c[i] < -ext[i] {
@@ -76,7 +88,7 @@ pub fn go(p: &Params, ext: &Vec3, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) 
         }
         let mut nl = Vec3::zeros();
         nl[idx] = if c[idx] > 0.0 { 1.0 } else { -1.0 };
-        let normal = normalized(&mat_vec(&axis_t, &nl));
+        let normal = normalized(&mat_vec(axis_t, &nl));
         let pt1 = sph.pos + normal * min_d;
         let pt2 = sph.pos - normal * r;
         let normal2 = normalized(&(pt1 - pt2));
@@ -88,7 +100,7 @@ pub fn go(p: &Params, ext: &Vec3, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) 
         g.radius2 = r;
         g.precompute(bx, sph, &pr.ctx, &normal2, is_new, shift2, true);
     } else {
-        let c_box = mat_vec(&axis_t, &c);
+        let c_box = mat_vec(axis_t, &c);
         let c_sph = c_box - rel;
         let depth = r - norm(&c_sph);
         if -depth > r * (p.interaction_detection_factor - 1.0) && !is_real {

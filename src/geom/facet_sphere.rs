@@ -1,7 +1,7 @@
 //! `Ig2_Facet_Sphere_ScGeom` (pkg/dem/Ig2_Facet_Sphere_ScGeom.cpp): face, edge and vertex branches.
 
 use super::{Pair, ScGeom};
-use crate::math::{dot, mat_t_vec, mat_vec, norm, normalized, Vec3};
+use crate::math::{dot, mat_t_vec, mat_vec, norm, normalized, Mat3, Vec3};
 use crate::shape::Facet;
 
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -14,10 +14,22 @@ pub struct Params {
 /// Body 1 is the facet, body 2 the sphere of radius `r`. A new contact needs a strictly positive
 /// penetration; a real one is always updated.
 pub fn go(p: &mut Params, facet: &Facet, r: f64, pr: &Pair, geom: &mut Option<ScGeom>) -> bool {
+    go_rotated(p, facet, r, pr, geom, &pr.s1.ori.to_rotation_matrix())
+}
+
+/// `go` given the facet's rotation matrix `axis_t` (`pr.s1.ori.to_rotation_matrix()`), for a
+/// caller that keeps it while the facet does not turn.
+pub fn go_rotated(
+    p: &mut Params,
+    facet: &Facet,
+    r: f64,
+    pr: &Pair,
+    geom: &mut Option<ScGeom>,
+    axis_t: &Mat3,
+) -> bool {
     let (s1, s2, shift2, is_real) = (&pr.s1, &pr.s2, &pr.shift2, pr.is_real);
-    let axis_t = s1.ori.to_rotation_matrix();
     // branch vector in facet-local coordinates: facetAxis = axis_t^T
-    let cl = mat_t_vec(&axis_t, &(s2.pos + shift2 - s1.pos));
+    let cl = mat_t_vec(axis_t, &(s2.pos + shift2 - s1.pos));
     let mut normal = facet.normal;
     let mut l = dot(&normal, &cl);
     if l < 0.0 {
@@ -69,7 +81,7 @@ pub fn go(p: &mut Params, facet: &Facet, r: f64, pr: &Pair, geom: &mut Option<Sc
     if pen > 0.0 || is_real {
         let is_new = geom.is_none();
         let g = geom.get_or_insert_with(ScGeom::default);
-        let n_global = mat_vec(&axis_t, &normal);
+        let n_global = mat_vec(axis_t, &normal);
         g.contact_point = s2.pos + shift2 - n_global * (r - 0.5 * pen);
         g.pen = pen;
         g.radius1 = if p.hertzian { 1e8 * r } else { 2.0 * r };
