@@ -304,7 +304,11 @@ pub fn build(pos: &[V3], radius: &[f64], period: Option<V3>, skin: f64, par: boo
                         let s = d[k] - (pos[j][k] - pos[i][k]);
                         // (0, what the rounding gives, without its division and libm call: both
                         // bodies in the cell and no image taken, the common case)
-                        cd[k] = if s == 0.0 { 0 } else { (s / l[k]).round() as i32 };
+                        cd[k] = if s == 0.0 {
+                            0
+                        } else {
+                            (s / l[k]).round() as i32
+                        };
                     }
                 }
                 let pair = Pair {
