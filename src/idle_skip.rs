@@ -58,7 +58,7 @@ pub struct IdleSkip {
     grid_gen: Vec<u16>,
     /// Upper bound on how much any pair's gap has shrunk since the last reset.
     pub travel: f64,
-    /// The only bodies that may move or change radius (`watch`); None (the default): any body.
+    /// The only bodies whose moves the bounds must count (`watch`); None (the default): any body.
     watch: Option<Vec<u32>>,
     /// The grid partners noted for the current walk (`note_grid_partners`), if any.
     partners: Partners,
@@ -102,9 +102,15 @@ impl IdleSkip {
         let mut reset = n != self.pos.len() || hsize != self.hsize || factor != self.factor;
         if !reset {
             let (mut d2max, mut drmax, mut nan, mut kind) = (0.0f64, 0.0f64, false, false);
+            // (a watching owner changes no shape or radius: see `watch`)
+            let watching = self.watch.is_some();
             let mut visit = |id: usize| {
                 let p = bodies.pos[id];
-                let r = radius_of(&bodies.shape[id]);
+                let r = if watching {
+                    self.radius[id]
+                } else {
+                    radius_of(&bodies.shape[id])
+                };
                 let d2 = norm2(&(p - self.pos[id]));
                 let dr = (r - self.radius[id]).abs();
                 nan |= (d2 + dr).is_nan();
@@ -162,11 +168,12 @@ impl IdleSkip {
         }
     }
 
-    /// From now on only bodies `ids` move or change radius, and no shape changes: each step's
-    /// bound then reads these alone. The caller owns the scene and promises it (the fast path's
-    /// grid scene, whose other bodies are in no interaction and whose shapes are fixed for the
-    /// run); a body left out that moves anyway is counted with its whole displacement once it is
-    /// watched again.
+    /// From now on no shape or radius changes, and of the bodies that move only `ids` enter a
+    /// bound: each step's bound then reads these alone. The caller owns the scene and promises it
+    /// (the fast path's grid scene: its other bodies are in no interaction, its shapes are fixed for
+    /// the run, and its connections, which move with their nodes, enter no bound: the sphere-
+    /// connection bounds read the nodes and the sphere). A body left out that moves anyway is
+    /// counted with its whole displacement once it is watched again.
     pub fn watch(&mut self, ids: Vec<u32>) {
         self.watch = Some(ids);
     }

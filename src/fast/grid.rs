@@ -472,12 +472,11 @@ impl GridPart {
             .collect();
         touched.sort_unstable();
         touched.dedup();
-        // only these bodies move in the companion scene until the next rebuild: the idle skip's
-        // bound reads them alone
+        // only these bodies move in the companion scene until the next rebuild, with the
+        // connections, which follow their nodes and enter no bound (`IdleSkip::watch`): the idle
+        // skip's bound reads the spheres and nodes alone
         let moving = touched.iter().map(|&(_, id)| id);
-        let watch = moving
-            .chain(self.nodes.iter().copied())
-            .chain(self.conns.iter().copied());
+        let watch = moving.chain(self.nodes.iter().copied());
         self.sub.idle_skip.watch(watch.collect());
         self.touched = touched;
     }
