@@ -1010,14 +1010,10 @@ mod tests {
         let speed = (gap + 2.0 * reach) / (1000.0 * dt);
         let b = &scene.bodies;
         let mut at = vec![];
-        for k in 0..b.len() {
-            match &b.shape[k] {
-                Shape::GridConnection(gc) => {
-                    let (p1, p2) = (b.pos[gc.node1 as usize], b.pos[gc.node2 as usize]);
-                    at.push((p1 + p2) * 0.5 + n * (reach + gap));
-                }
-                Shape::GridNode(_) => {}
-                _ => {}
+        for s in &b.shape {
+            if let Shape::GridConnection(gc) = s {
+                let (p1, p2) = (b.pos[gc.node1 as usize], b.pos[gc.node2 as usize]);
+                at.push((p1 + p2) * 0.5 + n * (reach + gap));
             }
         }
         for k in 0..scene.bodies.len() {
