@@ -33,12 +33,25 @@
 //! connection interactions it gained (made in the loop, taken over, or created from Python), and
 //! a pair is skipped only while its sphere's count is the one it had when the deadline was set.
 //! Node connection lists are part of the snapshot (a change resets).
+//!
+//! A take-over needs the sphere inside the connection as well (`0 < relPos < 1`), so a pair whose
+//! sphere lies beyond an end (`relPos <= 0` or `>= 1`) stays potential, whatever its neighbours,
+//! while it stays beyond that end and out of reach. That is again a dot product's sign: the
+//! sphere's branch from the end (negated at node 1) with the segment, positive beyond, whose
+//! deadline is bounded as above (with a margin that also covers the later quotient by |segment|²).
+//! When that deadline is the longer one, the pair's is free of the sphere's gains (`GEN_FREE`):
+//! the churn of contacts at a junction (YADE's duplicate contacts, made and erased every other
+//! step) then does not end the skips of the sphere's other pairs.
 
 use crate::body::Bodies;
 use crate::cell::Cell;
 use crate::interaction::{Interactions, ScanEntry};
 use crate::math::{dot, norm2, Mat3, Vec3};
 use crate::shape::{GridConnection, Shape};
+
+/// `ScanEntry::gen` of a deadline that no gain ends (the pair's sphere is beyond an end of its
+/// connection until the deadline); the counts of `IdleSkip::grid_gen` stay below it.
+pub const GEN_FREE: u16 = 0x8000;
 
 /// The snapshot and the accumulated bound (see the module doc); owned by the scene, used only by
 /// the interaction loop.
@@ -195,7 +208,8 @@ impl IdleSkip {
             }
         }
         for &id in &ids[..if a == b { 1 } else { 2 }] {
-            self.grid_gen[id] = self.grid_gen[id].wrapping_add(1);
+            // (counted below `GEN_FREE`)
+            self.grid_gen[id] = (self.grid_gen[id] + 1) % GEN_FREE;
             if self.grid_gen[id] == 0 {
                 // a count back where it started could match an old deadline: none holds now
                 self.travel = f64::INFINITY;
@@ -278,10 +292,23 @@ impl IdleSkip {
     /// doc): `a·b` stays positive while the travel grows by less than `t` with
     /// `t² + t (|a| + |b|) = a·b - tol`. -inf when the test is not clearly false.
     pub fn behind_deadline(&self, a: &Vec3, b: &Vec3) -> f64 {
+        self.positive_deadline(a, b, 0.0)
+    }
+
+    /// The deadline of a sphere beyond an end of its connection (see the module doc): `a·b` as in
+    /// `behind_deadline`, `a` the sphere's branch from that end (negated at node 1), `b` the
+    /// segment; the margin also covers the rounding of the later `a·b / |b|²` against 0 or 1.
+    pub fn beyond_deadline(&self, a: &Vec3, b: &Vec3) -> f64 {
+        self.positive_deadline(a, b, 1e-9 * norm2(b))
+    }
+
+    /// `a·b` stays above `extra` (and the rounding margins) while the travel grows by less than
+    /// `t` with `t² + t (|a| + |b|) = a·b - tol`: -inf when it is not clearly above now.
+    fn positive_deadline(&self, a: &Vec3, b: &Vec3, extra: f64) -> f64 {
         let (na, nb) = (norm2(a).sqrt(), norm2(b).sqrt());
         let s = na + nb;
         // rounding of the dot product, and the later test's zeroing of components below 1e-14
-        let m = dot(a, b) - (1e-9 * na * nb + 1e-12 * s);
+        let m = dot(a, b) - (1e-9 * na * nb + 1e-12 * s + extra);
         // (NaN operands: no skip)
         if m.is_nan() || m <= 0.0 {
             return f64::NEG_INFINITY;
@@ -295,7 +322,7 @@ impl IdleSkip {
     /// bound and no take-over of a neighbour's contact is possible (see the module doc).
     #[inline(always)]
     pub fn skips_gridco(&self, e: &ScanEntry) -> bool {
-        self.travel < e.deadline && self.grid_gen(e.id1) == e.gen
+        self.travel < e.deadline && (e.gen == GEN_FREE || self.grid_gen(e.id1) == e.gen)
     }
 
     /// The radius of body `id` when it was a sphere at the snapshot.
@@ -447,14 +474,14 @@ mod tests {
         assert!(!s.skips_gridco(&scan[0]), "gained since the deadline");
         scan[0].gen = s.grid_gen(0);
         assert!(s.skips_gridco(&scan[0]), "a deadline set after the gain");
-        // another body's gains change nothing; 65,536 of the sphere's bring its count back, and
-        // then nothing is skipped until the next reset
-        for _ in 1..u16::MAX {
+        // another body's gains change nothing; 32,768 of the sphere's bring its count back (it
+        // stays below GEN_FREE), and then nothing is skipped until the next reset
+        for _ in 1..GEN_FREE - 1 {
             s.gained_grid_real(1, 1);
         }
-        assert_eq!(s.grid_gen(1), u16::MAX);
+        assert_eq!(s.grid_gen(1), GEN_FREE - 1);
         assert!(s.skips_gridco(&scan[0]));
-        for _ in 0..=u16::MAX {
+        for _ in 0..GEN_FREE {
             s.gained_grid_real(0, 0);
         }
         assert_eq!(s.grid_gen(0), scan[0].gen);
@@ -535,5 +562,94 @@ mod tests {
             }
         }
         assert!(cases > 5000, "{cases}");
+    }
+
+    /// A sphere beyond an end of its connection (the operands of `geom::grid::sphere_gridco_reach`)
+    /// stays beyond it (`relPos <= 0` or `>= 1` in `sphere_gridco`'s own arithmetic) until the
+    /// travel reaches `beyond_deadline`, however the sphere and both nodes move by up to half the travel each:
+    /// worst-case moves (the sphere along the segment towards its inside, the end node away from
+    /// it) and random ones, at distances from the end down to round-off. And the deadline is not
+    /// needlessly short: at least 0.8 of `(a·b - tol)/(|a|+|b|)`. Fails, checked, with the
+    /// deadline 1.3 times as far.
+    #[test]
+    fn beyond_deadline_bounds_every_move() {
+        let mt = std::cell::RefCell::new(rand_mt::Mt64::new(29));
+        let rnd = || (mt.borrow_mut().next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let unit = || loop {
+            let v = Vec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
+            let n = norm2(&v).sqrt();
+            if n <= 1.0 && n > 1e-3 {
+                return v / n;
+            }
+        };
+        let s = IdleSkip {
+            travel: 0.125,
+            ..Default::default()
+        };
+        let mut b = Bodies::default();
+        for _ in 0..4 {
+            b.push(utils::grid_node(Vec3::zeros(), 0.002, 0, false));
+        }
+        b.shape[2] = Shape::GridConnection(Box::new(GridConnection {
+            radius: 0.002,
+            node1: 0,
+            node2: 1,
+            periodic: false,
+            cell_dist: [0; 3],
+        }));
+        b.shape[3] = Shape::Sphere { radius: 0.004 };
+        let place = |b: &mut Bodies, x: [Vec3; 3]| {
+            (b.pos[0], b.pos[1], b.pos[3]) = (x[0], x[1], x[2]);
+        };
+        let (zero, c) = (Vec3::zeros(), None);
+        let beyond = |b: &Bodies| {
+            let rel = crate::geom::grid::sphere_gridco_rel_pos(b, c, (3, 2), &zero).unwrap();
+            !(rel > 0.0 && rel < 1.0)
+        };
+        let (mut cases, mut near) = (0, 0);
+        for i in 0..20_000 {
+            let n1 = unit() * 0.01;
+            let seg = unit() * (0.01 + 0.05 * rnd());
+            let u = seg / norm2(&seg).sqrt();
+            // past node 1 or node 2, by a length from 1e-15 to 2 cm, off the axis up to 1 cm
+            let past = 0.02 * rnd().powi(1 + i % 14);
+            let side = unit() * (0.01 * rnd());
+            let side = side - u * dot(&side, &u);
+            let at_2 = i % 2 == 1;
+            let sp = match at_2 {
+                false => n1 - u * past + side,
+                true => n1 + seg + u * past + side,
+            };
+            let x0 = [n1, n1 + seg, sp];
+            place(&mut b, x0);
+            let reach = crate::geom::grid::sphere_gridco_reach(&b, c, 3, 2, 0.004, &zero);
+            let Some((a, bb)) = reach.and_then(|r| r.beyond) else {
+                continue;
+            };
+            let d = s.beyond_deadline(&a, &bb);
+            if d == f64::NEG_INFINITY {
+                continue;
+            }
+            cases += 1;
+            near += (past < 1e-9) as usize;
+            let t = d - s.travel;
+            let (na, nb) = (norm2(&a).sqrt(), norm2(&bb).sqrt());
+            let tol = 1e-9 * na * nb + 1e-12 * (na + nb) + 1e-9 * nb * nb;
+            let m = dot(&a, &bb) - tol;
+            assert!(t >= 0.8 * m / (na + nb) * (1.0 - 1e-6), "{a} {bb} {t}");
+            let h = 0.5 * t;
+            for k in 0..12 {
+                // the sphere towards the inside and both nodes the other way (the end node away
+                // from it); then random moves of the same length
+                let mv = match (k, at_2) {
+                    (0, false) => [-u * h, -u * h, u * h],
+                    (0, true) => [u * h, u * h, -u * h],
+                    _ => [unit() * h, unit() * h, unit() * h],
+                };
+                place(&mut b, std::array::from_fn(|j| x0[j] + mv[j]));
+                assert!(beyond(&b), "case {i} move {k}: t {t}, past {past}");
+            }
+        }
+        assert!(cases > 15_000 && near > 100, "{cases} {near}");
     }
 }

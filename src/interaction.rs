@@ -233,7 +233,8 @@ pub struct ScanEntry {
     pub idle: bool,
     pub idle_gc: bool,
     /// For `idle_gc`: the sphere's count of real connection interactions gained
-    /// (`IdleSkip::grid_gen`) when the deadline was set.
+    /// (`IdleSkip::grid_gen`) when the deadline was set, or `idle_skip::GEN_FREE` for a deadline
+    /// that no gain ends.
     pub gen: u16,
     pub deadline: f64,
 }

@@ -1572,21 +1572,16 @@ impl Scene {
     /// the deadline of its distance beyond contact (none when the sphere is no plain sphere).
     fn idle_gridco(&mut self, k: usize, id1: u32, id2: u32, cell_dist: [i32; 3], shift2: &Vec3) {
         let skip = &self.idle_skip;
-        let deadline = skip
-            .sphere_radius(id1)
-            .and_then(|r| {
-                geom::grid::sphere_gridco_reach(
-                    &self.bodies,
-                    self.cell.as_ref(),
-                    id1,
-                    id2,
-                    r,
-                    shift2,
-                )
-            })
-            .map_or(f64::NEG_INFINITY, |(p1, p2, reach)| {
-                skip.deadline(&p1, &p2, reach)
-            });
+        let reach = skip.sphere_radius(id1).and_then(|r| {
+            geom::grid::sphere_gridco_reach(&self.bodies, self.cell.as_ref(), id1, id2, r, shift2)
+        });
+        let (deadline, beyond) = reach.map_or((f64::NEG_INFINITY, None), |r| {
+            (skip.deadline(&r.sphere, &r.nearest, r.reach), r.beyond)
+        });
+        // beyond an end of the connection, the pair takes nothing over while it stays there
+        let beyond = beyond.map_or(f64::NEG_INFINITY, |(a, b)| {
+            deadline.min(skip.beyond_deadline(&a, &b))
+        });
         // and by the take-over tests of the sphere's real neighbour contacts
         let mut deadline = deadline;
         if deadline > f64::NEG_INFINITY {
@@ -1602,13 +1597,18 @@ impl Scene {
                 deadline = f64::NEG_INFINITY;
             }
         }
+        // the longer of the two, free of the sphere's gains when beyond an end
+        let (deadline, gen) = match beyond >= deadline && beyond > f64::NEG_INFINITY {
+            true => (beyond, crate::idle_skip::GEN_FREE),
+            false => (deadline, skip.grid_gen(id1)),
+        };
         self.interactions.scan[k] = crate::interaction::ScanEntry {
             id1,
             id2,
             cell_dist,
             idle: false,
             idle_gc: true,
-            gen: skip.grid_gen(id1),
+            gen,
             deadline,
         };
     }

@@ -127,7 +127,7 @@ fn a_teleported_sphere_is_checked_at_once() {
 /// functor's take-over, which needs no distance check). Pairs are skipped beside real contacts too.
 /// Fails when the distance bound is cut to 0.3 of itself (a pair skipped in contact; checked by
 /// hand). On this net a take-over always comes within reach, so the take-over bound and the gains
-/// are guarded by the next test.
+/// are guarded by the next test, and the bound beyond an end by the one after.
 #[test]
 fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
     use ryade::io::scene_json;
@@ -186,7 +186,7 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
                 panic!("step {step}: #{} is no connection", e.id2)
             };
             let r = s.bodies.shape[e.id1 as usize].sphere_radius().unwrap();
-            let (p, q, reach) = ryade::geom::grid::sphere_gridco_reach(
+            let rc = ryade::geom::grid::sphere_gridco_reach(
                 &s.bodies,
                 None,
                 e.id1,
@@ -196,12 +196,22 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
             )
             .unwrap();
             assert!(
-                norm2(&(q - p)).sqrt() > reach,
+                norm2(&(rc.nearest - rc.sphere)).sqrt() > rc.reach,
                 "step {step}: #{}+#{} skipped in contact",
                 e.id1,
                 e.id2
             );
-            // no take-over: behind no neighbour (at either node) it has a real contact with
+            // no take-over: beyond an end of the connection (relPos <= 0 or >= 1, where the
+            // functor looks at no neighbour), or behind no neighbour (at either node) it has a real
+            // contact with
+            let rel = ryade::geom::grid::sphere_gridco_rel_pos(
+                &s.bodies,
+                None,
+                (e.id1, e.id2),
+                &Vec3::zeros(),
+            )
+            .unwrap();
+            let beyond = !(rel > 0.0 && rel < 1.0);
             let mut beside = 0;
             ryade::geom::grid::takeover_operands(
                 &s.interactions,
@@ -212,7 +222,7 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
                 |a, b| {
                     beside += 1;
                     assert!(
-                        ryade::math::dot(a, b) > 0.0,
+                        beyond || ryade::math::dot(a, b) > 0.0,
                         "step {step}: #{}+#{} skipped behind a real neighbour contact",
                         e.id1,
                         e.id2
@@ -321,5 +331,101 @@ fn skipped_pair_beside_a_real_contact_takes_it_over_on_time() {
             );
         }
         assert!(taken.is_some_and(|k| k > 30), "{thin_first}: {taken:?}");
+    }
+}
+
+/// A skipped pair whose sphere lies beyond an end of its connection, behind a real neighbour
+/// contact: on the corner of the previous test, the sphere (blocked DOFs, constant speed) sits
+/// behind the thick connection N-O (x < 0) in contact with it and beyond the thin one's end at N
+/// (y < 0), then moves along +y into the thin one, which must take the contact over at the first
+/// step that starts with the sphere inside it (relPos > 0). Before that the thin pair is skipped
+/// (`IdleSkip::beyond_deadline`, free of the sphere's gains), though its take-over test is true
+/// all along. Run with the thick contact made before and after the pair's first check. Fails,
+/// checked by hand, when `beyond_deadline` allows 3 times its bound (taken over late), and
+/// without the beyond bound (nothing skipped).
+#[test]
+fn skipped_pair_beyond_an_end_takes_over_on_time() {
+    use ryade::interaction::Interaction;
+    use ryade::io::scene_json;
+    use ryade::scene::Engine;
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
+    let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
+    let factor = 1.0;
+    for thin_first in [false, true] {
+        let mut s = Scene {
+            materials: net.materials.clone(),
+            engines: net.engines.clone(),
+            dt: 1e-5,
+            ..Default::default()
+        };
+        s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
+        let mat = net.bodies.material[0];
+        let node = |s: &mut Scene, x: f64, y: f64| {
+            s.bodies
+                .push(utils::grid_node(Vec3::new(x, y, 0.0), 0.001, mat, true))
+        };
+        let (n, o, p) = (
+            node(&mut s, 0.0, 0.0),
+            node(&mut s, 0.05, 0.0),
+            node(&mut s, 0.0, 0.05),
+        );
+        let thick = utils::grid_connection(&mut s, n, o, 0.01, mat, 1, None).unwrap() as u32;
+        let thin = utils::grid_connection(&mut s, n, p, 0.001, mat, 1, None).unwrap() as u32;
+        let mut b = utils::sphere(Vec3::new(-0.002, -0.003, 0.0125), 0.005, mat, 2600.0, false);
+        b.blocked = ryade::body::DOF_ALL;
+        // 0.006 in 60 steps: inside the thin connection (y > 0) from step 31 on
+        b.vel = Vec3::new(0.0, 0.006 / (60.0 * s.dt), 0.0);
+        let sid = s.bodies.push(b) as u32;
+        let order = if thin_first {
+            [thin, thick]
+        } else {
+            [thick, thin]
+        };
+        for c in order {
+            s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
+        }
+        let real = |s: &Scene, c: u32| {
+            s.interactions
+                .find(sid, c)
+                .is_some_and(|j| s.interactions.list[j].is_real())
+        };
+        let (mut taken, mut skipped) = (None, 0);
+        for step in 0..60 {
+            let inside = s.bodies.pos[sid as usize][1] > 0.0;
+            // the next loop's decision on the thin pair
+            let (mut skip, mut scan) = (s.idle_skip.clone(), s.interactions.scan.clone());
+            skip.prepare(&s.bodies, s.cell.as_ref(), factor, &mut scan);
+            let j = s.interactions.find(sid, thin).unwrap();
+            if scan[j].idle_gc && skip.skips_gridco(&scan[j]) {
+                assert!(
+                    real(&s, thick),
+                    "step {step}: skipped without the neighbour"
+                );
+                skipped += 1;
+            }
+            s.step().unwrap();
+            if step == 0 {
+                assert!(
+                    real(&s, thick) && !real(&s, thin),
+                    "behind the thick one first"
+                );
+            }
+            if real(&s, thin) {
+                assert!(
+                    inside,
+                    "step {step}: taken over before the sphere is inside"
+                );
+                taken = Some(step);
+                break;
+            }
+            assert!(
+                !inside,
+                "step {step}: inside, behind the real neighbour, not taken over"
+            );
+        }
+        assert!(
+            taken.is_some_and(|k| k > 25) && skipped > 15,
+            "{thin_first}: taken {taken:?}, skipped {skipped}"
+        );
     }
 }

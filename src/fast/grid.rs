@@ -384,7 +384,7 @@ impl GridPart {
                         }
                         // (body 1 the sphere, shifted back by body 2's period: `sphere_gridco`)
                         let cd = image(&v(&pos[k]), &mid);
-                        let Some((sp, q, reach)) = crate::geom::grid::sphere_gridco_reach(
+                        let Some(rc) = crate::geom::grid::sphere_gridco_reach(
                             bodies,
                             cell.as_ref(),
                             sid,
@@ -394,7 +394,7 @@ impl GridPart {
                         ) else {
                             continue;
                         };
-                        if (sp - q).norm() <= reach + skin {
+                        if (rc.sphere - rc.nearest).norm() <= rc.reach + skin {
                             near.push(([0; 3], k as u32, cd));
                         }
                     }
@@ -700,7 +700,7 @@ mod tests {
                                 None => [0; 3],
                             };
                             let shift = cell.map_or(Vec3::zeros(), |cl| cl.shift_pos(&cd));
-                            let (sp, q, reach) = crate::geom::grid::sphere_gridco_reach(
+                            let rc = crate::geom::grid::sphere_gridco_reach(
                                 sb,
                                 cell,
                                 sid,
@@ -709,7 +709,7 @@ mod tests {
                                 &shift,
                             )
                             .unwrap();
-                            if (sp - q).norm() <= reach + sim.skin {
+                            if (rc.sphere - rc.nearest).norm() <= rc.reach + sim.skin {
                                 seq.push((sid, c));
                             }
                         });

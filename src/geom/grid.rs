@@ -96,11 +96,27 @@ pub fn segment(gc: &GridConnection, bodies: &Bodies, cell: Option<&Cell>) -> Vec
     }
 }
 
+/// What the idle skip reads of a potential sphere-connection pair (`sphere_gridco_reach`).
+#[derive(Clone, Copy, Debug)]
+pub struct Reach {
+    /// The sphere's centre (shifted back by the pair's period).
+    pub sphere: Vec3,
+    /// The point of the segment nearest to it.
+    pub nearest: Vec3,
+    /// r + R.
+    pub reach: f64,
+    /// Beyond an end: the operands `(a, b)` of `IdleSkip::beyond_deadline`.
+    pub beyond: Option<(Vec3, Vec3)>,
+}
+
 /// The operands of `sphere_gridco`'s distance check for a new pair, for the idle skip
 /// (`crate::idle_skip`): the sphere's centre shifted by `shift2`, the point of connection `c`'s
 /// segment nearest to it, and the contact distance `r + R`. While the two points stay farther apart
 /// than the reach, a potential pair stays potential (unless it takes over a neighbour's contact,
-/// which the skip rules out separately). None when `c` is not a connection or has zero length.
+/// which the skip rules out separately). And, when the sphere lies beyond an end of the segment,
+/// the operands whose dot product stays positive while it stays beyond that end (its branch from
+/// node 1 negated, or from the segment's far end, and the segment): it takes nothing over there
+/// (`IdleSkip::beyond_deadline`). None when `c` is not a connection or has zero length.
 pub fn sphere_gridco_reach(
     bodies: &Bodies,
     cell: Option<&Cell>,
@@ -108,7 +124,7 @@ pub fn sphere_gridco_reach(
     c: u32,
     r: f64,
     shift2: &Vec3,
-) -> Option<(Vec3, Vec3, f64)> {
+) -> Option<Reach> {
     let gc = conn(bodies, c).ok()?;
     let segt = segment(gc, bodies, cell);
     let len2 = norm2(&segt);
@@ -117,8 +133,31 @@ pub fn sphere_gridco_reach(
     }
     let p_n1 = bodies.pos[gc.node1 as usize];
     let sphere_pos = bodies.pos[s as usize] - shift2;
-    let t = (dot(&(sphere_pos - p_n1), &segt) / len2).clamp(0.0, 1.0);
-    Some((sphere_pos, p_n1 + segt * t, r + gc.radius))
+    let branch = sphere_pos - p_n1;
+    let t = dot(&branch, &segt) / len2;
+    let beyond = match t {
+        t if t <= 0.0 => Some((-branch, segt)),
+        t if t >= 1.0 => Some((branch - segt, segt)),
+        _ => None,
+    };
+    Some(Reach {
+        sphere: sphere_pos,
+        nearest: p_n1 + segt * t.clamp(0.0, 1.0),
+        reach: r + gc.radius,
+        beyond,
+    })
+}
+
+/// `relPos` of sphere `s` (centre shifted by `shift2`) along connection `c` as `sphere_gridco`
+/// computes it (not clamped); None when `c` is not a connection.
+pub fn sphere_gridco_rel_pos(
+    bodies: &Bodies,
+    cell: Option<&Cell>,
+    (s, c): (u32, u32),
+    shift2: &Vec3,
+) -> Option<f64> {
+    let gc = conn(bodies, c).ok()?;
+    Some(Along::of(gc, bodies, cell, s, shift2).rel_pos)
 }
 
 #[inline(always)]
