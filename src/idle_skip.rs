@@ -77,11 +77,12 @@ pub struct IdleSkip {
     partners: Partners,
 }
 
-/// Per sphere, the connections it had a real interaction with when the current walk began, so
-/// that the walk's sphere-connection paths (`geom::grid`: the steady contact, the pair that stays
-/// apart, the neighbour lookups) can rule out a neighbour's contact without looking it up.
-/// Entries are stamped with the walk they were noted for; a body that gains a connection
-/// interaction during the walk (`gained_grid_real`) loses its entry.
+/// Per sphere, the connections it had a real interaction with when the current walk began, and
+/// those it gained since (`gained_grid_real`), so that the walk's sphere-connection paths
+/// (`geom::grid`: the steady contact, the pair that stays apart, the neighbour lookups) can rule
+/// out a neighbour's contact without looking it up. Entries are stamped with the walk they were
+/// noted for; one with more than three connections answers nothing. (A contact lost during the
+/// walk stays listed: the list may hold more than the real ones, never fewer.)
 #[derive(Clone, Debug, Default)]
 struct Partners {
     /// The walk being noted for (0: none; the stamps below are only valid when equal).
@@ -89,8 +90,6 @@ struct Partners {
     noted: bool,
     /// Per body: (walk, how many, the first three).
     of: Vec<(u32, u8, [u32; 3])>,
-    /// Per body: the walk in which it last gained a connection interaction.
-    gained: Vec<u32>,
 }
 
 fn radius_of(s: &Shape) -> f64 {
@@ -115,27 +114,33 @@ impl IdleSkip {
         let mut reset = n != self.pos.len() || hsize != self.hsize || factor != self.factor;
         if !reset {
             let (mut d2max, mut drmax, mut nan, mut kind) = (0.0f64, 0.0f64, false, false);
-            // (a watching owner changes no shape or radius: see `watch`)
-            let watching = self.watch.is_some();
-            let mut visit = |id: usize| {
-                let p = bodies.pos[id];
-                let r = if watching {
-                    self.radius[id]
-                } else {
-                    radius_of(&bodies.shape[id])
-                };
-                let d2 = norm2(&(p - self.pos[id]));
-                let dr = (r - self.radius[id]).abs();
-                nan |= (d2 + dr).is_nan();
-                kind |= (r < 0.0) != (self.radius[id] < 0.0);
-                d2max = d2max.max(d2);
-                drmax = drmax.max(dr);
-                self.pos[id] = p;
-                self.radius[id] = r;
-            };
             match &self.watch {
-                Some(ids) => ids.iter().for_each(|&id| visit(id as usize)),
-                None => (0..n).for_each(visit),
+                // a watching owner changes no shape or radius (see `watch`): what the general
+                // visit below gives with r the snapshot's (dr = |r - r| = 0, NaN for r not finite)
+                Some(ids) => {
+                    for &id in ids {
+                        let id = id as usize;
+                        let p = bodies.pos[id];
+                        let d2 = norm2(&(p - self.pos[id]));
+                        nan |= d2.is_nan() || !self.radius[id].is_finite();
+                        d2max = d2max.max(d2);
+                        self.pos[id] = p;
+                    }
+                }
+                None => {
+                    for id in 0..n {
+                        let p = bodies.pos[id];
+                        let r = radius_of(&bodies.shape[id]);
+                        let d2 = norm2(&(p - self.pos[id]));
+                        let dr = (r - self.radius[id]).abs();
+                        nan |= (d2 + dr).is_nan();
+                        kind |= (r < 0.0) != (self.radius[id] < 0.0);
+                        d2max = d2max.max(d2);
+                        drmax = drmax.max(dr);
+                        self.pos[id] = p;
+                        self.radius[id] = r;
+                    }
+                }
             }
             // (a watching owner changes no shape: see `watch`)
             let conns_changed = self.watch.is_none()
@@ -201,9 +206,20 @@ impl IdleSkip {
         }
         let ids = [a as usize, b as usize];
         if self.partners.noted {
-            for &id in &ids {
-                if let Some(g) = self.partners.gained.get_mut(id) {
-                    *g = self.partners.walk;
+            // each one a partner of the other for the rest of the walk
+            let p = &mut self.partners;
+            for (id, other) in [(a, b), (b, a)]
+                .into_iter()
+                .take(if a == b { 1 } else { 2 })
+            {
+                if let Some(e) = p.of.get_mut(id as usize) {
+                    if e.0 != p.walk {
+                        *e = (p.walk, 0, [0; 3]);
+                    }
+                    if (e.1 as usize) < e.2.len() {
+                        e.2[e.1 as usize] = other;
+                    }
+                    e.1 = e.1.saturating_add(1);
                 }
             }
         }
@@ -227,10 +243,8 @@ impl IdleSkip {
         if p.walk == 1 {
             // (a wrapped count: no old stamp may match)
             p.of.clear();
-            p.gained.clear();
         }
         p.of.resize(n_bodies, (0, 0, [0; 3]));
-        p.gained.resize(n_bodies, 0);
         let conn = |id: u32| matches!(bodies.shape[id as usize], Shape::GridConnection(_));
         let sphere = |id: u32| matches!(bodies.shape[id as usize], Shape::Sphere { .. });
         // (an idle pair is potential: its summary tells without reading the interaction)
@@ -267,14 +281,14 @@ impl IdleSkip {
     }
 
     /// The connections sphere `s` may have a real interaction with during this walk: those it had
-    /// when the walk began, when noted and none gained since (and at most three); else None.
+    /// when the walk began and those it gained since, when noted (and at most three); else None.
     #[inline(always)]
     pub fn grid_partners(&self, s: u32) -> Option<&[u32]> {
         let p = &self.partners;
-        if !p.noted || p.gained.get(s as usize).is_none_or(|&g| g == p.walk) {
+        if !p.noted {
             return None;
         }
-        let (w, n, c) = &p.of[s as usize];
+        let (w, n, c) = p.of.get(s as usize)?;
         match (*w == p.walk, *n as usize) {
             (false, _) => Some(&[]),
             (true, n) if n <= c.len() => Some(&c[..n]),

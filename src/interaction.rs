@@ -356,36 +356,37 @@ impl Interactions {
         if share == 0 {
             return;
         }
-        let Some(members) = self.shared.get(&share).cloned() else {
+        // (the group taken out of the map while it is walked, and put back without reallocating)
+        let Some(mut members) = self.shared.get_mut(&share).map(std::mem::take) else {
             return;
         };
         let (geom, phys) = (self.list[k].geom, self.list[k].phys);
         let ext = self.list[k].ext.as_ref().map(|e| (e.geom, e.coh));
-        let mut alive = Vec::with_capacity(members.len());
-        for pair in members {
+        members.retain(|pair| {
             let Some(j) = self.find(pair.0, pair.1) else {
-                continue;
+                return false;
             };
             if self.share_of(j) != share {
-                continue;
+                return false;
             }
-            alive.push(pair);
-            if j == k {
-                continue;
+            if j != k {
+                let it = &mut self.list[j];
+                it.geom = geom;
+                it.phys = phys;
+                if let Some((g, c)) = ext {
+                    let e = it.ext_mut();
+                    e.geom = g;
+                    e.coh = c;
+                }
             }
-            let it = &mut self.list[j];
-            it.geom = geom;
-            it.phys = phys;
-            if let Some((g, c)) = ext {
-                let e = it.ext_mut();
-                e.geom = g;
-                e.coh = c;
+            true
+        });
+        match (members.len() <= 1, self.shared.get_mut(&share)) {
+            (true, _) => {
+                self.shared.remove(&share);
             }
-        }
-        if alive.len() <= 1 {
-            self.shared.remove(&share);
-        } else {
-            self.shared.insert(share, alive);
+            (false, Some(v)) => *v = members,
+            (false, None) => unreachable!("the group was taken out of the map above"),
         }
     }
 

@@ -1227,9 +1227,16 @@ impl Scene {
                     &mut self.interactions.scan[k],
                     &mut self.interactions.list[k],
                 );
+                // (a reset pair's functor resolved first, as `visit` would, for the lean paths)
+                let lean = |s: &mut Self, ge: &mut Option<_>| -> Result<bool, String> {
+                    let sc = &s.interactions.scan[k];
+                    if !(sc.idle || sc.idle_gc) {
+                        s.resolve_functor(il, k, ge)?;
+                    }
+                    Ok(s.steady_gridco(&cfg, k) || s.apart_gridco(&cfg, k))
+                };
                 match ev {
-                    Some(Event::Visit(_))
-                        if self.steady_gridco(&cfg, k) || self.apart_gridco(&cfg, k) => {}
+                    Some(Event::Visit(_)) if lean(self, &mut geom_entries)? => {}
                     Some(ev) => self.event(il, ev, &ctx0, energy, &mut geom_entries)?,
                     None => {}
                 }
@@ -1275,7 +1282,7 @@ impl Scene {
         let Some(partners) = self.idle_skip.grid_partners(it.id1) else {
             return false;
         };
-        let (shift2, ctx) = period_shifts(self.cell.as_ref(), &it.cell_dist, cfg.dt);
+        let (shift2, ctx) = cfg.shifts(self.cell.as_ref(), &it.cell_dist);
         let cell = self.cell.as_ref();
         if !geom::grid::sphere_gridco_steady(it, b, cell, &ctx, &shift2, partners) {
             return false;
@@ -1329,6 +1336,43 @@ impl Scene {
         Ok(())
     }
 
+    /// The geometry functor of slot `k` when not yet resolved (a new or reset interaction): YADE's
+    /// dispatch on the two shapes' classes (`Missing` when none fits), the bodies swapped when the
+    /// functor takes them the other way round. The entries are listed once per walk.
+    #[inline(always)]
+    fn resolve_functor(
+        &mut self,
+        il: &InteractionLoop,
+        k: usize,
+        geom_entries: &mut Option<Vec<Entry<ShapeClass, ShapeClass, GeomFunctor>>>,
+    ) -> Result<(), String> {
+        if self.interactions.list[k].functor != GeomFunctor::Unresolved {
+            return Ok(());
+        }
+        let (id1, id2) = {
+            let it = &self.interactions.list[k];
+            (it.id1 as usize, it.id2 as usize)
+        };
+        let entries = geom_entries.get_or_insert_with(|| il.geom_entries());
+        let (c1, c2) = (&self.bodies.shape[id1], &self.bodies.shape[id2]);
+        let found =
+            dispatch::resolve(entries, true, c1.class(), c2.class(), Some, Some).map_err(|e| {
+                let (n1, n2) = (c1.class_name(), c2.class_name());
+                format!("{} for {}+{} (#{}+#{})", e, n1, n2, id1, id2)
+            })?;
+        let it = &mut self.interactions.list[k];
+        match found {
+            None => it.functor = GeomFunctor::Missing,
+            Some((f, swap)) => {
+                it.functor = f;
+                if swap {
+                    it.swap_order();
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// One slot of `InteractionLoop::action`: geometry, physics, law.
     #[inline(always)]
     fn visit(
@@ -1369,46 +1413,9 @@ impl Scene {
             }
             sc.idle_gc = false;
         }
-        let (id1_raw, id2_raw) = {
-            let it = &self.interactions.list[k];
-            (it.id1 as usize, it.id2 as usize)
-        };
+        self.resolve_functor(il, k, geom_entries)?;
         if self.interactions.list[k].functor == GeomFunctor::Missing {
             return Ok(());
-        }
-        if self.interactions.list[k].functor == GeomFunctor::Unresolved {
-            let entries = geom_entries.get_or_insert_with(|| il.geom_entries());
-            let found = dispatch::resolve(
-                entries,
-                true,
-                self.bodies.shape[id1_raw].class(),
-                self.bodies.shape[id2_raw].class(),
-                Some,
-                Some,
-            )
-            .map_err(|e| {
-                format!(
-                    "{} for {}+{} (#{}+#{})",
-                    e,
-                    self.bodies.shape[id1_raw].class_name(),
-                    self.bodies.shape[id2_raw].class_name(),
-                    id1_raw,
-                    id2_raw
-                )
-            })?;
-            let it = &mut self.interactions.list[k];
-            match found {
-                None => {
-                    it.functor = GeomFunctor::Missing;
-                    return Ok(());
-                }
-                Some((f, swap)) => {
-                    it.functor = f;
-                    if swap {
-                        it.swap_order();
-                    }
-                }
-            }
         }
         let (id1, id2, was_real, functor, cell_dist) = {
             let it = &self.interactions.list[k];
@@ -1549,7 +1556,7 @@ impl Scene {
         let Some(partners) = self.idle_skip.grid_partners(id1) else {
             return false;
         };
-        let (shift2, _) = period_shifts(self.cell.as_ref(), &cell_dist, cfg.dt);
+        let (shift2, _) = cfg.shifts(self.cell.as_ref(), &cell_dist);
         let (b, cell) = (&self.bodies, self.cell.as_ref());
         if !geom::grid::sphere_gridco_stays_apart(b, cell, (id1, id2), &shift2, partners) {
             return false;
@@ -1711,6 +1718,7 @@ impl Scene {
                 .iter()
                 .map(|m| m.class() == MatClass::CohFrictMat)
                 .collect(),
+            zero_shift: period_shifts(self.cell.as_ref(), &[0; 3], self.dt),
             dt: self.dt,
             iter: self.iter,
         }))
@@ -2353,8 +2361,21 @@ struct PreCfg {
     /// Steady sphere-connection contacts (`Scene::steady_gridco`, serial walk with the grid
     /// partners noted).
     gridco: Option<GridcoCfg>,
+    /// `period_shifts` of an unshifted pair, once per walk.
+    zero_shift: (Vec3, GeomCtx),
     dt: f64,
     iter: i64,
+}
+
+impl PreCfg {
+    /// `period_shifts` for a pair of period `cd` (the unshifted one read, not recomputed).
+    #[inline(always)]
+    fn shifts(&self, cell: Option<&Cell>, cd: &[i32; 3]) -> (Vec3, GeomCtx) {
+        match cd {
+            [0, 0, 0] => self.zero_shift,
+            _ => period_shifts(cell, cd, self.dt),
+        }
+    }
 }
 
 /// The part of slot `k`'s work that depends only on positions, velocities and its own state (see
@@ -2405,7 +2426,7 @@ fn pre_slot(
         let Some(radii) = radii.filter(|_| steady) else {
             return Some(Event::Visit(k));
         };
-        let (shift2, ctx) = period_shifts(cell, &it.cell_dist, cfg.dt);
+        let (shift2, ctx) = cfg.shifts(cell, &it.cell_dist);
         return Some(
             match steady_six_d(
                 &p6,
@@ -2430,7 +2451,7 @@ fn pre_slot(
     let Some((r1, r2)) = skip.sphere_radii(it.id1, it.id2) else {
         return Some(Event::Visit(k));
     };
-    let (shift2, ctx) = period_shifts(cell, &it.cell_dist, cfg.dt);
+    let (shift2, ctx) = cfg.shifts(cell, &it.cell_dist);
     match (it.functor, cfg.ss_cs) {
         (GeomFunctor::SphereSphere, Some((ss, cs))) if it.ext.is_none() => {
             let pr = Pair::of(b, id1, id2, shift2, true, ctx);
