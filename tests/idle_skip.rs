@@ -429,3 +429,66 @@ fn skipped_pair_beyond_an_end_takes_over_on_time() {
         );
     }
 }
+
+/// A sphere coming straight at a connection's end along its axis stays beyond that end all the
+/// way, so the bound beyond the end never runs out: the pair's skip must still end by its distance,
+/// and the contact be made on the step YADE's distance check says (the first that starts within
+/// r + R of the end node). Fails, checked by hand, with the beyond-end deadline not capped by the
+/// distance's (the contact made late, skipped in contact).
+#[test]
+fn a_sphere_along_the_axis_touches_the_end_on_time() {
+    use ryade::interaction::Interaction;
+    use ryade::io::scene_json;
+    use ryade::scene::Engine;
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
+    let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
+    let mut s = Scene {
+        materials: net.materials.clone(),
+        engines: net.engines.clone(),
+        dt: 1e-5,
+        ..Default::default()
+    };
+    s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
+    let mat = net.bodies.material[0];
+    let n = s
+        .bodies
+        .push(utils::grid_node(Vec3::zeros(), 0.001, mat, true));
+    let o = s.bodies.push(utils::grid_node(
+        Vec3::new(0.05, 0.0, 0.0),
+        0.001,
+        mat,
+        true,
+    ));
+    let c = utils::grid_connection(&mut s, n, o, 0.002, mat, 1, None).unwrap() as u32;
+    let mut b = utils::sphere(Vec3::new(-0.03, 0.0, 0.0), 0.005, mat, 2600.0, false);
+    b.blocked = ryade::body::DOF_ALL;
+    // 0.03 in 100 steps along +x: within r + R = 0.007 of node N from step 77 on
+    b.vel = Vec3::new(0.03 / (100.0 * s.dt), 0.0, 0.0);
+    let sid = s.bodies.push(b) as u32;
+    s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
+    let (mut skipped, mut touched) = (0, None);
+    for step in 0..100 {
+        let within = norm2(&s.bodies.pos[sid as usize]).sqrt() <= 0.007;
+        let (mut skip, mut scan) = (s.idle_skip.clone(), s.interactions.scan.clone());
+        skip.prepare(&s.bodies, s.cell.as_ref(), 1.0, &mut scan);
+        let j = s.interactions.find(sid, c).unwrap();
+        if scan[j].idle_gc && skip.skips_gridco(&scan[j]) {
+            assert!(!within, "step {step}: skipped within reach");
+            skipped += 1;
+        }
+        s.step().unwrap();
+        let real = s.interactions.list[j].is_real();
+        assert_eq!(
+            real, within,
+            "step {step}: contact {real}, within reach {within}"
+        );
+        if real {
+            touched = Some(step);
+            break;
+        }
+    }
+    assert!(
+        touched.is_some_and(|k| k > 70) && skipped > 40,
+        "touched {touched:?}, skipped {skipped}"
+    );
+}
