@@ -526,21 +526,33 @@ mod tests {
         assert!(!s.skips_gridco(&scan[0]));
     }
 
+    /// Uniform numbers in [0, 1) and random unit vectors (of points in the unit ball, away from 0).
+    struct Rng(rand_mt::Mt64);
+
+    impl Rng {
+        fn u(&mut self) -> f64 {
+            (self.0.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        fn unit(&mut self) -> Vec3 {
+            loop {
+                let v = Vec3::from_fn(|_, _| 2.0 * self.u() - 1.0);
+                let n = norm2(&v).sqrt();
+                if n <= 1.0 && n > 1e-3 {
+                    return v / n;
+                }
+            }
+        }
+    }
+
     /// A take-over test `a·b <= 0` that is false stays false until the travel reaches the
     /// deadline, however the three bodies involved (sphere, node, far node) move by up to half
     /// the travel each; and the deadline is not needlessly short (at least 0.8 of `a·b/(|a|+|b|)`,
     /// while a move of the sphere alone by `a·b/|b|` turns the test).
     #[test]
     fn behind_deadline_bounds_every_move() {
-        let mut mt = rand_mt::Mt64::new(11);
-        let mut rnd = move || (mt.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        let mut unit = move || loop {
-            let v = Vec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
-            let n = norm2(&v).sqrt();
-            if n <= 1.0 && n > 1e-3 {
-                return v / n;
-            }
-        };
+        let mut r = Rng(rand_mt::Mt64::new(11));
+        let mut unit = || r.unit();
         let s = IdleSkip {
             travel: 0.25,
             ..Default::default()
@@ -587,15 +599,8 @@ mod tests {
     /// deadline 1.3 times as far.
     #[test]
     fn beyond_deadline_bounds_every_move() {
-        let mt = std::cell::RefCell::new(rand_mt::Mt64::new(29));
-        let rnd = || (mt.borrow_mut().next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        let unit = || loop {
-            let v = Vec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
-            let n = norm2(&v).sqrt();
-            if n <= 1.0 && n > 1e-3 {
-                return v / n;
-            }
-        };
+        let r = std::cell::RefCell::new(Rng(rand_mt::Mt64::new(29)));
+        let (rnd, unit) = (|| r.borrow_mut().u(), || r.borrow_mut().unit());
         let s = IdleSkip {
             travel: 0.125,
             ..Default::default()

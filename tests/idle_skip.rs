@@ -263,75 +263,110 @@ fn skipped_sphere_connection_pairs_are_apart_and_cannot_take_over() {
 /// hand, when `skips_gridco` ignores the gains, or when `behind_deadline` allows 3 times its bound.
 #[test]
 fn skipped_pair_beside_a_real_contact_takes_it_over_on_time() {
+    for thin_first in [false, true] {
+        // 0.003 in 60 steps: behind (x < 0) from step 41 on
+        let (x0, dx) = (
+            Vec3::new(0.00202, 0.005, 0.0125),
+            Vec3::new(-0.003, 0.0, 0.0),
+        );
+        let (taken, _) = take_over_on_the_corner(x0, dx, thin_first, |x| x[0] < 0.0);
+        assert!(taken.is_some_and(|k| k > 30), "{thin_first}: {taken:?}");
+    }
+}
+
+/// On the `corner`, a sphere (r = 0.005, blocked DOFs) from `x0`, moved by `dx` in 60 steps at
+/// constant speed, its pairs with the thin and the thick connection listed in either order: the
+/// thick contact must be real after the first step, and the thin connection must take it over
+/// exactly at the first step that starts with `ready` true of the sphere's position. Returns that
+/// step and how many steps the next loop would have skipped the thin pair (the thick contact real
+/// at each).
+fn take_over_on_the_corner(
+    x0: Vec3,
+    dx: Vec3,
+    thin_first: bool,
+    ready: impl Fn(&Vec3) -> bool,
+) -> (Option<usize>, usize) {
     use ryade::interaction::Interaction;
+    let (mut s, mat) = hand_listed_scene();
+    let (thick, thin) = corner(&mut s, mat);
+    let mut b = utils::sphere(x0, 0.005, mat, 2600.0, false);
+    b.blocked = ryade::body::DOF_ALL;
+    b.vel = dx / (60.0 * s.dt);
+    let sid = s.bodies.push(b) as u32;
+    let order = if thin_first {
+        [thin, thick]
+    } else {
+        [thick, thin]
+    };
+    for c in order {
+        s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
+    }
+    let real = |s: &Scene, c: u32| {
+        s.interactions
+            .find(sid, c)
+            .is_some_and(|j| s.interactions.list[j].is_real())
+    };
+    let mut skipped = 0;
+    for step in 0..60 {
+        let now = ready(&s.bodies.pos[sid as usize]);
+        // the next loop's decision on the thin pair
+        let (mut skip, mut scan) = (s.idle_skip.clone(), s.interactions.scan.clone());
+        skip.prepare(&s.bodies, s.cell.as_ref(), 1.0, &mut scan);
+        let j = s.interactions.find(sid, thin).unwrap();
+        if scan[j].idle_gc && skip.skips_gridco(&scan[j]) {
+            assert!(
+                real(&s, thick),
+                "step {step}: skipped without the neighbour"
+            );
+            skipped += 1;
+        }
+        s.step().unwrap();
+        if step == 0 {
+            assert!(
+                real(&s, thick) && !real(&s, thin),
+                "the thick contact first"
+            );
+        }
+        if real(&s, thin) {
+            assert!(now, "step {step}: taken over before the sphere is there");
+            return (Some(step), skipped);
+        }
+        assert!(
+            !now,
+            "step {step}: there, behind the real neighbour, not taken over"
+        );
+    }
+    (None, skipped)
+}
+
+/// An empty scene with the net golden's materials and engines but no collider (the pairs are
+/// listed by hand and stay listed), dt 1e-5; and the net's material.
+fn hand_listed_scene() -> (Scene, usize) {
     use ryade::io::scene_json;
     use ryade::scene::Engine;
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
     let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
-    for thin_first in [false, true] {
-        let mut s = Scene {
-            materials: net.materials.clone(),
-            engines: net.engines.clone(),
-            dt: 1e-5,
-            ..Default::default()
-        };
-        // no collider: the two potential pairs are listed by hand and stay listed
-        s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
-        let mat = net.bodies.material[0];
-        let node = |s: &mut Scene, x: f64, y: f64| {
-            s.bodies
-                .push(utils::grid_node(Vec3::new(x, y, 0.0), 0.001, mat, true))
-        };
-        let (n, o, p) = (
-            node(&mut s, 0.0, 0.0),
-            node(&mut s, 0.05, 0.0),
-            node(&mut s, 0.0, 0.05),
-        );
-        let thick = utils::grid_connection(&mut s, n, o, 0.01, mat, 1, None).unwrap() as u32;
-        let thin = utils::grid_connection(&mut s, n, p, 0.001, mat, 1, None).unwrap() as u32;
-        let mut b = utils::sphere(Vec3::new(0.00202, 0.005, 0.0125), 0.005, mat, 2600.0, false);
-        b.blocked = ryade::body::DOF_ALL;
-        // 0.003 in 60 steps: behind (x < 0) from step 41 on
-        b.vel = Vec3::new(-0.003 / (60.0 * s.dt), 0.0, 0.0);
-        let sid = s.bodies.push(b) as u32;
-        let order = if thin_first {
-            [thin, thick]
-        } else {
-            [thick, thin]
-        };
-        for c in order {
-            s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
-        }
-        let real = |s: &Scene, c: u32| {
-            s.interactions
-                .find(sid, c)
-                .is_some_and(|j| s.interactions.list[j].is_real())
-        };
-        let mut taken = None;
-        for step in 0..60 {
-            let behind = s.bodies.pos[sid as usize][0] < 0.0;
-            s.step().unwrap();
-            if step == 0 {
-                assert!(
-                    real(&s, thick) && !real(&s, thin),
-                    "over the thick one first"
-                );
-            }
-            if real(&s, thin) {
-                assert!(
-                    behind,
-                    "step {step}: taken over before the sphere is behind"
-                );
-                taken = Some(step);
-                break;
-            }
-            assert!(
-                !behind,
-                "step {step}: behind the real neighbour, not taken over"
-            );
-        }
-        assert!(taken.is_some_and(|k| k > 30), "{thin_first}: {taken:?}");
-    }
+    let mut s = Scene {
+        materials: net.materials.clone(),
+        engines: net.engines.clone(),
+        dt: 1e-5,
+        ..Default::default()
+    };
+    s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
+    (s, net.bodies.material[0])
+}
+
+/// The corner of node N at the origin: a thick connection N-O along +x (R = 0.01) and a thin one
+/// N-P along +y (R = 0.001), nodes fixed; (thick, thin).
+fn corner(s: &mut Scene, mat: usize) -> (u32, u32) {
+    let node = |s: &mut Scene, x: f64, y: f64| {
+        s.bodies
+            .push(utils::grid_node(Vec3::new(x, y, 0.0), 0.001, mat, true))
+    };
+    let (n, o, p) = (node(s, 0.0, 0.0), node(s, 0.05, 0.0), node(s, 0.0, 0.05));
+    let thick = utils::grid_connection(s, n, o, 0.01, mat, 1, None).unwrap() as u32;
+    let thin = utils::grid_connection(s, n, p, 0.001, mat, 1, None).unwrap() as u32;
+    (thick, thin)
 }
 
 /// A skipped pair whose sphere lies beyond an end of its connection, behind a real neighbour
@@ -345,84 +380,13 @@ fn skipped_pair_beside_a_real_contact_takes_it_over_on_time() {
 /// without the beyond bound (nothing skipped).
 #[test]
 fn skipped_pair_beyond_an_end_takes_over_on_time() {
-    use ryade::interaction::Interaction;
-    use ryade::io::scene_json;
-    use ryade::scene::Engine;
-    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
-    let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
-    let factor = 1.0;
     for thin_first in [false, true] {
-        let mut s = Scene {
-            materials: net.materials.clone(),
-            engines: net.engines.clone(),
-            dt: 1e-5,
-            ..Default::default()
-        };
-        s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
-        let mat = net.bodies.material[0];
-        let node = |s: &mut Scene, x: f64, y: f64| {
-            s.bodies
-                .push(utils::grid_node(Vec3::new(x, y, 0.0), 0.001, mat, true))
-        };
-        let (n, o, p) = (
-            node(&mut s, 0.0, 0.0),
-            node(&mut s, 0.05, 0.0),
-            node(&mut s, 0.0, 0.05),
-        );
-        let thick = utils::grid_connection(&mut s, n, o, 0.01, mat, 1, None).unwrap() as u32;
-        let thin = utils::grid_connection(&mut s, n, p, 0.001, mat, 1, None).unwrap() as u32;
-        let mut b = utils::sphere(Vec3::new(-0.002, -0.003, 0.0125), 0.005, mat, 2600.0, false);
-        b.blocked = ryade::body::DOF_ALL;
         // 0.006 in 60 steps: inside the thin connection (y > 0) from step 31 on
-        b.vel = Vec3::new(0.0, 0.006 / (60.0 * s.dt), 0.0);
-        let sid = s.bodies.push(b) as u32;
-        let order = if thin_first {
-            [thin, thick]
-        } else {
-            [thick, thin]
-        };
-        for c in order {
-            s.interactions.insert(Interaction::new(sid, c, [0; 3], 0));
-        }
-        let real = |s: &Scene, c: u32| {
-            s.interactions
-                .find(sid, c)
-                .is_some_and(|j| s.interactions.list[j].is_real())
-        };
-        let (mut taken, mut skipped) = (None, 0);
-        for step in 0..60 {
-            let inside = s.bodies.pos[sid as usize][1] > 0.0;
-            // the next loop's decision on the thin pair
-            let (mut skip, mut scan) = (s.idle_skip.clone(), s.interactions.scan.clone());
-            skip.prepare(&s.bodies, s.cell.as_ref(), factor, &mut scan);
-            let j = s.interactions.find(sid, thin).unwrap();
-            if scan[j].idle_gc && skip.skips_gridco(&scan[j]) {
-                assert!(
-                    real(&s, thick),
-                    "step {step}: skipped without the neighbour"
-                );
-                skipped += 1;
-            }
-            s.step().unwrap();
-            if step == 0 {
-                assert!(
-                    real(&s, thick) && !real(&s, thin),
-                    "behind the thick one first"
-                );
-            }
-            if real(&s, thin) {
-                assert!(
-                    inside,
-                    "step {step}: taken over before the sphere is inside"
-                );
-                taken = Some(step);
-                break;
-            }
-            assert!(
-                !inside,
-                "step {step}: inside, behind the real neighbour, not taken over"
-            );
-        }
+        let (x0, dx) = (
+            Vec3::new(-0.002, -0.003, 0.0125),
+            Vec3::new(0.0, 0.006, 0.0),
+        );
+        let (taken, skipped) = take_over_on_the_corner(x0, dx, thin_first, |x| x[1] > 0.0);
         assert!(
             taken.is_some_and(|k| k > 25) && skipped > 15,
             "{thin_first}: taken {taken:?}, skipped {skipped}"
@@ -438,18 +402,7 @@ fn skipped_pair_beyond_an_end_takes_over_on_time() {
 #[test]
 fn a_sphere_along_the_axis_touches_the_end_on_time() {
     use ryade::interaction::Interaction;
-    use ryade::io::scene_json;
-    use ryade::scene::Engine;
-    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/micro_grid");
-    let net = scene_json::load(&dir.join("net.scene.json")).unwrap().scene;
-    let mut s = Scene {
-        materials: net.materials.clone(),
-        engines: net.engines.clone(),
-        dt: 1e-5,
-        ..Default::default()
-    };
-    s.engines.retain(|e| !matches!(e, Engine::Collider(_)));
-    let mat = net.bodies.material[0];
+    let (mut s, mat) = hand_listed_scene();
     let n = s
         .bodies
         .push(utils::grid_node(Vec3::zeros(), 0.001, mat, true));
