@@ -204,29 +204,25 @@ impl IdleSkip {
         if hi >= self.grid_gen.len() {
             self.grid_gen.resize(hi + 1, 0);
         }
-        let ids = [a as usize, b as usize];
-        if self.partners.noted {
+        let p = &mut self.partners;
+        for (id, other) in [(a, b), (b, a)]
+            .into_iter()
+            .take(if a == b { 1 } else { 2 })
+        {
             // each one a partner of the other for the rest of the walk
-            let p = &mut self.partners;
-            for (id, other) in [(a, b), (b, a)]
-                .into_iter()
-                .take(if a == b { 1 } else { 2 })
-            {
-                if let Some(e) = p.of.get_mut(id as usize) {
-                    if e.0 != p.walk {
-                        *e = (p.walk, 0, [0; 3]);
-                    }
-                    if (e.1 as usize) < e.2.len() {
-                        e.2[e.1 as usize] = other;
-                    }
-                    e.1 = e.1.saturating_add(1);
+            if let Some(e) = p.of.get_mut(id as usize).filter(|_| p.noted) {
+                if e.0 != p.walk {
+                    *e = (p.walk, 0, [0; 3]);
                 }
+                if (e.1 as usize) < e.2.len() {
+                    e.2[e.1 as usize] = other;
+                }
+                e.1 = e.1.saturating_add(1);
             }
-        }
-        for &id in &ids[..if a == b { 1 } else { 2 }] {
             // (counted below `GEN_FREE`)
-            self.grid_gen[id] = (self.grid_gen[id] + 1) % GEN_FREE;
-            if self.grid_gen[id] == 0 {
+            let g = &mut self.grid_gen[id as usize];
+            *g = (*g + 1) % GEN_FREE;
+            if *g == 0 {
                 // a count back where it started could match an old deadline: none holds now
                 self.travel = f64::INFINITY;
             }
@@ -506,13 +502,7 @@ mod tests {
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(s.skips_gridco(&scan[0]));
         // body 1 becomes a connection: kind change, reset
-        b.shape[1] = Shape::GridConnection(Box::new(GridConnection {
-            radius: 0.1,
-            node1: 0,
-            node2: 0,
-            periodic: false,
-            cell_dist: [0; 3],
-        }));
+        b.shape[1] = connection(0.1, 0, 0);
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]));
         scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
@@ -524,6 +514,17 @@ mod tests {
         }
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]));
+    }
+
+    /// A connection of radius `r` between nodes `n1` and `n2`, not periodic.
+    fn connection(r: f64, n1: u32, n2: u32) -> Shape {
+        Shape::GridConnection(Box::new(GridConnection {
+            radius: r,
+            node1: n1,
+            node2: n2,
+            periodic: false,
+            cell_dist: [0; 3],
+        }))
     }
 
     /// Uniform numbers in [0, 1) and random unit vectors (of points in the unit ball, away from 0).
@@ -592,8 +593,8 @@ mod tests {
 
     /// A sphere beyond an end of its connection (the operands of `geom::grid::sphere_gridco_reach`)
     /// stays beyond it (`relPos <= 0` or `>= 1` in `sphere_gridco`'s own arithmetic) until the
-    /// travel reaches `beyond_deadline`, however the sphere and both nodes move by up to half the travel each:
-    /// worst-case moves (the sphere along the segment towards its inside, the end node away from
+    /// travel reaches `beyond_deadline`, however the sphere and both nodes move by up to half the
+    /// travel each: worst-case moves (the sphere along the segment towards its inside, the end node away from
     /// it) and random ones, at distances from the end down to round-off. And the deadline is not
     /// needlessly short: at least 0.8 of `(a·b - tol)/(|a|+|b|)`. Fails, checked, with the
     /// deadline 1.3 times as far.
@@ -609,13 +610,7 @@ mod tests {
         for _ in 0..4 {
             b.push(utils::grid_node(Vec3::zeros(), 0.002, 0, false));
         }
-        b.shape[2] = Shape::GridConnection(Box::new(GridConnection {
-            radius: 0.002,
-            node1: 0,
-            node2: 1,
-            periodic: false,
-            cell_dist: [0; 3],
-        }));
+        b.shape[2] = connection(0.002, 0, 1);
         b.shape[3] = Shape::Sphere { radius: 0.004 };
         let place = |b: &mut Bodies, x: [Vec3; 3]| {
             (b.pos[0], b.pos[1], b.pos[3]) = (x[0], x[1], x[2]);

@@ -381,12 +381,10 @@ impl Interactions {
             }
             true
         });
-        match (members.len() <= 1, self.shared.get_mut(&share)) {
-            (true, _) => {
-                self.shared.remove(&share);
-            }
-            (false, Some(v)) => *v = members,
-            (false, None) => unreachable!("the group was taken out of the map above"),
+        if members.len() <= 1 {
+            self.shared.remove(&share);
+        } else if let Some(v) = self.shared.get_mut(&share) {
+            *v = members;
         }
     }
 

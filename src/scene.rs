@@ -1605,9 +1605,10 @@ impl Scene {
             }
         }
         // the longer of the two, free of the sphere's gains when beyond an end
-        let (deadline, gen) = match beyond >= deadline && beyond > f64::NEG_INFINITY {
-            true => (beyond, crate::idle_skip::GEN_FREE),
-            false => (deadline, skip.grid_gen(id1)),
+        let (deadline, gen) = if beyond >= deadline && beyond > f64::NEG_INFINITY {
+            (beyond, crate::idle_skip::GEN_FREE)
+        } else {
+            (deadline, skip.grid_gen(id1))
         };
         self.interactions.scan[k] = crate::interaction::ScanEntry {
             id1,
