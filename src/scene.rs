@@ -78,6 +78,9 @@ pub struct InteractionLoop {
     pub energy_caches: [IdCache; LawFunctor::COUNT],
     /// `InteractionLoop.callbacks`: one `SumIntrForcesCb` accumulator per callback, in list order.
     pub sum_intr_forces_cb: Vec<SumIntrForcesCb>,
+    /// (ryade) Runs of steady node bonds with their rotations in lanes (`Scene::steady_bonds`),
+    /// to the same bits; off only to test that.
+    pub bond_lanes: bool,
 }
 
 /// `SumIntrForcesCb` (pkg/dem/UnbalancedForceCallbacks.cpp): sums |normalForce + shearForce| over the
@@ -165,6 +168,7 @@ impl InteractionLoop {
             mindlin: None,
             energy_caches: Default::default(),
             sum_intr_forces_cb: Vec::new(),
+            bond_lanes: true,
         }
     }
 
@@ -1204,12 +1208,35 @@ impl Scene {
             // does (leaner than the general visit: ~3 % on scene (a)), other slots visited
             let n = self.interactions.list.len();
             let skip_gc = il.uses_idle_skip();
-            for k in 0..n {
+            let mut k = 0;
+            while k < n {
                 // an idle sphere-connection pair still apart by the bound: what `visit` would
                 // decide first, without the walk's event
                 let sc = &self.interactions.scan[k];
                 if sc.idle_gc && skip_gc && self.idle_skip.skips_gridco(sc) {
+                    k += 1;
                     continue;
+                }
+                #[cfg(target_arch = "x86_64")]
+                if cfg.bond_lanes {
+                    let (b, skip) = (&self.bodies, &self.idle_skip);
+                    let (scan, list) = (&self.interactions.scan, &self.interactions.list);
+                    let bond = |j: usize| steady_bond_radii(&cfg, b, skip, &scan[j], &list[j]);
+                    if let Some(r) = bond(k) {
+                        // (a run of three or four in a row)
+                        let mut run = [(k, r); 4];
+                        let mut m = 1;
+                        while m < 4 && k + m < n {
+                            let Some(r) = bond(k + m) else { break };
+                            run[m] = (k + m, r);
+                            m += 1;
+                        }
+                        if m >= 3 {
+                            self.steady_bonds(&cfg, &run[..m]);
+                            k += m;
+                            continue;
+                        }
+                    }
                 }
                 const AHEAD: usize = 24;
                 if k + AHEAD < n && !self.interactions.scan[k + AHEAD].is_idle() {
@@ -1240,6 +1267,7 @@ impl Scene {
                     Some(ev) => self.event(il, ev, &ctx0, energy, &mut geom_entries)?,
                     None => {}
                 }
+                k += 1;
             }
         } else {
             let n = self.interactions.list.len();
@@ -1255,6 +1283,82 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// Slots `ks` (three or four in a row, each a steady node bond: `steady_bond_radii`) as
+    /// `pre_slot` and their events do them one by one, but with the rotations of the bonds that
+    /// were real in lanes (`fast::rotations_lanes`: the f64 path's bits): each bond's geometry,
+    /// then the rotations, then each one's law and event. A bond reads only its nodes and its own
+    /// state, which no other bond's work changes (the connection body moves with the event), so
+    /// the bits are those of the one-by-one walk.
+    #[cfg(target_arch = "x86_64")]
+    fn steady_bonds(&mut self, cfg: &PreCfg, ks: &[(usize, (f64, f64))]) {
+        let (p6, cm) = cfg.grid_6d.expect("steady bonds need grid_6d");
+        let cell = self.cell.as_ref();
+        let list = &mut self.interactions.list;
+        // per bond: whether it is new, the connection body's move, body 2's shift (None: the
+        // geometry erases it)
+        let mut made = [None; 4];
+        for (q, &(k, (r1, r2))) in ks.iter().enumerate() {
+            let it = &mut list[k];
+            let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+            let (shift2, ctx) = cfg.shifts(cell, &it.cell_dist);
+            let pr = Pair::of(&self.bodies, id1, id2, shift2, true, ctx);
+            let mut conn_sync = None;
+            let (g, e) = (&mut it.geom, &mut it.ext);
+            made[q] = geom::grid::six_d_geometry(&p6, r1, r2, &pr, g, e, true, &mut conn_sync)
+                .map(|is_new| (is_new, conn_sync, shift2));
+        }
+        fn rot_of<'a>(
+            b: &'a Bodies,
+            it: &'a crate::interaction::Interaction,
+        ) -> crate::fast::RotOf<'a> {
+            crate::fast::RotOf {
+                ori1: &b.ori[it.id1 as usize],
+                ori2: &b.ori[it.id2 as usize],
+                rot: it
+                    .geom_ext()
+                    .and_then(|g| g.rot())
+                    .expect("a bond's rotations"),
+                normal: &it.geom.as_ref().expect("a bond's geometry").normal,
+            }
+        }
+        let was_real = |q: usize| matches!(made[q], Some((false, ..)));
+        let b = &self.bodies;
+        let tb = if (0..ks.len()).all(was_real) {
+            let of: [_; 4] = std::array::from_fn(|l| rot_of(b, &list[ks[l.min(ks.len() - 1)].0]));
+            // SAFETY: AVX2 (`PreCfg::bond_lanes`)
+            unsafe { crate::fast::rotations_lanes(&of, p6.creep) }
+        } else {
+            None
+        };
+        for (q, &(k, _)) in ks.iter().enumerate() {
+            let Some((is_new, conn_sync, shift2)) = made[q] else {
+                list[k].reset();
+                continue;
+            };
+            let it = &mut list[k];
+            let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+            let normal = it.geom.as_ref().expect("a bond's geometry").normal;
+            let rot = it
+                .ext
+                .as_mut()
+                .and_then(|e| e.geom.as_mut())
+                .and_then(|g| g.rot_mut());
+            let rot = rot.expect("a bond's rotations");
+            match tb {
+                Some(tb) => (rot.twist, rot.bending) = tb[q],
+                // (`six_d_rotations`, on with `bond_lanes`)
+                None => {
+                    let (o1, o2) = (&self.bodies.ori[id1], &self.bodies.ori[id2]);
+                    rot.precompute_rotations(o1, o2, &normal, is_new, p6.creep)
+                }
+            }
+            match steady_six_d_law(&cm, cfg, &self.bodies, (id1, id2), shift2, it, conn_sync) {
+                Some((l, cs)) => apply_bond(&mut self.bodies, &mut self.forces, (id1, id2), &l, cs),
+                None => it.reset(),
+            }
+        }
     }
 
     /// Slot `k` when it is a real sphere-connection contact whose geometry reduces to its own
@@ -1326,10 +1430,8 @@ impl Scene {
                 law::cohesion_moment::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
             }
             Event::BondLoad(id1, id2, l, conn_sync) => {
-                if let Some((cb, pos)) = conn_sync {
-                    self.bodies.pos[cb as usize] = pos;
-                }
-                law::cohesion_moment::apply(&mut self.forces, id1 as usize, id2 as usize, &l)
+                let ids = (id1 as usize, id2 as usize);
+                apply_bond(&mut self.bodies, &mut self.forces, ids, &l, conn_sync)
             }
             Event::Erase(k) => self.interactions.list[k as usize].reset(),
         }
@@ -1712,7 +1814,6 @@ impl Scene {
             idle: il.idle_params().copied(),
             ss_cs,
             six_d,
-            grid_6d,
             gridco,
             coh_mat: self
                 .materials
@@ -1720,6 +1821,10 @@ impl Scene {
                 .map(|m| m.class() == MatClass::CohFrictMat)
                 .collect(),
             zero_shift: period_shifts(self.cell.as_ref(), &[0; 3], self.dt),
+            bond_lanes: il.bond_lanes
+                && grid_6d.is_some_and(|(p6, _)| p6.update_rotations)
+                && lanes_available(),
+            grid_6d,
             dt: self.dt,
             iter: self.iter,
         }))
@@ -2364,6 +2469,9 @@ struct PreCfg {
     gridco: Option<GridcoCfg>,
     /// `period_shifts` of an unshifted pair, once per walk.
     zero_shift: (Vec3, GeomCtx),
+    /// Runs of steady node bonds with their rotations in lanes (`Scene::steady_bonds`): AVX2, and
+    /// bonds whose rotations are updated.
+    bond_lanes: bool,
     dt: f64,
     iter: i64,
 }
@@ -2414,17 +2522,7 @@ fn pre_slot(
         _ => None,
     };
     if let Some(((p6, cm), grid_node)) = six {
-        let radii = if grid_node {
-            b.shape[id1]
-                .sphere_radius()
-                .zip(b.shape[id2].sphere_radius())
-        } else {
-            skip.sphere_radii(it.id1, it.id2)
-        };
-        let steady = cfg.coh_mat[b.material[id1]]
-            && cfg.coh_mat[b.material[id2]]
-            && it.coh().is_some_and(|c| !c.init_cohesion);
-        let Some(radii) = radii.filter(|_| steady) else {
+        let Some(radii) = steady_six_radii(cfg, b, skip, it, grid_node) else {
             return Some(Event::Visit(k));
         };
         let (shift2, ctx) = cfg.shifts(cell, &it.cell_dist);
@@ -2473,6 +2571,75 @@ fn pre_slot(
     }
 }
 
+/// The radii of a 6-D cohesive contact or node bond (`grid_node`) that `pre_slot` takes as steady:
+/// both materials CohFrictMat and the cohesion set up (None otherwise: the slot is visited).
+#[inline(always)]
+fn steady_six_radii(
+    cfg: &PreCfg,
+    b: &Bodies,
+    skip: &IdleSkip,
+    it: &crate::interaction::Interaction,
+    grid_node: bool,
+) -> Option<(f64, f64)> {
+    let (id1, id2) = (it.id1 as usize, it.id2 as usize);
+    let radii = if grid_node {
+        b.shape[id1]
+            .sphere_radius()
+            .zip(b.shape[id2].sphere_radius())
+    } else {
+        skip.sphere_radii(it.id1, it.id2)
+    };
+    let steady = cfg.coh_mat[b.material[id1]]
+        && cfg.coh_mat[b.material[id2]]
+        && it.coh().is_some_and(|c| !c.init_cohesion);
+    radii.filter(|_| steady)
+}
+
+/// The radii of slot `k` when `pre_slot` takes it to `steady_six_d` as a node bond (see
+/// `Scene::steady_bonds`); None for any other slot.
+#[inline(always)]
+fn steady_bond_radii(
+    cfg: &PreCfg,
+    b: &Bodies,
+    skip: &IdleSkip,
+    sc: &crate::interaction::ScanEntry,
+    it: &crate::interaction::Interaction,
+) -> Option<(f64, f64)> {
+    if sc.idle || sc.idle_gc || !it.is_real() || cfg.grid_6d.is_none() {
+        return None;
+    }
+    match (it.functor, it.geom_ext()) {
+        (GeomFunctor::GridNodeGridNode, Some(geom::GeomExt::GridNode { .. })) => {
+            steady_six_radii(cfg, b, skip, it, true)
+        }
+        _ => None,
+    }
+}
+
+/// A steady node bond's event (`Event::BondLoad`): the connection body moved (when the bond has
+/// one), then the load added to nodes `id1`, `id2`.
+#[inline(always)]
+fn apply_bond(
+    bodies: &mut Bodies,
+    forces: &mut Forces,
+    (id1, id2): (usize, usize),
+    l: &law::cohesion_moment::CohLoad,
+    conn_sync: Option<(u32, Vec3)>,
+) {
+    if let Some((cb, pos)) = conn_sync {
+        bodies.pos[cb as usize] = pos;
+    }
+    law::cohesion_moment::apply(forces, id1, id2, l)
+}
+
+/// Whether the lanes of `crate::fast` can run here (AVX2).
+fn lanes_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("avx2");
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
 /// A steady 6-D cohesive contact or node bond (`grid_node`; see `pre_slot`): its geometry, then
 /// CohesionMoment's load with the connection body's move (a bond's), or None when either erases it.
 #[allow(clippy::too_many_arguments)]
@@ -2503,6 +2670,20 @@ fn steady_six_d(
     ) {
         return None;
     }
+    steady_six_d_law(cm, cfg, b, (id1, id2), shift2, it, conn_sync)
+}
+
+/// The end of `steady_six_d`, after the geometry and rotations: CohesionMoment's load.
+#[inline(always)]
+fn steady_six_d_law(
+    cm: &law::cohesion_moment::Params,
+    cfg: &PreCfg,
+    b: &Bodies,
+    (id1, id2): (usize, usize),
+    shift2: Vec3,
+    it: &mut crate::interaction::Interaction,
+    conn_sync: Option<(u32, Vec3)>,
+) -> Option<(law::cohesion_moment::CohLoad, Option<(u32, Vec3)>)> {
     let fresh = it.iter_made_real == cfg.iter;
     let g = *it.geom.as_ref().unwrap();
     let e = it.ext.as_mut().unwrap();

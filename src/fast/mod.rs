@@ -31,6 +31,8 @@ pub mod newton_simd;
 mod six;
 #[cfg(target_arch = "x86_64")]
 mod six_simd;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use six_simd::{rotations_lanes, RotOf};
 
 use crate::body::DOF_ALL;
 use crate::geom::ScGeom;

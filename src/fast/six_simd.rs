@@ -12,7 +12,7 @@ use super::contact::{self, Pair};
 use super::contact_simd::{bits, gather1, gather3, F4};
 use super::six::{self, Stage, C6};
 use super::{Acc, Kernel, Six};
-use crate::geom::six_d::{angle_axis_of, relative_delta, twist_bending, vec_norm, Q};
+use crate::geom::six_d::{angle_axis_of, relative_delta, twist_bending, vec_norm, Rot6D, Q};
 use crate::geom::sphere_sphere;
 use crate::math::{Quat, Real, Vec3};
 
@@ -114,9 +114,8 @@ unsafe fn kept4(
     nw
 }
 
-/// `six::rotations` of the group's contacts that were real (`Stage::Kept`), in four lanes (lanes
-/// without one repeat the first's, their results dropped); in `f64` one by one when a relative
-/// rotation's vector part is shorter than machine epsilon (Eigen's stable norm, `angle_axis`).
+/// `six::rotations` of the group's contacts that were real (`Stage::Kept`), in four lanes
+/// (`rotations_lanes`); in `f64` one by one where the lanes give way.
 #[inline(always)]
 fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4]) {
     if !k.cfg.p6.update_rotations || k.cfg.defer_rotations {
@@ -133,9 +132,54 @@ fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4
     if n == 0 {
         return;
     }
-    let lane = |l: usize| live[if l < n { l } else { 0 }];
-    let q4 = |f: &dyn Fn(usize) -> Quat| -> Q<F4> {
-        let qs: [Quat; 4] = std::array::from_fn(|l| f(lane(l)));
+    let of = |p: usize| {
+        let (_, k1, k2, _) = six::oriented(k.b, &pairs[p]);
+        let s = cs[p].0.as_deref().unwrap();
+        RotOf {
+            ori1: &k.b.ori[k1],
+            ori2: &k.b.ori[k2],
+            rot: &s.rot,
+            normal: &s.geom.as_ref().unwrap().normal,
+        }
+    };
+    let of4: [RotOf; 4] = std::array::from_fn(|l| of(live[l.min(n - 1)]));
+    // SAFETY: AVX2, the contract of this module's callers
+    match unsafe { rotations_lanes(&of4, k.cfg.p6.creep) } {
+        Some(tb) => {
+            for (l, &p) in live[..n].iter().enumerate() {
+                let r = &mut cs[p].0.as_deref_mut().unwrap().rot;
+                (r.twist, r.bending) = tb[l];
+            }
+        }
+        None => {
+            for &p in &live[..n] {
+                six::rotations(k.cfg, &six::orient(k.b, &pairs[p], true), &mut cs[p]);
+            }
+        }
+    }
+}
+
+/// What `ScGeom6D::precomputeRotations` reads of a contact that was real: its bodies'
+/// orientations, its rotational state and its normal, already updated.
+pub(crate) struct RotOf<'a> {
+    pub ori1: &'a Quat,
+    pub ori2: &'a Quat,
+    pub rot: &'a Rot6D,
+    pub normal: &'a Vec3,
+}
+
+/// `Rot6D::precompute_rotations` (a contact that was real) of four contacts, one per lane
+/// (`geom::six_d::relative_delta`, `angle_axis_of`, `twist_bending`: the formulas the f64 path
+/// runs, in the same order, libm's `atan2` lane by lane): each one's twist and bending, to the
+/// f64 path's bits. None when a relative rotation's vector part is shorter than machine epsilon,
+/// where Eigen takes its stable norm: the caller then runs them in f64 (`angle_axis`).
+///
+/// # Safety
+/// The CPU has AVX2.
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn rotations_lanes(c: &[RotOf; 4], creep: bool) -> Option<[(f64, Vec3); 4]> {
+    let q4 = |f: &dyn Fn(&RotOf) -> Quat| -> Q<F4> {
+        let qs: [Quat; 4] = std::array::from_fn(|l| f(&c[l]));
         [
             F4::from_lanes(qs.map(|q| q.w)),
             F4::from_lanes(qs.map(|q| q.x)),
@@ -143,24 +187,16 @@ fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4
             F4::from_lanes(qs.map(|q| q.z)),
         ]
     };
-    let ori = |p: usize, second: bool| {
-        let (_, k1, k2, _) = six::oriented(k.b, &pairs[p]);
-        k.b.ori[if second { k2 } else { k1 }]
-    };
-    let state = |p: usize| cs[p].0.as_deref().unwrap();
-    let (o1, o2) = (q4(&|p| ori(p, false)), q4(&|p| ori(p, true)));
-    let i1 = q4(&|p| state(p).rot.initial_orientation1);
-    let i2 = q4(&|p| state(p).rot.initial_orientation2);
-    let creep = k.cfg.p6.creep.then(|| q4(&|p| state(p).rot.twist_creep));
-    let normals: [Vec3; 4] = std::array::from_fn(|l| state(lane(l)).geom.as_ref().unwrap().normal);
-    let normal: [F4; 3] = std::array::from_fn(|c| F4::from_lanes(normals.map(|v| v[c])));
+    let (o1, o2) = (q4(&|c| *c.ori1), q4(&|c| *c.ori2));
+    let i1 = q4(&|c| c.rot.initial_orientation1);
+    let i2 = q4(&|c| c.rot.initial_orientation2);
+    let creep = creep.then(|| q4(&|c| c.rot.twist_creep));
+    let normal: [F4; 3] =
+        std::array::from_fn(|k| F4::from_lanes(std::array::from_fn(|l| c[l].normal[k])));
     let d = relative_delta(&o1, &o2, &i1, &i2, creep.as_ref());
     let norm = vec_norm(&d);
     if F4::any(norm.lt(F4::splat(f64::EPSILON))) {
-        for &p in &live[..n] {
-            six::rotations(k.cfg, &six::orient(k.b, &pairs[p], true), &mut cs[p]);
-        }
-        return;
+        return None;
     }
     let (angle, axis) = angle_axis_of(&d, norm);
     let (twist, bending) = twist_bending(angle, axis, &normal);
@@ -170,11 +206,9 @@ fn rotations4(k: &Six, pairs: &[Pair], cs: &mut [C6], ws: &[u32], st: &[Stage; 4
         bending[1].to_lanes(),
         bending[2].to_lanes(),
     );
-    for (l, &p) in live[..n].iter().enumerate() {
-        let r = &mut cs[p].0.as_deref_mut().unwrap().rot;
-        r.twist = tw[l];
-        r.bending = Vec3::new(bx[l], by[l], bz[l]);
-    }
+    Some(std::array::from_fn(|l| {
+        (tw[l], Vec3::new(bx[l], by[l], bz[l]))
+    }))
 }
 
 #[cfg(test)]

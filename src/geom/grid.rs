@@ -46,9 +46,37 @@ pub fn six_d(
     grid_node: bool,
     conn_sync: &mut Option<(u32, Vec3)>,
 ) -> bool {
+    let Some(is_new) = six_d_geometry(p, r1, r2, pr, geom, ext, grid_node, conn_sync) else {
+        return false;
+    };
+    let normal = geom.as_ref().unwrap().normal;
+    if let Some(rot) = ext
+        .as_mut()
+        .and_then(|e| e.geom.as_mut())
+        .and_then(|g| g.rot_mut())
+    {
+        six_d_rotations(p, pr, &normal, rot, is_new);
+    }
+    true
+}
+
+/// `six_d` up to the rotations (`six_d_rotations`, which the caller runs next): the geometry, the
+/// 6-D state made on creation, and `conn_sync`. Whether the contact is new (None: no contact).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn six_d_geometry(
+    p: &SixDParams,
+    r1: f64,
+    r2: f64,
+    pr: &Pair,
+    geom: &mut Option<ScGeom>,
+    ext: &mut Option<Box<IntrExt>>,
+    grid_node: bool,
+    conn_sync: &mut Option<(u32, Vec3)>,
+) -> Option<bool> {
     let is_new = geom.is_none();
     if !sphere_sphere::go(&p.ss, r1, r2, pr, geom) {
-        return false;
+        return None;
     }
     let e = ext.get_or_insert_with(Default::default);
     if is_new || e.geom.is_none() {
@@ -61,19 +89,14 @@ pub fn six_d(
             GeomExt::Sc6D(Rot6D::default())
         });
     }
-    let g = geom.as_ref().unwrap();
-    let ge = e.geom.as_mut().unwrap();
-    if let Some(rot) = ge.rot_mut() {
-        six_d_rotations(p, pr, &g.normal, rot, is_new);
-    }
-    if let GeomExt::GridNode {
+    if let Some(GeomExt::GridNode {
         connection_body: Some(cb),
         ..
-    } = ge
+    }) = e.geom
     {
-        *conn_sync = Some((*cb, pr.s1.pos));
+        *conn_sync = Some((cb, pr.s1.pos));
     }
-    true
+    Some(is_new)
 }
 
 /// The rotations' part of `six_d`, on a contact whose geometry (normal `normal`) was just made
