@@ -15,13 +15,13 @@ pub type Mat3 = Matrix3<f64>;
 /// `a·b` as Eigen evaluates it: `a0*b0 + (a1*b1 + a2*b2)`.
 #[inline(always)]
 pub fn dot(a: &Vec3, b: &Vec3) -> f64 {
-    a[0] * b[0] + (a[1] * b[1] + a[2] * b[2])
+    r3::dot(&r3::of(a), &r3::of(b))
 }
 
 /// `|a|²` as Eigen evaluates it: `a0² + (a1² + a2²)`.
 #[inline(always)]
 pub fn norm2(a: &Vec3) -> f64 {
-    a[0] * a[0] + (a[1] * a[1] + a[2] * a[2])
+    r3::norm2(&r3::of(a))
 }
 
 /// `|a|` = `sqrt(squaredNorm)`.
@@ -33,44 +33,26 @@ pub fn norm(a: &Vec3) -> f64 {
 /// Eigen's `cross`: `(a1b2 − a2b1, a2b0 − a0b2, a0b1 − a1b0)`.
 #[inline(always)]
 pub fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
-    Vec3::new(
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    )
+    Vec3::from(r3::cross(&r3::of(a), &r3::of(b)))
 }
 
 /// Eigen's `normalize()` on a 3-vector: divide each component by `sqrt(squaredNorm)` (a true
 /// division, no reciprocal), and leave a zero vector untouched.
 #[inline(always)]
 pub fn normalized(a: &Vec3) -> Vec3 {
-    let z = norm2(a);
-    if z > 0.0 {
-        let n = z.sqrt();
-        Vec3::new(a[0] / n, a[1] / n, a[2] / n)
-    } else {
-        *a
-    }
+    Vec3::from(r3::normalized(&r3::of(a)))
 }
 
 /// `M * v`, row i evaluated `m_i0*v0 + (m_i1*v1 + m_i2*v2)`.
 #[inline(always)]
 pub fn mat_vec(m: &Mat3, v: &Vec3) -> Vec3 {
-    Vec3::new(
-        m[(0, 0)] * v[0] + (m[(0, 1)] * v[1] + m[(0, 2)] * v[2]),
-        m[(1, 0)] * v[0] + (m[(1, 1)] * v[1] + m[(1, 2)] * v[2]),
-        m[(2, 0)] * v[0] + (m[(2, 1)] * v[1] + m[(2, 2)] * v[2]),
-    )
+    Vec3::from(r3::mat_vec(m, &r3::of(v)))
 }
 
 /// `Mᵀ * v` with the same per-row evaluation order.
 #[inline(always)]
 pub fn mat_t_vec(m: &Mat3, v: &Vec3) -> Vec3 {
-    Vec3::new(
-        m[(0, 0)] * v[0] + (m[(1, 0)] * v[1] + m[(2, 0)] * v[2]),
-        m[(0, 1)] * v[0] + (m[(1, 1)] * v[1] + m[(2, 1)] * v[2]),
-        m[(0, 2)] * v[0] + (m[(1, 2)] * v[1] + m[(2, 2)] * v[2]),
-    )
+    Vec3::from(r3::mat_t_vec(m, &r3::of(v)))
 }
 
 /// `M * (integer vector)`, as YADE's `hSize * cellDist.cast<Real>()`.
@@ -351,6 +333,93 @@ impl Real for f64 {
         } else {
             b
         }
+    }
+}
+
+/// The reductions above on 3-vectors of any arithmetic (`[R; 3]`: f64, or the fast path's lanes,
+/// one vector per lane), with the same operations in the same order: lanes give f64's bits. The
+/// f64 functions above are these.
+pub mod r3 {
+    use super::{Mat3, Real, Vec3};
+
+    /// A 3-vector in arithmetic `R`.
+    pub type R3<R> = [R; 3];
+
+    #[inline(always)]
+    pub fn of(v: &Vec3) -> R3<f64> {
+        [v[0], v[1], v[2]]
+    }
+    #[inline(always)]
+    pub fn splat<R: Real>(v: &Vec3) -> R3<R> {
+        [R::splat(v[0]), R::splat(v[1]), R::splat(v[2])]
+    }
+    #[inline(always)]
+    pub fn add<R: Real>(a: &R3<R>, b: &R3<R>) -> R3<R> {
+        [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    }
+    #[inline(always)]
+    pub fn sub<R: Real>(a: &R3<R>, b: &R3<R>) -> R3<R> {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+    #[inline(always)]
+    pub fn scale<R: Real>(a: &R3<R>, s: R) -> R3<R> {
+        [a[0] * s, a[1] * s, a[2] * s]
+    }
+    #[inline(always)]
+    pub fn neg<R: Real>(a: &R3<R>) -> R3<R> {
+        [-a[0], -a[1], -a[2]]
+    }
+    /// `a·b`: `a0*b0 + (a1*b1 + a2*b2)`.
+    #[inline(always)]
+    pub fn dot<R: Real>(a: &R3<R>, b: &R3<R>) -> R {
+        a[0] * b[0] + (a[1] * b[1] + a[2] * b[2])
+    }
+    /// `|a|²`: `a0² + (a1² + a2²)`.
+    #[inline(always)]
+    pub fn norm2<R: Real>(a: &R3<R>) -> R {
+        a[0] * a[0] + (a[1] * a[1] + a[2] * a[2])
+    }
+    /// Eigen's `cross`.
+    #[inline(always)]
+    pub fn cross<R: Real>(a: &R3<R>, b: &R3<R>) -> R3<R> {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    /// Eigen's `normalize()`: each component divided by `sqrt(squaredNorm)` where it is
+    /// positive, else left as it is.
+    #[inline(always)]
+    pub fn normalized<R: Real>(a: &R3<R>) -> R3<R> {
+        let z = norm2(a);
+        let pos = z.gt(R::splat(0.0));
+        let n = z.sqrt();
+        [
+            R::select(pos, a[0] / n, a[0]),
+            R::select(pos, a[1] / n, a[1]),
+            R::select(pos, a[2] / n, a[2]),
+        ]
+    }
+    /// `M * v`, row i `m_i0*v0 + (m_i1*v1 + m_i2*v2)` (M the same in every lane).
+    #[inline(always)]
+    pub fn mat_vec<R: Real>(m: &Mat3, v: &R3<R>) -> R3<R> {
+        let e = |i, j| R::splat(m[(i, j)]);
+        [
+            e(0, 0) * v[0] + (e(0, 1) * v[1] + e(0, 2) * v[2]),
+            e(1, 0) * v[0] + (e(1, 1) * v[1] + e(1, 2) * v[2]),
+            e(2, 0) * v[0] + (e(2, 1) * v[1] + e(2, 2) * v[2]),
+        ]
+    }
+    /// `Mᵀ * v`, row i `m_0i*v0 + (m_1i*v1 + m_2i*v2)` (M the same in every lane).
+    #[inline(always)]
+    pub fn mat_t_vec<R: Real>(m: &Mat3, v: &R3<R>) -> R3<R> {
+        let e = |i, j| R::splat(m[(i, j)]);
+        [
+            e(0, 0) * v[0] + (e(1, 0) * v[1] + e(2, 0) * v[2]),
+            e(0, 1) * v[0] + (e(1, 1) * v[1] + e(2, 1) * v[2]),
+            e(0, 2) * v[0] + (e(1, 2) * v[1] + e(2, 2) * v[2]),
+        ]
     }
 }
 

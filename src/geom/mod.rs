@@ -9,7 +9,8 @@ pub mod six_d;
 pub mod sphere_sphere;
 pub mod wall_sphere;
 
-use crate::math::{cross, dot, Quat, Vec3};
+use crate::math::r3::{self, R3};
+use crate::math::{Quat, Real, Vec3};
 pub use six_d::Rot6D;
 
 /// A fictitious body state at a point of a grid connection (the C++-only `fictiousState` of
@@ -256,7 +257,7 @@ impl ScGeom {
     }
 
     /// `ScGeom::precompute` (pkg/dem/ScGeom.cpp): rotation of the contact frame since the last step,
-    /// then the tangential relative velocity times dt.
+    /// then the tangential relative velocity times dt (`precompute`, the formula in any arithmetic).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn precompute(
@@ -269,23 +270,37 @@ impl ScGeom {
         shift2: &Vec3,
         avoid_ratcheting: bool,
     ) {
-        if !is_new {
-            self.orthonormal_axis = cross(&self.normal, current_normal);
-            let w = s1.ang_vel + s2.ang_vel;
-            let angle = ctx.dt * 0.5 * dot(&self.normal, &w);
-            self.twist_axis = self.normal * angle;
-        } else {
-            self.orthonormal_axis = Vec3::zeros();
-            self.twist_axis = Vec3::zeros();
-        }
-        self.normal = *current_normal;
-        let rv = self.incident_vel(s1, s2, shift2, &ctx.shift_vel, avoid_ratcheting);
-        let dn = dot(&self.normal, &rv);
-        let rv = rv - self.normal * dn;
-        self.shear_inc = rv * ctx.dt;
+        let [orth, twist, normal, shear_inc] = precompute(
+            &self.at(),
+            &KinOf::of(s1),
+            &KinOf::of(s2),
+            ctx.dt,
+            &r3::of(&ctx.shift_vel),
+            &r3::of(current_normal),
+            is_new,
+            &r3::of(shift2),
+            avoid_ratcheting,
+        );
+        self.orthonormal_axis = Vec3::from(orth);
+        self.twist_axis = Vec3::from(twist);
+        self.normal = Vec3::from(normal);
+        self.shear_inc = Vec3::from(shear_inc);
     }
 
-    /// `ScGeom::getIncidentVel` (pkg/dem/ScGeom.cpp).
+    /// What `precompute` reads of the contact.
+    #[inline(always)]
+    fn at(&self) -> At<f64> {
+        At {
+            normal: r3::of(&self.normal),
+            contact_point: r3::of(&self.contact_point),
+            pen: self.pen,
+            radius1: self.radius1,
+            radius2: self.radius2,
+        }
+    }
+
+    /// `ScGeom::getIncidentVel` (pkg/dem/ScGeom.cpp; `incident_vel`, the formula in any
+    /// arithmetic).
     #[inline(always)]
     pub fn incident_vel(
         &self,
@@ -295,28 +310,124 @@ impl ScGeom {
         shift_vel: &Vec3,
         avoid_ratcheting: bool,
     ) -> Vec3 {
-        if avoid_ratcheting {
-            // McNamara's fixed branch lengths, translational part scaled by alpha
-            let alpha = (self.radius1 + self.radius2) / (self.radius1 + self.radius2 - self.pen);
-            let a2 = cross(&s2.ang_vel, &(self.normal * (-self.radius2)));
-            let a1 = cross(&s1.ang_vel, &(self.normal * self.radius1));
-            let mut rv = (s2.vel - s1.vel) * alpha + a2 - a1;
-            rv += shift_vel * alpha;
-            rv
-        } else {
-            let c1x = self.contact_point - s1.pos;
-            let c2x = self.contact_point - (s2.pos + shift2);
-            let mut rv = (s2.vel + cross(&s2.ang_vel, &c2x)) - (s1.vel + cross(&s1.ang_vel, &c1x));
-            rv += shift_vel;
-            rv
-        }
+        Vec3::from(incident_vel(
+            &self.at(),
+            &KinOf::of(s1),
+            &KinOf::of(s2),
+            &r3::of(shift2),
+            &r3::of(shift_vel),
+            avoid_ratcheting,
+        ))
     }
 
-    /// `ScGeom::rotate`: carry the shear force along with the contact frame (first order, the
-    /// second term uses the already-updated force; no re-projection, as YADE).
+    /// `ScGeom::rotate` (`rotate`, the formula in any arithmetic).
     #[inline(always)]
     pub fn rotate(&self, fs: &mut Vec3) {
-        *fs -= cross(fs, &self.orthonormal_axis);
-        *fs -= cross(fs, &self.twist_axis);
+        let (orth, twist) = (r3::of(&self.orthonormal_axis), r3::of(&self.twist_axis));
+        *fs = Vec3::from(rotate(&orth, &twist, &r3::of(fs)));
+    }
+}
+
+/// What `precompute` and `incident_vel` read of a contact (the normal: the last step's for the
+/// first, the new one for the second), in arithmetic `R`.
+#[derive(Clone, Copy)]
+pub struct At<R> {
+    pub normal: R3<R>,
+    pub contact_point: R3<R>,
+    pub pen: R,
+    pub radius1: R,
+    pub radius2: R,
+}
+
+/// `ScGeom::precompute` (pkg/dem/ScGeom.cpp) in any arithmetic (f64 for `ScGeom`, a contact per
+/// lane in the fast path's boundary loop): the rotation of the contact frame since the last step
+/// and the tangential relative velocity times dt. Returns the orthonormal axis, twist axis, normal
+/// and shear increment it sets.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn precompute<R: Real>(
+    at: &At<R>,
+    s1: &KinOf<R>,
+    s2: &KinOf<R>,
+    dt: R,
+    shift_vel: &R3<R>,
+    current_normal: &R3<R>,
+    is_new: bool,
+    shift2: &R3<R>,
+    avoid_ratcheting: bool,
+) -> [R3<R>; 4] {
+    let (orth, twist) = if !is_new {
+        let w = r3::add(&s1.ang_vel, &s2.ang_vel);
+        let angle = dt * R::splat(0.5) * r3::dot(&at.normal, &w);
+        (
+            r3::cross(&at.normal, current_normal),
+            r3::scale(&at.normal, angle),
+        )
+    } else {
+        ([R::splat(0.0); 3], [R::splat(0.0); 3])
+    };
+    let now = At {
+        normal: *current_normal,
+        ..*at
+    };
+    let rv = incident_vel(&now, s1, s2, shift2, shift_vel, avoid_ratcheting);
+    let dn = r3::dot(current_normal, &rv);
+    let rv = r3::sub(&rv, &r3::scale(current_normal, dn));
+    [orth, twist, *current_normal, r3::scale(&rv, dt)]
+}
+
+/// `ScGeom::getIncidentVel` (pkg/dem/ScGeom.cpp) in any arithmetic, `at` with the new normal.
+#[inline(always)]
+pub fn incident_vel<R: Real>(
+    at: &At<R>,
+    s1: &KinOf<R>,
+    s2: &KinOf<R>,
+    shift2: &R3<R>,
+    shift_vel: &R3<R>,
+    avoid_ratcheting: bool,
+) -> R3<R> {
+    if avoid_ratcheting {
+        // McNamara's fixed branch lengths, translational part scaled by alpha
+        let alpha = (at.radius1 + at.radius2) / (at.radius1 + at.radius2 - at.pen);
+        let a2 = r3::cross(&s2.ang_vel, &r3::scale(&at.normal, -at.radius2));
+        let a1 = r3::cross(&s1.ang_vel, &r3::scale(&at.normal, at.radius1));
+        let rv = r3::scale(&r3::sub(&s2.vel, &s1.vel), alpha);
+        let rv = r3::sub(&r3::add(&rv, &a2), &a1);
+        r3::add(&rv, &r3::scale(shift_vel, alpha))
+    } else {
+        let c1x = r3::sub(&at.contact_point, &s1.pos);
+        let c2x = r3::sub(&at.contact_point, &r3::add(&s2.pos, shift2));
+        let rv = r3::sub(
+            &r3::add(&s2.vel, &r3::cross(&s2.ang_vel, &c2x)),
+            &r3::add(&s1.vel, &r3::cross(&s1.ang_vel, &c1x)),
+        );
+        r3::add(&rv, shift_vel)
+    }
+}
+
+/// `ScGeom::rotate` in any arithmetic: carry shear force `fs` along with the contact frame (first
+/// order, the second term uses the already-updated force; no re-projection, as YADE).
+#[inline(always)]
+pub fn rotate<R: Real>(orth: &R3<R>, twist: &R3<R>, fs: &R3<R>) -> R3<R> {
+    let fs = r3::sub(fs, &r3::cross(fs, orth));
+    r3::sub(&fs, &r3::cross(&fs, twist))
+}
+
+/// A body's kinematics as `precompute` reads them, in arithmetic `R`.
+#[derive(Clone, Copy)]
+pub struct KinOf<R> {
+    pub pos: R3<R>,
+    pub vel: R3<R>,
+    pub ang_vel: R3<R>,
+}
+
+impl KinOf<f64> {
+    #[inline(always)]
+    pub fn of(k: &Kin) -> KinOf<f64> {
+        KinOf {
+            pos: r3::of(&k.pos),
+            vel: r3::of(&k.vel),
+            ang_vel: r3::of(&k.ang_vel),
+        }
     }
 }

@@ -15,7 +15,8 @@ pub mod viscel;
 use crate::energy::{EnergyTracker, IdCache};
 use crate::forces::Forces;
 use crate::geom::ScGeom;
-use crate::math::{cross, norm, norm2, Vec3};
+use crate::math::r3::{self, R3};
+use crate::math::{norm2, Real, Vec3};
 use crate::phys::FrictPhys;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -163,25 +164,91 @@ pub fn load(
             return None;
         }
     }
-    ph.normal_force = g.normal * (ph.kn * g.pen.max(0.0));
+    let (normal, cp) = (r3::of(&g.normal), r3::of(&g.contact_point));
+    let nf = normal_force(&normal, g.pen, ph.kn);
+    ph.normal_force = Vec3::from(nf);
     cundall_shear(g, ph, energy);
-    let fs = ph.shear_force;
-    let force = -ph.normal_force - fs;
-    Some(if p.spherical_bodies {
-        let nf = cross(&g.normal, &force);
-        Load {
-            force,
-            torque1: nf * (g.radius1 - 0.5 * g.pen),
-            torque2: nf * (g.radius2 - 0.5 * g.pen),
-        }
-    } else {
-        // Law2::applyForceAtContactPoint (pkg/common/Dispatching.cpp): real lever arms
-        Load {
-            force,
-            torque1: cross(&(g.contact_point - bodies.pos1), &force),
-            torque2: -cross(&(g.contact_point - bodies.pos2_shifted), &force),
-        }
+    let at = (&normal, g.pen, (g.radius1, g.radius2), &cp);
+    let (pos1, pos2) = (r3::of(bodies.pos1), r3::of(&bodies.pos2_shifted));
+    let l = loads(
+        p.spherical_bodies,
+        at,
+        &nf,
+        &r3::of(&ph.shear_force),
+        &pos1,
+        &pos2,
+    );
+    Some(Load {
+        force: Vec3::from(l[0]),
+        torque1: Vec3::from(l[1]),
+        torque2: Vec3::from(l[2]),
     })
+}
+
+/// Cundall-Strack's normal force, `normal * (kn * max(pen, 0))`, in any arithmetic (f64 here,
+/// one contact per lane in the fast path's boundary loop).
+#[inline(always)]
+pub fn normal_force<R: Real>(normal: &R3<R>, pen: R, kn: R) -> R3<R> {
+    r3::scale(normal, kn * pen.max(R::splat(0.0)))
+}
+
+/// Cundall-Strack's trial shear force, in any arithmetic: the last one `fs` carried along with the
+/// contact frame (`geom::rotate` about the orthonormal and twist axes), minus ks times the shear
+/// increment.
+#[inline(always)]
+pub fn shear_trial<R: Real>(
+    (orth, twist, shear_inc): (&R3<R>, &R3<R>, &R3<R>),
+    fs: &R3<R>,
+    ks: R,
+) -> R3<R> {
+    r3::sub(
+        &crate::geom::rotate(orth, twist, fs),
+        &r3::scale(shear_inc, ks),
+    )
+}
+
+/// The Coulomb cap on shear force `fs` in any arithmetic: where |fs|² > `max_fs2`, `fs` scaled by
+/// sqrt(max_fs2) / |fs|.
+#[inline(always)]
+pub fn coulomb_cap<R: Real>(fs: R3<R>, max_fs2: R) -> R3<R> {
+    let n2 = r3::norm2(&fs);
+    let over = n2.gt(max_fs2);
+    if !R::any(over) {
+        return fs;
+    }
+    let ratio = max_fs2.sqrt() / n2.sqrt();
+    fs.map(|c| R::select(over, c * ratio, c))
+}
+
+/// The loads of a Cundall-Strack contact (force on body 1, torques on bodies 1 and 2) from its
+/// normal and shear forces, in any arithmetic: lever arms radius - pen/2 along the normal
+/// (`sphericalBodies`), else from the contact point (Law2::applyForceAtContactPoint,
+/// pkg/common/Dispatching.cpp).
+#[inline(always)]
+pub fn loads<R: Real>(
+    spherical_bodies: bool,
+    (normal, pen, (radius1, radius2), contact_point): (&R3<R>, R, (R, R), &R3<R>),
+    normal_force: &R3<R>,
+    fs: &R3<R>,
+    pos1: &R3<R>,
+    pos2_shifted: &R3<R>,
+) -> [R3<R>; 3] {
+    let force = r3::sub(&r3::neg(normal_force), fs);
+    if spherical_bodies {
+        let nf = r3::cross(normal, &force);
+        let half = R::splat(0.5);
+        [
+            force,
+            r3::scale(&nf, radius1 - half * pen),
+            r3::scale(&nf, radius2 - half * pen),
+        ]
+    } else {
+        [
+            force,
+            r3::cross(&r3::sub(contact_point, pos1), &force),
+            r3::neg(&r3::cross(&r3::sub(contact_point, pos2_shifted), &force)),
+        ]
+    }
 }
 
 /// Add a contact's load to its bodies in YADE's order: force 1, force 2, torque 1, torque 2.
@@ -196,24 +263,20 @@ pub fn apply(forces: &mut Forces, id1: usize, id2: usize, l: &Load) {
 /// The Coulomb-capped shear update shared by the frictional laws, with their energy terms.
 #[inline(always)]
 pub(crate) fn cundall_shear(g: &ScGeom, ph: &mut FrictPhys, energy: Option<&mut LawEnergy<'_>>) {
-    let mut fs = ph.shear_force;
-    g.rotate(&mut fs);
-    fs -= g.shear_inc * ph.ks;
+    let axes = (
+        &r3::of(&g.orthonormal_axis),
+        &r3::of(&g.twist_axis),
+        &r3::of(&g.shear_inc),
+    );
+    let trial = shear_trial(axes, &r3::of(&ph.shear_force), ph.ks);
     let max_fs = norm2(&ph.normal_force) * (ph.tan_phi * ph.tan_phi);
+    let fs = Vec3::from(coulomb_cap(trial, max_fs));
     match energy {
-        None => {
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                fs *= ratio;
-            }
-            ph.shear_force = fs;
-        }
+        None => ph.shear_force = fs,
         Some(e) => {
             // Law2_ScGeom_FrictPhys_CundallStrack::go (ElasticContactLaw.cpp), trackEnergy branch
-            if norm2(&fs) > max_fs {
-                let ratio = max_fs.sqrt() / norm(&fs);
-                let trial = fs;
-                fs *= ratio;
+            let trial = Vec3::from(trial);
+            if norm2(&trial) > max_fs {
                 let dissip = crate::math::dot(&((trial - fs) * (1.0 / ph.ks)), &fs);
                 // (traceEnergy: to the functor's plasticDissipation, which ryade does not expose)
                 if !e.trace && dissip > 0.0 {
