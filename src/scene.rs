@@ -543,6 +543,9 @@ pub struct Scene {
     /// Engine slot whose PeriTriaxController asked for its (Python) doneHook during the current
     /// step; the runner of `step_with` takes it (`DONE_HOOK | slot`).
     pub done_hook_pending: Option<usize>,
+    /// (ryade) How many runs of node bonds the walk took with their rotations in lanes
+    /// (`Scene::steady_bonds`).
+    pub bond_lane_runs: u64,
 }
 
 /// Bit set in the id `Scene::step_with` passes to its hook for a pending doneHook (the rest of the
@@ -581,6 +584,7 @@ impl Default for Scene {
             timing: Vec::new(),
             stop_requested: false,
             done_hook_pending: None,
+            bond_lane_runs: 0,
         }
     }
 }
@@ -1295,6 +1299,7 @@ impl Scene {
     fn steady_bonds(&mut self, cfg: &PreCfg, ks: &[(usize, (f64, f64))]) {
         let (p6, cm) = cfg.grid_6d.expect("steady bonds need grid_6d");
         let cell = self.cell.as_ref();
+        self.bond_lane_runs += 1;
         let list = &mut self.interactions.list;
         // per bond: whether it is new, the connection body's move, body 2's shift (None: the
         // geometry erases it)
@@ -1823,7 +1828,7 @@ impl Scene {
             zero_shift: period_shifts(self.cell.as_ref(), &[0; 3], self.dt),
             bond_lanes: il.bond_lanes
                 && grid_6d.is_some_and(|(p6, _)| p6.update_rotations)
-                && lanes_available(),
+                && crate::fast::lanes_available(),
             grid_6d,
             dt: self.dt,
             iter: self.iter,
@@ -2630,14 +2635,6 @@ fn apply_bond(
         bodies.pos[cb as usize] = pos;
     }
     law::cohesion_moment::apply(forces, id1, id2, l)
-}
-
-/// Whether the lanes of `crate::fast` can run here (AVX2).
-fn lanes_available() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    return std::is_x86_feature_detected!("avx2");
-    #[cfg(not(target_arch = "x86_64"))]
-    false
 }
 
 /// A steady 6-D cohesive contact or node bond (`grid_node`; see `pre_slot`): its geometry, then

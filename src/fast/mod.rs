@@ -34,6 +34,14 @@ mod six_simd;
 #[cfg(target_arch = "x86_64")]
 pub(crate) use six_simd::{rotations_lanes, RotOf};
 
+/// Whether the lanes of this module can run here (AVX2).
+pub(crate) fn lanes_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("avx2");
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
 use crate::body::DOF_ALL;
 use crate::geom::ScGeom;
 use crate::interaction::{GeomFunctor, Interaction};
