@@ -5,6 +5,7 @@
 //! evaluation order is free (reciprocals, regrouped cross products), so results agree with YADE to
 //! round-off, not bit for bit.
 
+use crate::math::r3;
 pub use crate::math::Real;
 
 pub type V3 = [f64; 3];
@@ -28,17 +29,18 @@ pub fn nearest_image(d: f64, l: f64) -> f64 {
     }
 }
 
+// (the kernel's vector operations by value: `math::r3`'s, except `dot`, whose order is free)
 #[inline(always)]
 pub fn add<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    r3::add(&a, &b)
 }
 #[inline(always)]
 pub fn sub<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    r3::sub(&a, &b)
 }
 #[inline(always)]
 pub fn scale<R: Real>(a: [R; 3], s: R) -> [R; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
+    r3::scale(&a, s)
 }
 #[inline(always)]
 pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
@@ -46,11 +48,7 @@ pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
 }
 #[inline(always)]
 pub fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    r3::cross(&a, &b)
 }
 
 /// One pair of the Verlet list: sorted body indices `i < j` and the index of body j's periodic
