@@ -34,7 +34,8 @@ pgo_profile() {
   profdata="$sysroot/lib/rustlib/$host/bin/llvm-profdata"
   if [ ! -x "$profdata" ] && command -v rustup >/dev/null 2>&1; then
     echo "== adding rustup's llvm-tools (llvm-profdata, for the profile-guided build)"
-    rustup component add llvm-tools-preview >/dev/null 2>&1 || true
+    # (bounded: a machine without network must not wait long for it)
+    timeout 300 rustup component add llvm-tools-preview >/dev/null 2>&1 || true
   fi
   [ -x "$profdata" ] || { echo "llvm-profdata not found"; return 1; }
   echo "== profile-guided build 1/3: instrumented build of the yade package (a few minutes)"
