@@ -42,7 +42,7 @@ pgo_profile() {
   echo "== profile-guided build 1/3: instrumented build of the yade package (a few minutes)"
   rm -rf "$pgo_dir/raw" "$pgo_dir/pkg" "$pgo_dir/out" "$pgo_dir/ryade.profdata"
   (cd compat && RUSTFLAGS="${RUSTFLAGS:-} -Cprofile-generate=$pgo_dir/raw" \
-    CARGO_TARGET_DIR="$pgo_dir/target" cargo build --release --quiet) || return 1
+    CARGO_TARGET_DIR="$pgo_dir/target" cargo build --release) || return 1
   rm -rf "$pgo_dir/raw"
   mkdir -p "$pgo_dir/pkg"
   cp -r compat/python/yade "$pgo_dir/pkg/" || return 1
