@@ -1665,7 +1665,8 @@ impl Scene {
         };
         let (shift2, _) = cfg.shifts(self.cell.as_ref(), &cell_dist);
         let (b, cell) = (&self.bodies, self.cell.as_ref());
-        if !geom::grid::sphere_gridco_stays_apart(b, cell, (id1, id2), &shift2, partners) {
+        let intrs = &self.interactions;
+        if !geom::grid::sphere_gridco_stays_apart(intrs, b, cell, (id1, id2), &shift2, partners) {
             return false;
         }
         self.idle_gridco(k, id1, id2, cell_dist, &shift2);

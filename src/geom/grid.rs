@@ -620,7 +620,7 @@ pub fn sphere_gridco_steady(
     if !(a.rel_pos > 0.0 && a.rel_pos < 1.0) {
         return false;
     }
-    if takeover_at_nearer_node(bodies, gc, id2, &a, partners) != Some(false) {
+    if takeover_at_nearer_node(bodies, gc, id2, &a, |nb| among(partners, nb)) != Some(false) {
         return false;
     }
     x.true_int = -1;
@@ -632,9 +632,11 @@ pub fn sphere_gridco_steady(
 /// For a potential pair of sphere `id1` (centre shifted by `shift2`) and connection `id2` (no
 /// geometry yet): true when `sphere_gridco` surely returns false without writing anything, as it
 /// does for a new pair farther apart than r + R, unless the sphere lies inside the connection and
-/// may take over the contact of a connection at the nearer node (`takeover_at_nearer_node`).
-/// False when that is not sure (the caller then runs `sphere_gridco`). Same arithmetic.
+/// takes over the contact of a connection at the nearer node (`takeover_at_nearer_node`, with the
+/// functor's own test of a real interaction, `real_with`). False when that is not sure (the caller
+/// then runs `sphere_gridco`). Same arithmetic.
 pub fn sphere_gridco_stays_apart(
+    intrs: &Interactions,
     bodies: &Bodies,
     cell: Option<&Cell>,
     (id1, id2): (u32, u32),
@@ -656,22 +658,23 @@ pub fn sphere_gridco_stays_apart(
     if a.rel_pos <= 0.0 || a.rel_pos >= 1.0 {
         return true;
     }
-    takeover_at_nearer_node(bodies, gc, id2, &a, partners) == Some(false)
+    let real = |nb| real_with(intrs, id1, nb, Some(partners)).is_some();
+    takeover_at_nearer_node(bodies, gc, id2, &a, real) == Some(false)
 }
 
 /// Whether `sphere_gridco`'s inside branch may take over a neighbour's contact: whether a
 /// connection other than `id2` at the node nearer the sphere (node 1 for relPos <= 0.5, as the
-/// branch picks it) is among `partners` and has the sphere behind it (`behind`), when the node has
-/// more than one (the branch looks at none otherwise). Without such a neighbour the branch's loop
-/// changes nothing, whichever of them are real. None when that node or a neighbour is not what it
-/// should be.
+/// branch picks it) may be real (`real`: true for every neighbour whose interaction with the
+/// sphere is real) and has the sphere behind it (`behind`), when the node has more than one (the
+/// branch looks at none otherwise). Without such a neighbour the branch's loop changes nothing.
+/// None when that node or a neighbour is not what it should be.
 #[inline(always)]
 fn takeover_at_nearer_node(
     bodies: &Bodies,
     gc: &GridConnection,
     id2: u32,
     a: &Along,
-    partners: &[u32],
+    real: impl Fn(u32) -> bool,
 ) -> Option<bool> {
     let (node, node_pos, br) = if a.rel_pos <= 0.5 {
         (gc.node1, &a.p_n1, &a.branch)
@@ -683,7 +686,7 @@ fn takeover_at_nearer_node(
         return Some(false);
     }
     for &nb in list {
-        if nb != id2 && among(partners, nb) && behind(bodies, nb, node_pos, br).ok()? {
+        if nb != id2 && real(nb) && behind(bodies, nb, node_pos, br).ok()? {
             return Some(true);
         }
     }
@@ -796,4 +799,67 @@ pub fn gridco_gridco(
     );
     ext.get_or_insert_with(Default::default).geom = Some(GeomExt::GridCoGridCo(x));
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::phys::FrictPhys;
+    use crate::utils;
+
+    /// Two ribs in a line, A = nodes 1-2 (body 3) and B = nodes 0-1 (body 4), and sphere 5 over A
+    /// near node 1, out of A's reach, behind B. `sphere_gridco_stays_apart` on the potential pair
+    /// (5, A) agrees with `sphere_gridco`: with the sphere's interaction with B potential (B still
+    /// among the noted partners, as a contact lost during the walk stays), the functor leaves the
+    /// pair alone and the lean test says so; with it real, the functor takes B's contact over and
+    /// the lean test refuses. Fails, checked, with the partners list standing for the real test
+    /// (the first case then refused) or with no take-over test (the second one then skipped).
+    #[test]
+    fn stays_apart_reads_whether_a_noted_partner_is_still_real() {
+        let (r, rr) = (0.006, 0.002);
+        let mut b = Bodies::default();
+        for x in [-0.05, 0.0, 0.05, 0.0, 0.0] {
+            b.push(utils::grid_node(Vec3::new(x, 0.0, 0.0), rr, 0, true));
+        }
+        let conn = |n1: u32, n2: u32| {
+            Shape::GridConnection(Box::new(GridConnection {
+                radius: rr,
+                node1: n1,
+                node2: n2,
+                periodic: false,
+                cell_dist: [0; 3],
+            }))
+        };
+        b.shape[3] = conn(1, 2);
+        b.shape[4] = conn(0, 1);
+        for (node, list) in [(0, vec![4]), (1, vec![3, 4]), (2, vec![3])] {
+            if let Shape::GridNode(n) = &mut b.shape[node] {
+                n.conn_list = list;
+            }
+        }
+        // relPos 0.2 along A, 1 mm beyond the reach r + R
+        let sphere = Vec3::new(0.01, 0.0, r + rr + 1e-3);
+        b.push(utils::sphere(sphere, r, 0, 2000.0, false));
+        let mut intrs = Interactions::default();
+        intrs.insert(Interaction::new(5, 3, [0; 3], 0));
+        intrs.insert(Interaction::new(5, 4, [0; 3], 0));
+        let (a, bk) = (intrs.find(5, 3).unwrap(), intrs.find(5, 4).unwrap());
+        let (zero, partners) = (Vec3::zeros(), [4u32]);
+        let ctx = GeomCtx {
+            dt: 1e-5,
+            shift_vel: zero,
+        };
+        for real in [false, true] {
+            let mut intrs = intrs.clone();
+            if real {
+                intrs.list[bk].geom = Some(ScGeom::default());
+                intrs.list[bk].phys = Some(FrictPhys::default());
+            }
+            let lean = sphere_gridco_stays_apart(&intrs, &b, None, (5, 3), &zero, &partners);
+            let made = sphere_gridco(a, &mut intrs, &b, None, &ctx, &zero, Some(&partners));
+            assert_eq!(made, Ok(real), "the functor, B real: {real}");
+            assert_eq!(lean, !real, "the lean test, B real: {real}");
+            assert_eq!(intrs.list[a].geom.is_some(), real);
+        }
+    }
 }
