@@ -502,7 +502,7 @@ mod tests {
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(s.skips_gridco(&scan[0]));
         // body 1 becomes a connection: kind change, reset
-        b.shape[1] = connection(0.1, 0, 0);
+        b.shape[1] = Shape::connection(0.1, 0, 0);
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]));
         scan[0].deadline = s.deadline(&b.pos[0], &b.pos[1], 1.0);
@@ -514,17 +514,6 @@ mod tests {
         }
         s.prepare(&b, None, 1.0, &mut scan);
         assert!(!s.skips_gridco(&scan[0]));
-    }
-
-    /// A connection of radius `r` between nodes `n1` and `n2`, not periodic.
-    fn connection(r: f64, n1: u32, n2: u32) -> Shape {
-        Shape::GridConnection(Box::new(GridConnection {
-            radius: r,
-            node1: n1,
-            node2: n2,
-            periodic: false,
-            cell_dist: [0; 3],
-        }))
     }
 
     /// Uniform numbers in [0, 1) and random unit vectors (of points in the unit ball, away from 0).
@@ -610,7 +599,7 @@ mod tests {
         for _ in 0..4 {
             b.push(utils::grid_node(Vec3::zeros(), 0.002, 0, false));
         }
-        b.shape[2] = connection(0.002, 0, 1);
+        b.shape[2] = Shape::connection(0.002, 0, 1);
         b.shape[3] = Shape::Sphere { radius: 0.004 };
         let place = |b: &mut Bodies, x: [Vec3; 3]| {
             (b.pos[0], b.pos[1], b.pos[3]) = (x[0], x[1], x[2]);

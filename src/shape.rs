@@ -112,6 +112,20 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// A connection of radius `r` between nodes `n1` and `n2`, not periodic (for tests).
+    #[cfg(test)]
+    pub(crate) fn connection(r: f64, n1: u32, n2: u32) -> Shape {
+        Shape::GridConnection(Box::new(GridConnection {
+            radius: r,
+            node1: n1,
+            node2: n2,
+            periodic: false,
+            cell_dist: [0; 3],
+        }))
+    }
+}
+
+impl Shape {
     pub fn class_name(&self) -> &'static str {
         match self {
             Shape::Sphere { .. } => "Sphere",

@@ -821,17 +821,8 @@ mod tests {
         for x in [-0.05, 0.0, 0.05, 0.0, 0.0] {
             b.push(utils::grid_node(Vec3::new(x, 0.0, 0.0), rr, 0, true));
         }
-        let conn = |n1: u32, n2: u32| {
-            Shape::GridConnection(Box::new(GridConnection {
-                radius: rr,
-                node1: n1,
-                node2: n2,
-                periodic: false,
-                cell_dist: [0; 3],
-            }))
-        };
-        b.shape[3] = conn(1, 2);
-        b.shape[4] = conn(0, 1);
+        b.shape[3] = Shape::connection(rr, 1, 2);
+        b.shape[4] = Shape::connection(rr, 0, 1);
         for (node, list) in [(0, vec![4]), (1, vec![3, 4]), (2, vec![3])] {
             if let Shape::GridNode(n) = &mut b.shape[node] {
                 n.conn_list = list;
