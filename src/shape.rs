@@ -123,9 +123,7 @@ impl Shape {
             cell_dist: [0; 3],
         }))
     }
-}
 
-impl Shape {
     pub fn class_name(&self) -> &'static str {
         match self {
             Shape::Sphere { .. } => "Sphere",

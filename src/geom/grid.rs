@@ -807,50 +807,61 @@ mod tests {
     use crate::phys::FrictPhys;
     use crate::utils;
 
-    /// Two ribs in a line, A = nodes 1-2 (body 3) and B = nodes 0-1 (body 4), and sphere 5 over A
-    /// near node 1, out of A's reach, behind B. `sphere_gridco_stays_apart` on the potential pair
-    /// (5, A) agrees with `sphere_gridco`: with the sphere's interaction with B potential (B still
-    /// among the noted partners, as a contact lost during the walk stays), the functor leaves the
-    /// pair alone and the lean test says so; with it real, the functor takes B's contact over and
-    /// the lean test refuses. Fails, checked, with the partners list standing for the real test
-    /// (the first case then refused) or with no take-over test (the second one then skipped).
+    /// Three ribs in a line, B = nodes 0-1 (body 3), A = nodes 1-2 (body 4) and C = nodes 2-6
+    /// (body 5), and sphere 7 over A out of its reach (by 1 mm), near node 1 and behind B, then
+    /// near node 2 and behind C. `sphere_gridco_stays_apart` on the potential pair (7, A) agrees
+    /// with `sphere_gridco`: with the sphere's interaction with the neighbour at the nearer node
+    /// potential (the neighbour still among the noted partners, as a contact lost during the walk
+    /// stays), the functor leaves the pair and every other slot alone and the lean test says so;
+    /// with it real, the functor takes the neighbour's contact over and the lean test refuses.
+    /// Fails, checked, with the partners list standing for the real test (the potential cases
+    /// then refused), with no take-over test (the real ones then skipped) or with the far node
+    /// taken for the nearer one.
     #[test]
     fn stays_apart_reads_whether_a_noted_partner_is_still_real() {
         let (r, rr) = (0.006, 0.002);
         let mut b = Bodies::default();
-        for x in [-0.05, 0.0, 0.05, 0.0, 0.0] {
+        for x in [-0.05, 0.0, 0.05, 0.0, 0.0, 0.0, 0.1] {
             b.push(utils::grid_node(Vec3::new(x, 0.0, 0.0), rr, 0, true));
         }
-        b.shape[3] = Shape::connection(rr, 1, 2);
-        b.shape[4] = Shape::connection(rr, 0, 1);
-        for (node, list) in [(0, vec![4]), (1, vec![3, 4]), (2, vec![3])] {
+        b.shape[3] = Shape::connection(rr, 0, 1);
+        b.shape[4] = Shape::connection(rr, 1, 2);
+        b.shape[5] = Shape::connection(rr, 2, 6);
+        for (node, list) in [(0, vec![3]), (1, vec![4, 3]), (2, vec![4, 5]), (6, vec![5])] {
             if let Shape::GridNode(n) = &mut b.shape[node] {
                 n.conn_list = list;
             }
         }
-        // relPos 0.2 along A, 1 mm beyond the reach r + R
-        let sphere = Vec3::new(0.01, 0.0, r + rr + 1e-3);
-        b.push(utils::sphere(sphere, r, 0, 2000.0, false));
+        b.push(utils::sphere(Vec3::zeros(), r, 0, 2000.0, false));
         let mut intrs = Interactions::default();
-        intrs.insert(Interaction::new(5, 3, [0; 3], 0));
-        intrs.insert(Interaction::new(5, 4, [0; 3], 0));
-        let (a, bk) = (intrs.find(5, 3).unwrap(), intrs.find(5, 4).unwrap());
-        let (zero, partners) = (Vec3::zeros(), [4u32]);
+        for c in [3, 4, 5] {
+            intrs.insert(Interaction::new(7, c, [0; 3], 0));
+        }
+        let a = intrs.find(7, 4).unwrap();
+        let zero = Vec3::zeros();
         let ctx = GeomCtx {
             dt: 1e-5,
             shift_vel: zero,
         };
-        for real in [false, true] {
-            let mut intrs = intrs.clone();
-            if real {
-                intrs.list[bk].geom = Some(ScGeom::default());
-                intrs.list[bk].phys = Some(FrictPhys::default());
+        // relPos 0.2 along A (nearer node 1, neighbour B), then 0.8 (node 2, neighbour C)
+        for (x, nb) in [(0.01, 3u32), (0.04, 5)] {
+            b.pos[7] = Vec3::new(x, 0.0, r + rr + 1e-3);
+            let (k, partners) = (intrs.find(7, nb).unwrap(), [nb]);
+            for real in [false, true] {
+                let mut intrs = intrs.clone();
+                if real {
+                    intrs.list[k].geom = Some(ScGeom::default());
+                    intrs.list[k].phys = Some(FrictPhys::default());
+                }
+                let before: Vec<bool> = intrs.list.iter().map(|it| it.geom.is_some()).collect();
+                let lean = sphere_gridco_stays_apart(&intrs, &b, None, (7, 4), &zero, &partners);
+                let made = sphere_gridco(a, &mut intrs, &b, None, &ctx, &zero, Some(&partners));
+                assert_eq!(made, Ok(real), "the functor, x {x}, neighbour real: {real}");
+                assert_eq!(lean, !real, "the lean test, x {x}, neighbour real: {real}");
+                let after: Vec<bool> = intrs.list.iter().map(|it| it.geom.is_some()).collect();
+                let shared = intrs.share_of(a) != 0 || intrs.share_of(k) != 0;
+                assert_eq!((after != before, shared), (real, real), "x {x}: writes");
             }
-            let lean = sphere_gridco_stays_apart(&intrs, &b, None, (5, 3), &zero, &partners);
-            let made = sphere_gridco(a, &mut intrs, &b, None, &ctx, &zero, Some(&partners));
-            assert_eq!(made, Ok(real), "the functor, B real: {real}");
-            assert_eq!(lean, !real, "the lean test, B real: {real}");
-            assert_eq!(intrs.list[a].geom.is_some(), real);
         }
     }
 }
